@@ -1,0 +1,104 @@
+// The scene: what `lsi` reads from a JSON file. The key names are the public contract and are
+// documented in docs/scene_schema.md (the one place where the schema is described).
+#pragma once
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace lsi {
+
+// Thrown for any invalid input. `what()` is one line naming the JSON path, the value and the
+// allowed range, e.g. `landslide.thickness_m = -3: must be > 0 (metres)`. The CLI prints it and
+// exits with code 2.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct LandslideShape {
+  enum class Kind { FrontBodyTail, Rectangle };
+  Kind kind = Kind::FrontBodyTail;
+  int body_squares = 4;    // front-body-tail: number i of h x h squares between front and tail
+  double length_m = 0.0;   // rectangle: its length
+};
+
+// Material of the landslide mixture; only the MPM uses it. Defaults: the paper's section 4.1.
+struct LandslideMaterial {
+  double porosity = 0.5;
+  double friction_angle_deg = 20.0;
+  double cohesion_kpa = 0.0;
+  double young_modulus_mpa = 2.0;
+  double poisson_ratio = 0.25;
+  double hydraulic_conductivity_m_s = 1e-4;
+  double liquid_bulk_modulus_mpa = 30.0;
+  double liquid_viscosity_kpa_s = 1e-6;
+};
+
+struct SceneLandslide {
+  double thickness_m = 0.0;      // h
+  double velocity_m_s = 0.0;     // v0 = v1,0, horizontal approach velocity
+  double density_kg_m3 = 0.0;    // rho_m, mixture density
+  LandslideShape shape;
+  LandslideMaterial material;
+  // Derived from shape: L1,0 (equivalent length, m) and cross-section area (m^2).
+  double equivalent_length_m() const;
+  double area_m2() const;
+  double mass_kg_per_m() const { return density_kg_m3 * area_m2(); }
+};
+
+struct SceneBarrier {
+  double height_m = 0.0;         // H
+  double base_width_m = 0.0;     // B
+  double top_width_m = 0.0;      // b
+  double face_angle_deg = 90.0;  // beta, inclination of the impacted (upstream) face from horizontal
+  std::optional<double> density_kg_m3;   // exactly one of density and mass_kg_per_m is given
+  std::optional<double> mass_kg_per_m;
+  double base_friction = 0.5;    // tan(delta_b)
+  double face_friction = 0.3;    // tan(delta)
+  bool fixed = false;
+  double area_m2() const { return 0.5 * (base_width_m + top_width_m) * height_m; }
+  double mass() const { return mass_kg_per_m ? *mass_kg_per_m : *density_kg_m3 * area_m2(); }
+};
+
+// Method blocks: present means "run this method"; their keys override model parameters.
+struct EmpiricalParameters {
+  double a1 = 1.781;
+  double a2 = -0.515;
+  double tau = 0.14;
+  double kappa = 0.0;
+};
+struct AnalyticalParameters {
+  std::optional<double> lambda;   // default 0.72 (fixed barrier) or 0.41 (free barrier)
+  std::optional<double> tau;      // default 0.17 (fixed) or 0.25 (free)
+};
+// Literature peak-force families (docs/models.md cites the sources of the named presets).
+struct LiteratureParameters {
+  std::string family = "mixed";   // "hydrostatic" | "hydrodynamic" | "mixed"
+  std::optional<std::string> preset;
+  std::optional<double> hydrostatic_k;
+  std::optional<double> hydrodynamic_alpha;
+};
+
+struct SceneMethods {
+  std::optional<EmpiricalParameters> empirical;
+  std::optional<AnalyticalParameters> analytical;
+  std::optional<LiteratureParameters> literature;
+  std::optional<nlohmann::json> mpm;   // validated by the MPM module when it exists
+};
+
+struct Scene {
+  std::string name;
+  SceneLandslide landslide;
+  SceneBarrier barrier;
+  SceneMethods methods;
+  nlohmann::json source;   // the scene as read (stored in the HDF5 root attribute `scene`)
+};
+
+// Parses and validates; throws InputError (one line: path, value, allowed range) on any problem:
+// malformed JSON, unknown key, missing key, wrong type, non-finite number, out-of-range value,
+// inconsistent barrier geometry.
+Scene parse_scene(const nlohmann::json& j);
+Scene load_scene(const std::string& path);   // also reports malformed JSON with line/column
+
+}  // namespace lsi
