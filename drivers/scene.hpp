@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace lsi {
 
@@ -100,5 +101,8 @@ struct Scene {
 // inconsistent barrier geometry.
 Scene parse_scene(const nlohmann::json& j);
 Scene load_scene(const std::string& path);   // also reports malformed JSON with line/column
+
+// The names accepted by `methods.literature.preset` (currently: "kwan2012").
+const std::vector<std::string>& literature_preset_names();
 
 }  // namespace lsi

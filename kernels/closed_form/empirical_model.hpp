@@ -1,0 +1,78 @@
+// Design approach No. 1, empirical (Di Perna et al. 2022; the paper's eqs. 1-10).
+//
+// Symbols (SI): h flow thickness (m), v0 approach velocity (m/s), rho_m mixture density (kg/m^3),
+// m1 landslide mass per metre (kg/m), beta face inclination (rad). The impact is resolved along
+// the normal of the impacted face: v_n = v0 sin(beta) is the "reference velocity" of the paper,
+// v_t = v0 cos(beta) slides along a smooth face and is not destroyed by the impact.
+//   eq. 1  Froude number       Fr = v_n / sqrt(g h)
+//   eq. 2  coefficient         alpha = a1 Fr^a2
+//   eq. 4  dynamic peak        F_peak,dyn  = alpha rho_m v_n^2 h
+//   eq. 5  static peak         F_peak,stat = kappa rho_m g h^2 / 2
+//   eq. 3  peak force          F_peak = F_peak,dyn + F_peak,stat        (normal to the face, N/m)
+//   eq. 6  impact duration     T2 = 2 m1 v_n / (F_peak + F_peak,stat - tau F_peak,stat)
+//   eq. 7  rise time           T1 = tau T2
+//   eq. 8  velocity loss       Delta v(t) = I(t) / m1, I = exact integral of the pulse
+//   eq. 9  velocity            v_n(t) = v_n - Delta v(t)
+//   eq. 10 kinetic energy      E_k,1(t) = m1 (v_n(t)^2 + v_t^2) / 2
+// The pulse rises linearly to F_peak at T1 and decays linearly to F_peak,stat at T2 (this is the
+// pulse whose impulse eq. 6 equates to m1 v_n); the printed eq. 8 is not its integral and is
+// discontinuous at T1. Derivations and deviations: docs/models.md, "Empirical model".
+#pragma once
+#include "kernels/closed_form/force_pulse.hpp"
+#include "kernels/common/constants.hpp"
+#include "kernels/common/math.hpp"
+
+namespace lsi {
+
+struct EmpiricalCoefficients {
+  double a1 = 1.781;    // alpha = a1 Fr^a2
+  double a2 = -0.515;
+  double tau = 0.14;    // T1 / T2, in (0, 1)
+  double kappa = 0.0;   // static coefficient
+};
+
+struct EmpiricalImpact {
+  double normal_velocity = 0.0;      // v_n, m/s
+  double tangential_velocity = 0.0;  // v_t, m/s
+  double froude = 0.0;               // Fr
+  double alpha = 0.0;
+  double peak_dynamic = 0.0;         // F_peak,dyn, N/m
+  double peak_static = 0.0;          // F_peak,stat, N/m
+  double landslide_mass = 0.0;       // m1, kg/m
+  ForcePulse pulse;                  // normal force on the face; peak = F_peak
+
+  // Landslide velocity normal to the face, eq. 9; zero from T2 on (the flow is stopped).
+  KOKKOS_INLINE_FUNCTION double landslide_normal_velocity(double t) const {
+    const double tt = math::min(t, pulse.duration);
+    return math::max(normal_velocity - pulse.impulse(tt) / landslide_mass, 0.0);
+  }
+  // Landslide kinetic energy, eq. 10 (J/m).
+  KOKKOS_INLINE_FUNCTION double landslide_kinetic_energy(double t) const {
+    const double vn = landslide_normal_velocity(t);
+    return 0.5 * landslide_mass * (vn * vn + tangential_velocity * tangential_velocity);
+  }
+};
+
+KOKKOS_INLINE_FUNCTION EmpiricalImpact empirical_impact(double thickness, double velocity,
+                                                        double density, double landslide_mass,
+                                                        double face_angle_rad,
+                                                        const EmpiricalCoefficients& c) {
+  EmpiricalImpact r;
+  r.normal_velocity = velocity * math::sin(face_angle_rad);
+  r.tangential_velocity = velocity * math::cos(face_angle_rad);
+  r.landslide_mass = landslide_mass;
+  r.froude = r.normal_velocity / math::sqrt(gravity * thickness);                 // eq. 1
+  r.alpha = c.a1 * math::pow(r.froude, c.a2);                                      // eq. 2
+  r.peak_dynamic = r.alpha * density * r.normal_velocity * r.normal_velocity * thickness;  // eq. 4
+  r.peak_static = 0.5 * c.kappa * density * gravity * thickness * thickness;      // eq. 5
+  const double peak = r.peak_dynamic + r.peak_static;                              // eq. 3
+  const double T2 = 2.0 * landslide_mass * r.normal_velocity /
+                    (peak + r.peak_static - c.tau * r.peak_static);                // eq. 6
+  r.pulse.peak = peak;
+  r.pulse.duration = T2;
+  r.pulse.rise_time = c.tau * T2;                                                  // eq. 7
+  r.pulse.residual = r.peak_static;
+  return r;
+}
+
+}  // namespace lsi

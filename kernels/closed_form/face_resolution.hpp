@@ -1,0 +1,36 @@
+// Resolution of the force that the flow exerts on the impacted (upstream) face of the barrier.
+//
+// The face rises at angle beta from the horizontal and leans downstream (beta = 90 deg: vertical).
+// Its outward normal points upstream and up, n = (-sin beta, cos beta). A normal contact force N
+// (per metre, pushing on the barrier) acts along -n: horizontal N sin beta (downstream) and
+// vertical N cos beta (DOWNWARDS: the flow presses the leaning face into the ground). Flow sliding
+// up the face with a mobilised shear ratio mu_f = S/N adds S along the face, upwards:
+// horizontal S cos beta, vertical -S sin beta. See docs/models.md, "Force on an inclined face".
+#pragma once
+#include "kernels/common/math.hpp"
+
+namespace lsi {
+
+struct FaceResolution {
+  double horizontal = 1.0;     // horizontal force on the barrier per unit normal force
+  double vertical_down = 0.0;  // downward force on the barrier per unit normal force
+
+  // Net horizontal force that drives sliding, per unit normal force, once the base friction
+  // tan(delta_b) of the extra vertical load is subtracted: c = h - tan(delta_b) v.
+  KOKKOS_INLINE_FUNCTION double sliding_drive(double base_friction) const {
+    return horizontal - base_friction * vertical_down;
+  }
+};
+
+// beta in radians, face_shear_ratio = mobilised tan(delta) on the face (0: shear neglected, as in
+// the paper's analytical model).
+KOKKOS_INLINE_FUNCTION FaceResolution resolve_face_force(double face_angle_rad,
+                                                         double face_shear_ratio = 0.0) {
+  const double s = math::sin(face_angle_rad), c = math::cos(face_angle_rad);
+  FaceResolution r;
+  r.horizontal = s + face_shear_ratio * c;
+  r.vertical_down = c - face_shear_ratio * s;
+  return r;
+}
+
+}  // namespace lsi
