@@ -73,10 +73,10 @@ struct AnalyticalParameters {
   std::optional<double> lambda;   // default 0.72 (fixed barrier) or 0.41 (free barrier)
   std::optional<double> tau;      // default 0.17 (fixed) or 0.25 (free)
 };
-// Literature peak-force families (docs/models.md cites the sources of the named presets).
+// Literature peak-force families with user-given coefficients (docs/models.md, "Literature
+// peak-force families").
 struct LiteratureParameters {
   std::string family = "mixed";   // "hydrostatic" | "hydrodynamic" | "mixed"
-  std::optional<std::string> preset;
   std::optional<double> hydrostatic_k;
   std::optional<double> hydrodynamic_alpha;
 };
@@ -101,8 +101,5 @@ struct Scene {
 // inconsistent barrier geometry.
 Scene parse_scene(const nlohmann::json& j);
 Scene load_scene(const std::string& path);   // also reports malformed JSON with line/column
-
-// The names accepted by `methods.literature.preset` (currently: "kwan2012").
-const std::vector<std::string>& literature_preset_names();
 
 }  // namespace lsi

@@ -128,6 +128,24 @@ TEST(BarrierSliding, PhaseAMatchesCorrectedEquation17AndStartTime) {
   }
 }
 
+TEST(BarrierSliding, PhaseBMatchesPrintedEquation18SecondBranch) {
+  // Eq. 18, T1 < t <= T2, is correct as printed once m2 is read for m1 (docs/models.md).
+  const double m2 = 14400, mu_b = 0.5, tau = 0.25;
+  const auto imp = two_body_impact(97200, 12.5, 18, m2, TwoBodyCoefficients{0.41, tau});
+  const SlidingBlock b = block_for(m2, mu_b, 80);
+  const BarrierMotion m = barrier_motion(imp.pulse, b);
+  const double q1 = imp.q1, K1 = imp.K1, c = b.drive, g = 9.81, T1 = imp.pulse.rise_time,
+               T2 = imp.pulse.duration;
+  for (double f : {0.1, 0.5, 0.9, 1.0}) {
+    const double t = T1 + f * (T2 - T1);
+    const double x18 = q1 * q1 / (12 * K1 * m2) * c * (T1 - t) * (T1 - t) * (3 * T2 - 2 * T1 - t) /
+                           (1 - tau) -
+                       0.5 * g * mu_b * (T1 - t) * (T1 - t) - m.velocity(T1) * (T1 - t) +
+                       m.displacement(T1);
+    EXPECT_NEAR(m.displacement(t), x18, 1e-12 * 10);
+  }
+}
+
 TEST(BarrierSliding, PrintedEquation20OmitsTermsThatMatter) {
   // docs/models.md, deviation A4: eq. 20 as printed (with the same c) against the exact answer.
   const double m2 = 14400, mu_b = 0.5, tau = 0.25;

@@ -1,0 +1,144 @@
+// `lsi`: the command line. Scenes in (JSON), summaries out (table or JSON), results in HDF5.
+// Exit codes: 0 success, 2 invalid input (scene, options), 1 any other failure (I/O, ...).
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "drivers/closed_form_methods.hpp"
+#include "drivers/hdf5_results.hpp"
+#include "drivers/report.hpp"
+#include "drivers/scene.hpp"
+
+namespace {
+
+constexpr const char* known_methods[] = {"empirical", "analytical", "literature"};
+
+std::vector<std::string> parse_methods(const std::string& list) {
+  std::vector<std::string> out;
+  std::stringstream ss(list);
+  for (std::string m; std::getline(ss, m, ',');) {
+    if (m.empty()) continue;
+    bool ok = false;
+    for (const char* k : known_methods) ok = ok || m == k;
+    if (m == "mpm")
+      throw lsi::InputError("--methods mpm: the MPM method is not part of this build yet "
+                            "(allowed: empirical, analytical, literature)");
+    if (!ok)
+      throw lsi::InputError("--methods " + m + ": unknown method (allowed: empirical, "
+                            "analytical, literature)");
+    out.push_back(m);
+  }
+  if (!list.empty() && out.empty()) throw lsi::InputError("--methods: empty list");
+  return out;
+}
+
+// Loads a scene; validation errors (which name only the JSON path) get the file name in front,
+// so that `lsi compare` with many scenes says which file is wrong.
+lsi::Scene load(const std::string& path) {
+  try {
+    return lsi::load_scene(path);
+  } catch (const lsi::InputError& e) {
+    const std::string what = e.what();
+    if (what.rfind(path, 0) == 0) throw;
+    throw lsi::InputError(path + ": " + what);
+  }
+}
+
+void check_format(const std::string& f) {
+  if (f != "table" && f != "json")
+    throw lsi::InputError("--format " + f + ": allowed: table, json");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"lsi: landslide-structure interaction. Empirical (Di Perna et al. 2022) and "
+               "analytical (Cuomo et al. 2022) design methods for barriers hit by flow-like "
+               "landslides."};
+  app.set_version_flag("--version", std::string("lsi ") + LSI_VERSION + " (" + LSI_GIT_REVISION + ")");
+  app.require_subcommand(1);
+
+  std::string scene_path, methods_list, out_path, format = "table";
+  auto* run = app.add_subcommand("run", "Run a scene: print peak force, rise time, impact "
+                                        "duration and final displacement per method");
+  run->add_option("scene", scene_path, "Scene JSON file (docs/scene_schema.md)")->required();
+  run->add_option("--methods", methods_list,
+                  "Comma-separated methods to run (default: the scene's methods block)");
+  run->add_option("--out", out_path, "Write time histories and summaries to this HDF5 file");
+  run->add_option("--format", format, "Summary format: table or json");
+
+  double max_displacement = 0.5;
+  std::string design_scene;
+  auto* design = app.add_subcommand("design", "Inverse design: minimum barrier mass per metre "
+                                              "for a tolerable final displacement");
+  design->add_option("scene", design_scene, "Scene JSON file")->required();
+  design->add_option("--max-displacement", max_displacement, "Tolerable final displacement (m)")
+      ->required();
+  design->add_option("--methods", methods_list, "empirical and/or analytical");
+  design->add_option("--format", format, "table or json");
+
+  std::vector<std::string> compare_scenes;
+  std::string out_dir;
+  auto* compare = app.add_subcommand("compare", "Run several scenes; print the comparison table "
+                                                "of the methods and the masses for a tolerable "
+                                                "displacement (the reference study)");
+  compare->add_option("scenes", compare_scenes, "Scene JSON files")->required();
+  compare->add_option("--out-dir", out_dir, "Write one HDF5 file per scene here");
+  compare->add_option("--max-displacement", max_displacement,
+                      "Tolerable final displacement for the mass column (m)");
+  compare->add_option("--format", format, "table or json");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  }
+
+  try {
+    check_format(format);
+    const auto only = parse_methods(methods_list);
+    if (*run) {
+      const lsi::Scene scene = load(scene_path);
+      const auto results = lsi::run_closed_form_methods(scene, only);
+      if (!out_path.empty()) lsi::write_results(out_path, scene.source, results);
+      if (format == "json") std::cout << lsi::summary_json(results).dump(2) << "\n";
+      else std::cout << lsi::summary_table(scene, results);
+    } else if (*design) {
+      const lsi::Scene scene = load(design_scene);
+      const auto designs = lsi::design_barrier_mass(scene, max_displacement, only);
+      if (format == "json") std::cout << lsi::design_json(designs, max_displacement).dump(2) << "\n";
+      else std::cout << lsi::design_table(scene, designs, max_displacement);
+    } else if (*compare) {
+      std::vector<lsi::ComparisonRow> rows;
+      for (const auto& path : compare_scenes) {
+        const lsi::Scene scene = load(path);
+        lsi::ComparisonRow row{scene.name, lsi::run_closed_form_methods(scene, only), {}};
+        if (!scene.barrier.fixed) row.designs = lsi::design_barrier_mass(scene, max_displacement, only);
+        if (!out_dir.empty()) {
+          const auto file = std::filesystem::path(out_dir) / (scene.name + ".h5");
+          lsi::write_results(file.string(), scene.source, row.results);
+        }
+        rows.push_back(std::move(row));
+      }
+      if (format == "json") std::cout << lsi::comparison_json(rows, max_displacement).dump(2) << "\n";
+      else std::cout << lsi::comparison_table(rows, max_displacement);
+    }
+  } catch (const lsi::InputError& e) {
+    std::cerr << "lsi: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "lsi: failed: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

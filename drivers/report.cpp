@@ -1,0 +1,154 @@
+#include "drivers/report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace lsi {
+namespace {
+
+// JSON has no infinity or NaN: infinity (a barrier that never stops) becomes null; NaN (not
+// given by this method) leaves the key out.
+void put(nlohmann::json& j, const std::string& key, double v) {
+  if (std::isnan(v)) return;
+  j[key] = std::isinf(v) ? nlohmann::json(nullptr) : nlohmann::json(v);
+}
+
+std::string fmt(double v, const char* format = "%.3g") {
+  if (std::isnan(v)) return "-";
+  if (std::isinf(v)) return "never stops";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+std::string pad(const std::string& s, size_t width) {
+  return s.size() >= width ? s + " " : s + std::string(width - s.size(), ' ');
+}
+
+}  // namespace
+
+nlohmann::json summary_json(const std::vector<MethodResult>& results) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& r : results) {
+    nlohmann::json m = nlohmann::json::object();
+    put(m, "peak_force", r.peak_force);
+    put(m, "rise_time", r.rise_time);
+    put(m, "impact_duration", r.impact_duration);
+    put(m, "final_displacement", r.final_displacement);
+    for (const auto& [k, v] : r.extra) put(m, k, v);
+    j[r.method] = m;
+  }
+  return j;
+}
+
+std::string summary_table(const Scene& scene, const std::vector<MethodResult>& results) {
+  std::ostringstream o;
+  o << "scene " << scene.name << ": landslide " << fmt(scene.landslide.mass_kg_per_m(), "%.0f")
+    << " kg/m at " << fmt(scene.landslide.velocity_m_s) << " m/s; barrier "
+    << fmt(scene.barrier.mass(), "%.0f") << " kg/m, "
+    << (scene.barrier.fixed ? "fixed" : "free on its base") << ", face "
+    << fmt(scene.barrier.face_angle_deg) << " deg\n";
+  o << pad("method", 12) << pad("peak force", 13) << pad("rise time", 11)
+    << pad("impact duration", 17) << "final displacement\n";
+  o << pad("", 12) << pad("[kN/m]", 13) << pad("[s]", 11) << pad("[s]", 17) << "[m]\n";
+  for (const auto& r : results) {
+    o << pad(r.method, 12) << pad(fmt(r.peak_force / 1e3, "%.1f"), 13)
+      << pad(fmt(r.rise_time, "%.3f"), 11) << pad(fmt(r.impact_duration, "%.3f"), 17)
+      << fmt(r.final_displacement, "%.3f") << "\n";
+  }
+  return o.str();
+}
+
+nlohmann::json design_json(const std::vector<MassDesign>& designs, double max_displacement_m) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& d : designs) {
+    nlohmann::json m = {{"status", d.status}, {"max_displacement", max_displacement_m}};
+    put(m, "barrier_mass", d.mass_kg_per_m);
+    put(m, "final_displacement", d.displacement_m);
+    m["geometries"] = nlohmann::json::array();
+    for (const auto& g : d.geometries) {
+      nlohmann::json gj = {{"height", g.height_m}, {"base_width", g.base_width_m},
+                           {"top_width", g.top_width_m}};
+      put(gj, "min_overturning_safety", g.min_overturning_safety);
+      m["geometries"].push_back(gj);
+    }
+    j[d.method] = m;
+  }
+  return j;
+}
+
+std::string design_table(const Scene& scene, const std::vector<MassDesign>& designs,
+                         double max_displacement_m) {
+  std::ostringstream o;
+  o << "scene " << scene.name << ": minimum barrier mass for a final displacement <= "
+    << fmt(max_displacement_m) << " m (current barrier: " << fmt(scene.barrier.mass(), "%.0f")
+    << " kg/m)\n";
+  for (const auto& d : designs) {
+    o << "  " << pad(d.method, 11);
+    if (d.status == "found") {
+      o << fmt(d.mass_kg_per_m, "%.0f") << " kg/m (displacement " << fmt(d.displacement_m, "%.3f")
+        << " m)\n";
+      for (const auto& g : d.geometries)
+        o << "      H = " << fmt(g.height_m, "%.2f") << " m, B = " << fmt(g.base_width_m, "%.2f")
+          << " m, b = " << fmt(g.top_width_m, "%.2f")
+          << " m; overturning safety factor " << fmt(g.min_overturning_safety, "%.2f") << "\n";
+    } else {
+      o << d.status << "\n";
+    }
+  }
+  return o.str();
+}
+
+namespace {
+const MethodResult* find(const std::vector<MethodResult>& rs, const std::string& m) {
+  for (const auto& r : rs) if (r.method == m) return &r;
+  return nullptr;
+}
+const MassDesign* find(const std::vector<MassDesign>& ds, const std::string& m) {
+  for (const auto& d : ds) if (d.method == m) return &d;
+  return nullptr;
+}
+}  // namespace
+
+std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_displacement_m) {
+  // Columns: E = empirical, A = analytical (later M = MPM).
+  std::ostringstream o;
+  o << "Comparison of the design methods (E: empirical, A: analytical); forces normal to the "
+       "face\n";
+  o << pad("case", 8) << pad("peak force [kN/m]", 20) << pad("impact period [s]", 20)
+    << pad("final displ. [m]", 22) << "mass for " << fmt(max_displacement_m) << " m [t/m]\n";
+  o << pad("", 8) << pad("E        A", 20) << pad("E        A", 20) << pad("E          A", 22)
+    << "E        A\n";
+  for (const auto& row : rows) {
+    const MethodResult* e = find(row.results, "empirical");
+    const MethodResult* a = find(row.results, "analytical");
+    auto col = [&](const MethodResult* r, double MethodResult::*f, const char* format, double s,
+                   size_t w) { return pad(r ? fmt(r->*f / s, format) : "-", w); };
+    o << pad(row.scene, 8) << col(e, &MethodResult::peak_force, "%.1f", 1e3, 9)
+      << col(a, &MethodResult::peak_force, "%.1f", 1e3, 11)
+      << col(e, &MethodResult::impact_duration, "%.2f", 1, 9)
+      << col(a, &MethodResult::impact_duration, "%.2f", 1, 11)
+      << col(e, &MethodResult::final_displacement, "%.3f", 1, 11)
+      << col(a, &MethodResult::final_displacement, "%.3f", 1, 11);
+    for (const char* m : {"empirical", "analytical"}) {
+      const MassDesign* d = find(row.designs, m);
+      o << pad(!d ? "-" : d->status == "found" ? fmt(d->mass_kg_per_m / 1e3, "%.1f")
+                        : d->status == "any mass works" ? "any" : "none",
+               9);
+    }
+    o << "\n";
+  }
+  return o.str();
+}
+
+nlohmann::json comparison_json(const std::vector<ComparisonRow>& rows, double max_displacement_m) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& row : rows) {
+    j[row.scene] = {{"results", summary_json(row.results)},
+                    {"design", design_json(row.designs, max_displacement_m)}};
+  }
+  return j;
+}
+
+}  // namespace lsi

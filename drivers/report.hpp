@@ -1,0 +1,32 @@
+// Human (table) and machine (JSON) summaries of method results, SI units in JSON.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "drivers/closed_form_methods.hpp"
+#include "drivers/method_result.hpp"
+#include "drivers/scene.hpp"
+
+namespace lsi {
+
+// {"empirical": {"peak_force": N/m, "rise_time": s, "impact_duration": s,
+//                "final_displacement": m or null if the barrier never stops}, ...}
+nlohmann::json summary_json(const std::vector<MethodResult>& results);
+std::string summary_table(const Scene& scene, const std::vector<MethodResult>& results);
+
+nlohmann::json design_json(const std::vector<MassDesign>& designs, double max_displacement_m);
+std::string design_table(const Scene& scene, const std::vector<MassDesign>& designs,
+                         double max_displacement_m);
+
+// One row per scene: peak force, impact duration, final displacement per method, and the mass
+// that limits the displacement to `max_displacement_m` (the paper's Tables 4 and 6).
+struct ComparisonRow {
+  std::string scene;
+  std::vector<MethodResult> results;
+  std::vector<MassDesign> designs;
+};
+std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_displacement_m);
+nlohmann::json comparison_json(const std::vector<ComparisonRow>& rows, double max_displacement_m);
+
+}  // namespace lsi

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# plot_script_test.sh MAKE_SAMPLE_RESULT LSI_PLOT_PY OUT_DIR
+# Writes a fresh result file, plots it with drivers/lsi_plot.py and checks the PNG.
+set -euo pipefail
+if [ $# -ne 3 ]; then
+  echo "usage: $0 MAKE_SAMPLE_RESULT LSI_PLOT_PY OUT_DIR" >&2
+  exit 2
+fi
+make_sample=$1
+plot_script=$2
+out_dir=$3
+
+rm -rf "$out_dir"
+mkdir -p "$out_dir"
+export MPLCONFIGDIR="$out_dir/mplconfig"   # keep matplotlib's cache out of $HOME
+
+"$make_sample" "$out_dir/sample.h5"
+/usr/bin/python3 "$plot_script" "$out_dir/sample.h5" --out-dir "$out_dir/png"
+
+png="$out_dir/png/sample.png"
+if [ ! -f "$png" ]; then
+  echo "FAIL: $png was not written" >&2
+  exit 1
+fi
+magic=$(head -c 8 "$png" | od -An -tx1 | tr -d ' \n')
+if [ "$magic" != "89504e470d0a1a0a" ]; then
+  echo "FAIL: $png is not a PNG (magic bytes $magic)" >&2
+  exit 1
+fi
+size=$(stat -c %s "$png")
+if [ "$size" -le 10240 ]; then
+  echo "FAIL: $png is only $size bytes (expected > 10 kB)" >&2
+  exit 1
+fi
+
+# A missing file must be an error with a message.
+if /usr/bin/python3 "$plot_script" "$out_dir/does_not_exist.h5" --out-dir "$out_dir/png" 2>"$out_dir/err.txt"; then
+  echo "FAIL: lsi_plot.py succeeded on a missing file" >&2
+  exit 1
+fi
+if [ ! -s "$out_dir/err.txt" ]; then
+  echo "FAIL: lsi_plot.py gave no message for a missing file" >&2
+  exit 1
+fi
+echo "OK: $png ($size bytes)"

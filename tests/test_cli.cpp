@@ -1,0 +1,193 @@
+// End-to-end tests of the `lsi` command: exit codes, the JSON summary, the HDF5 file, and the
+// one-line errors for bad input.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <unistd.h>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <sys/wait.h>
+
+#include "drivers/closed_form_methods.hpp"
+#include "drivers/hdf5_results.hpp"
+#include "drivers/scene.hpp"
+
+namespace {
+namespace fs = std::filesystem;
+const fs::path source_dir = LSI_SOURCE_DIR;
+const std::string lsi_exe = LSI_EXE;
+
+struct Outcome {
+  int code;
+  std::string out;   // stdout and stderr together
+};
+
+Outcome run(const std::string& args) {
+  const std::string cmd = lsi_exe + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf;
+  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
+  const int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+fs::path temp_dir() {
+  const fs::path d = fs::temp_directory_path() / ("lsi_cli_test_" + std::to_string(getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+fs::path write_file(const std::string& name, const std::string& text) {
+  const fs::path p = temp_dir() / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+std::string reference(const std::string& name) {
+  return (source_dir / "scenes/reference" / (name + ".json")).string();
+}
+
+TEST(Cli, VersionAndHelp) {
+  const Outcome v = run("--version");
+  EXPECT_EQ(v.code, 0);
+  EXPECT_NE(v.out.find("lsi " LSI_VERSION), std::string::npos) << v.out;
+  for (const char* sub : {"run", "design", "compare"}) {
+    const Outcome h = run(std::string(sub) + " --help");
+    EXPECT_EQ(h.code, 0) << sub;
+    EXPECT_NE(h.out.find("--format"), std::string::npos) << sub;
+  }
+}
+
+TEST(Cli, JsonSummaryEqualsTheLibraryResults) {
+  const Outcome r = run("run " + reference("L3-B1") + " --format json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  const lsi::Scene scene = lsi::load_scene(reference("L3-B1"));
+  const lsi::MethodResult e = lsi::run_empirical(scene), a = lsi::run_analytical(scene);
+  // JSON prints doubles round-trip exactly.
+  EXPECT_EQ(j["empirical"]["peak_force"].get<double>(), e.peak_force);
+  EXPECT_EQ(j["empirical"]["impact_duration"].get<double>(), e.impact_duration);
+  EXPECT_EQ(j["analytical"]["rise_time"].get<double>(), a.rise_time);
+  EXPECT_EQ(j["analytical"]["final_displacement"].get<double>(), a.final_displacement);
+  // Physically: the barrier B1 (14.4 t/m) slides under L3 by some metres in the analytical model.
+  EXPECT_GT(a.final_displacement, 1.0);
+  EXPECT_LT(a.final_displacement, 20.0);
+}
+
+TEST(Cli, WritesAReadableHdf5FileAtomically) {
+  const fs::path out = temp_dir() / "sub" / "L2-B3.h5";
+  const Outcome r = run("run " + reference("L2-B3") + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  ASSERT_TRUE(fs::exists(out));
+  for (const auto& f : fs::directory_iterator(out.parent_path()))
+    EXPECT_EQ(f.path().string().find(".tmp"), std::string::npos) << f.path();
+  const lsi::StoredResults s = lsi::read_results(out.string());
+  ASSERT_EQ(s.results.size(), 2u);
+  EXPECT_EQ(s.scene["name"], "L2-B3");
+  for (const auto& m : s.results) {
+    EXPECT_EQ(m.time.size(), m.force.size());
+    EXPECT_GT(m.time.size(), 1000u);
+    EXPECT_GT(m.peak_force, 0.0);
+  }
+}
+
+TEST(Cli, SelectedMethodsOnly) {
+  const Outcome r = run("run " + reference("L1-B1") + " --methods analytical --format json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j.contains("analytical"));
+  EXPECT_FALSE(j.contains("empirical"));
+}
+
+TEST(Cli, DesignFindsTheMassForTheTolerableDisplacement) {
+  const Outcome r = run("design " + reference("L3-B1") + " --max-displacement 0.5 --format json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["analytical"]["status"], "found");
+  const double mass = j["analytical"]["barrier_mass"];
+  // Rerun the scene with that mass: the displacement is the tolerance (bisection to 1e-10 in
+  // log mass, so 1e-6 m is ample).
+  lsi::Scene scene = lsi::load_scene(reference("L3-B1"));
+  scene.barrier.density_kg_m3.reset();
+  scene.barrier.mass_kg_per_m = mass;
+  EXPECT_NEAR(lsi::run_analytical(scene).final_displacement, 0.5, 1e-6);
+  EXPECT_GT(mass, 14400.0);   // B1 itself (14.4 t/m) slides about 4 m
+  EXPECT_FALSE(j["analytical"]["geometries"].empty());
+}
+
+TEST(Cli, BadInputExitsWithCode2AndOneClearLine) {
+  struct Bad {
+    std::string json, expect;
+  };
+  const std::string ok_landslide =
+      R"("landslide": {"thickness_m": 3, "velocity_m_s": 12.5, "density_kg_m3": 1800,
+                       "shape": {"kind": "front-body-tail", "body_squares": 4}})";
+  const std::string ok_barrier =
+      R"("barrier": {"height_m": 4, "base_width_m": 2, "top_width_m": 1, "face_angle_deg": 80,
+                     "density_kg_m3": 2400})";
+  const Bad cases[] = {
+      {R"({"name": "x", "landslide": {"thickness_m": -3, "velocity_m_s": 12.5, "density_kg_m3": 1800,
+           "shape": {"kind": "rectangle", "length_m": 10}}, )" + ok_barrier + "}",
+       "landslide.thickness_m = -3"},
+      {R"({"name": "x", )" + ok_landslide + ", " + ok_barrier +
+           R"(, "methods": {"analytical": {"tau": 1.5}}})",
+       "methods.analytical.tau = 1.5"},
+      {R"({"name": "x", )" + ok_landslide + ", " + ok_barrier + R"(, "colour": "red"})",
+       "colour"},
+      {R"({"name": "x", )" + ok_landslide + ", " + ok_barrier +
+           R"(, "methods": {"empirical": {"tau": NaN}}})",
+       "malformed JSON"},
+      {R"({"name": "x", )" + ok_landslide + "}", "barrier"},
+  };
+  int k = 0;
+  for (const auto& c : cases) {
+    const fs::path p = write_file("bad" + std::to_string(k++) + ".json", c.json);
+    const fs::path out = temp_dir() / "never.h5";
+    const Outcome r = run("run " + p.string() + " --out " + out.string());
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_NE(r.out.find(c.expect), std::string::npos) << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;   // one line
+    EXPECT_FALSE(fs::exists(out));
+  }
+  EXPECT_EQ(run("run /nonexistent/scene.json").code, 2);
+  EXPECT_EQ(run("run " + reference("L1-B1") + " --methods bogus").code, 2);
+  EXPECT_EQ(run("run " + reference("L1-B1") + " --format xml").code, 2);
+  EXPECT_EQ(run("design " + reference("L1-B1") + " --max-displacement -1").code, 2);
+  EXPECT_EQ(run("frobnicate").code, 2);
+}
+
+TEST(Cli, LiteratureFamilyGivesOnlyAPeakForce) {
+  const std::string scene = (source_dir / "scenes/examples/literature-mixed.json").string();
+  const Outcome r = run("run " + scene + " --format json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  // Mixed family, alpha = 1.5, k = 1: F = alpha rho v_n^2 h + k rho g h^2 / 2 with
+  // h = 2.5, v = 9, rho = 1800, beta = 80 deg (round-off only: 1e-12).
+  const double vn = 9 * std::sin(80 * 3.14159265358979323846 / 180);
+  const double expected = 1.5 * 1800 * vn * vn * 2.5 + 0.5 * 1.0 * 1800 * 9.81 * 2.5 * 2.5;
+  EXPECT_NEAR(j["literature"]["peak_force"].get<double>(), expected, 1e-12 * expected);
+  EXPECT_FALSE(j["literature"].contains("impact_duration"));   // not given by this method
+  const fs::path out = temp_dir() / "lit.h5";
+  ASSERT_EQ(run("run " + scene + " --out " + out.string()).code, 0);
+  const auto stored = lsi::read_results(out.string());
+  ASSERT_EQ(stored.results.size(), 3u);
+  EXPECT_TRUE(std::isnan(stored.results[2].impact_duration));   // absent, not stored as NaN
+}
+
+TEST(Cli, CompareWritesOneFilePerSceneAndPrintsTheTable) {
+  const fs::path dir = temp_dir() / "compare";
+  const Outcome r = run("compare " + reference("L1-B1") + " " + reference("L3-B3") + " --out-dir " +
+                    dir.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(fs::exists(dir / "L1-B1.h5"));
+  EXPECT_TRUE(fs::exists(dir / "L3-B3.h5"));
+  EXPECT_NE(r.out.find("L3-B3"), std::string::npos);
+  EXPECT_NE(r.out.find("mass for 0.5 m"), std::string::npos);
+}
+}  // namespace

@@ -1,0 +1,680 @@
+// Scene parsing and validation (drivers/scene.hpp): the reference study files, derived values,
+// defaults, and one-line InputError messages naming the JSON path, the value and the range.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "drivers/scene.hpp"
+
+namespace {
+
+using lsi::InputError;
+using lsi::Scene;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+const fs::path kScenes = fs::path(__FILE__).parent_path().parent_path() / "scenes";
+
+// A valid scene (L1-B1 without the optional blocks); the bad-input tests mutate it.
+json base_scene() {
+  return json::parse(R"({
+    "name": "L1-B1",
+    "landslide": { "thickness_m": 2.0, "velocity_m_s": 6, "density_kg_m3": 1800,
+                   "shape": {"kind": "front-body-tail", "body_squares": 6} },
+    "barrier": { "height_m": 4, "base_width_m": 2.0, "top_width_m": 1.0, "face_angle_deg": 80,
+                 "density_kg_m3": 2400 },
+    "methods": { "empirical": {}, "analytical": {} }
+  })");
+}
+
+json with(json j, const std::string& pointer, json value) {
+  j[json::json_pointer(pointer)] = std::move(value);
+  return j;
+}
+
+json without(json j, const std::string& pointer) {
+  const json::json_pointer p(pointer);
+  j[p.parent_pointer()].erase(p.back());
+  return j;
+}
+
+// The InputError message of parse_scene(j); fails the test when nothing (or something else) is
+// thrown, and checks the message is one line.
+std::string error_of(const json& j) {
+  try {
+    (void)lsi::parse_scene(j);
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.find('\n'), std::string::npos) << "message is not one line: " << m;
+    return m;
+  }
+  ADD_FAILURE() << "no InputError for " << j.dump();
+  return "<no error>";
+}
+
+std::string load_error_of(const std::string& path) {
+  try {
+    (void)lsi::load_scene(path);
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.find('\n'), std::string::npos) << "message is not one line: " << m;
+    return m;
+  }
+  ADD_FAILURE() << "no InputError for " << path;
+  return "<no error>";
+}
+
+// Writes `text` to a fresh temporary file, removed on destruction.
+class TempFile {
+ public:
+  explicit TempFile(const std::string& text) {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() /
+            ("lsi_scene_" + std::string(info->name()) + "_" +
+             std::to_string(reinterpret_cast<std::uintptr_t>(this)) + ".json");
+    std::ofstream(path_) << text;
+  }
+  ~TempFile() {
+    std::error_code ec;
+    fs::remove(path_, ec);
+  }
+  std::string path() const { return path_.string(); }
+
+ private:
+  fs::path path_;
+};
+
+#define EXPECT_CONTAINS(haystack, needle) \
+  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "message: " << (haystack)
+
+// ---- valid scenes -----------------------------------------------------------------------------
+
+struct Landslide {
+  const char* id;
+  double h, v;
+  int squares;
+};
+struct Barrier {
+  const char* id;
+  double beta, H, B, b, rho;
+};
+const Landslide kLandslides[] = {{"L1", 2.0, 6.0, 6}, {"L2", 2.5, 9.0, 6}, {"L3", 3.0, 12.5, 4}};
+const Barrier kBarriers[] = {{"B1", 80, 4, 2.0, 1.0, 2400},
+                             {"B2", 70, 4, 3.5, 1.5, 1900},
+                             {"B3", 60, 5, 6.0, 2.0, 2000}};
+
+TEST(SceneReference, AllNineFilesParseWithTheStudyValues) {
+  int parsed = 0;
+  for (const auto& l : kLandslides) {
+    for (const auto& b : kBarriers) {
+      const std::string name = std::string(l.id) + "-" + b.id;
+      SCOPED_TRACE(name);
+      const Scene s = lsi::load_scene((kScenes / "reference" / (name + ".json")).string());
+      EXPECT_EQ(s.name, name);
+      EXPECT_DOUBLE_EQ(s.landslide.thickness_m, l.h);
+      EXPECT_DOUBLE_EQ(s.landslide.velocity_m_s, l.v);
+      EXPECT_DOUBLE_EQ(s.landslide.density_kg_m3, 1800.0);
+      EXPECT_EQ(s.landslide.shape.kind, lsi::LandslideShape::Kind::FrontBodyTail);
+      EXPECT_EQ(s.landslide.shape.body_squares, l.squares);
+      EXPECT_DOUBLE_EQ(s.landslide.equivalent_length_m(), (2 + l.squares) * l.h);
+      EXPECT_DOUBLE_EQ(s.landslide.area_m2(), (2 + l.squares) * l.h * l.h);
+      EXPECT_DOUBLE_EQ(s.landslide.material.porosity, 0.5);
+      EXPECT_DOUBLE_EQ(s.landslide.material.friction_angle_deg, 20.0);
+      EXPECT_DOUBLE_EQ(s.landslide.material.hydraulic_conductivity_m_s, 1e-4);
+      EXPECT_DOUBLE_EQ(s.landslide.material.liquid_viscosity_kpa_s, 1e-6);
+      EXPECT_DOUBLE_EQ(s.barrier.face_angle_deg, b.beta);
+      EXPECT_DOUBLE_EQ(s.barrier.height_m, b.H);
+      EXPECT_DOUBLE_EQ(s.barrier.base_width_m, b.B);
+      EXPECT_DOUBLE_EQ(s.barrier.top_width_m, b.b);
+      ASSERT_TRUE(s.barrier.density_kg_m3.has_value());
+      EXPECT_DOUBLE_EQ(*s.barrier.density_kg_m3, b.rho);
+      EXPECT_FALSE(s.barrier.mass_kg_per_m.has_value());
+      EXPECT_DOUBLE_EQ(s.barrier.mass(), b.rho * 0.5 * (b.B + b.b) * b.H);
+      EXPECT_DOUBLE_EQ(s.barrier.base_friction, 0.5);
+      EXPECT_DOUBLE_EQ(s.barrier.face_friction, 0.3);
+      EXPECT_FALSE(s.barrier.fixed);
+      EXPECT_TRUE(s.methods.empirical.has_value());
+      EXPECT_TRUE(s.methods.analytical.has_value());
+      EXPECT_FALSE(s.methods.literature.has_value());
+      EXPECT_FALSE(s.methods.mpm.has_value());
+      EXPECT_EQ(s.source.at("name"), name);
+      ++parsed;
+    }
+  }
+  EXPECT_EQ(parsed, 9);
+}
+
+TEST(SceneReference, L1AndB1DerivedValues) {
+  const Scene s = lsi::load_scene((kScenes / "reference" / "L1-B1.json").string());
+  EXPECT_DOUBLE_EQ(s.landslide.equivalent_length_m(), 16.0);   // (2 + 6) * 2
+  EXPECT_DOUBLE_EQ(s.landslide.area_m2(), 32.0);               // (2 + 6) * 2^2
+  EXPECT_DOUBLE_EQ(s.landslide.mass_kg_per_m(), 57600.0);      // 1800 * 32
+  EXPECT_DOUBLE_EQ(s.barrier.area_m2(), 6.0);                  // (2 + 1) / 2 * 4
+  EXPECT_DOUBLE_EQ(s.barrier.mass(), 14400.0);                 // 2400 * 6
+}
+
+TEST(SceneExamples, MinimalGetsAllDefaults) {
+  const Scene s = lsi::load_scene((kScenes / "examples" / "minimal.json").string());
+  EXPECT_EQ(s.name, "minimal");
+  const lsi::LandslideMaterial m = s.landslide.material;
+  EXPECT_DOUBLE_EQ(m.porosity, 0.5);
+  EXPECT_DOUBLE_EQ(m.friction_angle_deg, 20.0);
+  EXPECT_DOUBLE_EQ(m.cohesion_kpa, 0.0);
+  EXPECT_DOUBLE_EQ(m.young_modulus_mpa, 2.0);
+  EXPECT_DOUBLE_EQ(m.poisson_ratio, 0.25);
+  EXPECT_DOUBLE_EQ(m.hydraulic_conductivity_m_s, 1e-4);
+  EXPECT_DOUBLE_EQ(m.liquid_bulk_modulus_mpa, 30.0);
+  EXPECT_DOUBLE_EQ(m.liquid_viscosity_kpa_s, 1e-6);
+  EXPECT_DOUBLE_EQ(s.barrier.base_friction, 0.5);
+  EXPECT_DOUBLE_EQ(s.barrier.face_friction, 0.3);
+  EXPECT_FALSE(s.barrier.fixed);
+  // No "methods": empirical and analytical with their defaults.
+  ASSERT_TRUE(s.methods.empirical.has_value());
+  EXPECT_DOUBLE_EQ(s.methods.empirical->a1, 1.781);
+  EXPECT_DOUBLE_EQ(s.methods.empirical->a2, -0.515);
+  EXPECT_DOUBLE_EQ(s.methods.empirical->tau, 0.14);
+  EXPECT_DOUBLE_EQ(s.methods.empirical->kappa, 0.0);
+  ASSERT_TRUE(s.methods.analytical.has_value());
+  EXPECT_FALSE(s.methods.analytical->lambda.has_value());
+  EXPECT_FALSE(s.methods.analytical->tau.has_value());
+  EXPECT_FALSE(s.methods.literature.has_value());
+  EXPECT_FALSE(s.methods.mpm.has_value());
+  EXPECT_FALSE(s.source.contains("methods"));   // source is the scene as read
+}
+
+TEST(SceneExamples, RectangleFixedWithMassPerMetre) {
+  const Scene s = lsi::load_scene((kScenes / "examples" / "rectangle-fixed.json").string());
+  EXPECT_EQ(s.landslide.shape.kind, lsi::LandslideShape::Kind::Rectangle);
+  EXPECT_DOUBLE_EQ(s.landslide.equivalent_length_m(), 20.0);
+  EXPECT_DOUBLE_EQ(s.landslide.area_m2(), 50.0);               // 20 * 2.5
+  EXPECT_DOUBLE_EQ(s.landslide.mass_kg_per_m(), 90000.0);
+  EXPECT_FALSE(s.barrier.density_kg_m3.has_value());
+  EXPECT_DOUBLE_EQ(s.barrier.mass(), 14400.0);
+  EXPECT_DOUBLE_EQ(s.barrier.face_angle_deg, 90.0);
+  EXPECT_TRUE(s.barrier.fixed);
+  ASSERT_TRUE(s.methods.analytical.has_value());
+  EXPECT_DOUBLE_EQ(s.methods.analytical->lambda.value(), 0.72);
+  EXPECT_DOUBLE_EQ(s.methods.analytical->tau.value(), 0.17);
+}
+
+TEST(SceneParse, OverridesAndOptionalMethods) {
+  json j = base_scene();
+  j["landslide"]["material"] = {{"porosity", 0.4}, {"cohesion_kpa", 5}};
+  j["barrier"]["base_friction"] = 0.6;
+  j["barrier"]["face_friction"] = 0;
+  j["methods"] = json::parse(R"({
+    "empirical": {"a1": 2.0, "a2": -0.4, "tau": 0.2, "kappa": 0.1},
+    "analytical": {"lambda": 1},
+    "literature": {"family": "hydrostatic", "hydrostatic_k": 1.5},
+    "mpm": {"cells": 100, "anything": [1, 2]}
+  })");
+  const Scene s = lsi::parse_scene(j);
+  EXPECT_DOUBLE_EQ(s.landslide.material.porosity, 0.4);
+  EXPECT_DOUBLE_EQ(s.landslide.material.cohesion_kpa, 5.0);
+  EXPECT_DOUBLE_EQ(s.landslide.material.friction_angle_deg, 20.0);   // default kept
+  EXPECT_DOUBLE_EQ(s.barrier.base_friction, 0.6);
+  EXPECT_DOUBLE_EQ(s.barrier.face_friction, 0.0);
+  EXPECT_DOUBLE_EQ(s.methods.empirical->a1, 2.0);
+  EXPECT_DOUBLE_EQ(s.methods.empirical->a2, -0.4);
+  EXPECT_DOUBLE_EQ(s.methods.empirical->tau, 0.2);
+  EXPECT_DOUBLE_EQ(s.methods.empirical->kappa, 0.1);
+  EXPECT_DOUBLE_EQ(s.methods.analytical->lambda.value(), 1.0);
+  EXPECT_FALSE(s.methods.analytical->tau.has_value());
+  ASSERT_TRUE(s.methods.literature.has_value());
+  EXPECT_EQ(s.methods.literature->family, "hydrostatic");
+  EXPECT_DOUBLE_EQ(s.methods.literature->hydrostatic_k.value(), 1.5);
+  EXPECT_FALSE(s.methods.literature->hydrodynamic_alpha.has_value());
+  ASSERT_TRUE(s.methods.mpm.has_value());
+  EXPECT_EQ(s.methods.mpm->at("cells"), 100);
+  EXPECT_EQ(s.methods.mpm->at("anything"), json::array({1, 2}));
+  EXPECT_EQ(s.source, j);
+}
+
+TEST(SceneParse, OnlyTheSelectedMethods) {
+  const Scene s = lsi::parse_scene(with(base_scene(), "/methods", {{"analytical", json::object()}}));
+  EXPECT_FALSE(s.methods.empirical.has_value());
+  EXPECT_TRUE(s.methods.analytical.has_value());
+}
+
+TEST(SceneParse, LiteratureTakesUserGivenCoefficients) {
+  // family defaults to "mixed", which uses both coefficients.
+  const Scene s = lsi::parse_scene(with(
+      base_scene(), "/methods",
+      {{"literature", {{"hydrostatic_k", 1.0}, {"hydrodynamic_alpha", 1.5}}}}));
+  ASSERT_TRUE(s.methods.literature.has_value());
+  EXPECT_EQ(s.methods.literature->family, "mixed");
+  EXPECT_DOUBLE_EQ(s.methods.literature->hydrostatic_k.value(), 1.0);
+  EXPECT_DOUBLE_EQ(s.methods.literature->hydrodynamic_alpha.value(), 1.5);
+  // A single-coefficient family needs only its own coefficient.
+  const Scene h = lsi::parse_scene(with(
+      base_scene(), "/methods", {{"literature", {{"family", "hydrostatic"}, {"hydrostatic_k", 2}}}}));
+  EXPECT_EQ(h.methods.literature->family, "hydrostatic");
+  EXPECT_DOUBLE_EQ(h.methods.literature->hydrostatic_k.value(), 2.0);
+  EXPECT_FALSE(h.methods.literature->hydrodynamic_alpha.has_value());
+  const Scene d = lsi::parse_scene(with(
+      base_scene(), "/methods",
+      {{"literature", {{"family", "hydrodynamic"}, {"hydrodynamic_alpha", 3}}}}));
+  EXPECT_EQ(d.methods.literature->family, "hydrodynamic");
+  EXPECT_DOUBLE_EQ(d.methods.literature->hydrodynamic_alpha.value(), 3.0);
+  EXPECT_FALSE(d.methods.literature->hydrostatic_k.has_value());
+}
+
+TEST(SceneParse, IntegralFloatBodySquaresAccepted) {
+  const Scene s = lsi::parse_scene(with(base_scene(), "/landslide/shape/body_squares", 4.0));
+  EXPECT_EQ(s.landslide.shape.body_squares, 4);
+  EXPECT_DOUBLE_EQ(s.landslide.equivalent_length_m(), 12.0);
+}
+
+TEST(SceneParse, FaceRunOutExactlyAtTheLimitIsAccepted) {
+  // H / tan(45 deg) = 1 m = B - b (up to rounding).
+  json j = base_scene();
+  j["barrier"]["height_m"] = 1.0;
+  j["barrier"]["face_angle_deg"] = 45;
+  const Scene s = lsi::parse_scene(j);
+  EXPECT_DOUBLE_EQ(s.barrier.area_m2(), 1.5);
+  // A vertical face with top == base (a rectangle) is valid as well.
+  j["barrier"]["top_width_m"] = 2.0;
+  j["barrier"]["face_angle_deg"] = 90;
+  EXPECT_DOUBLE_EQ(lsi::parse_scene(j).barrier.area_m2(), 2.0);
+}
+
+TEST(SceneDocs, CompleteExampleInTheSchemaParses) {
+  // The first ```json block of docs/scene_schema.md must stay a valid scene.
+  std::ifstream in(kScenes.parent_path() / "docs" / "scene_schema.md");
+  ASSERT_TRUE(in) << "docs/scene_schema.md not found";
+  const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t begin = doc.find("```json\n");
+  ASSERT_NE(begin, std::string::npos);
+  const std::size_t end = doc.find("```", begin + 8);
+  ASSERT_NE(end, std::string::npos);
+  const Scene s = lsi::parse_scene(json::parse(doc.substr(begin + 8, end - begin - 8)));
+  EXPECT_EQ(s.name, "L3-B1");
+  EXPECT_DOUBLE_EQ(s.landslide.equivalent_length_m(), 18.0);
+  EXPECT_DOUBLE_EQ(s.landslide.mass_kg_per_m(), 97200.0);
+  EXPECT_DOUBLE_EQ(s.methods.analytical->lambda.value(), 0.72);
+  EXPECT_EQ(s.methods.literature->family, "mixed");
+  EXPECT_TRUE(s.methods.literature->hydrostatic_k.has_value());
+  EXPECT_TRUE(s.methods.literature->hydrodynamic_alpha.has_value());
+}
+
+// ---- bad inputs: unknown keys -----------------------------------------------------------------
+
+TEST(SceneErrors, UnknownTopLevelKey) {
+  EXPECT_EQ(error_of(with(base_scene(), "/nme", "x")),
+            "nme: unknown key (allowed: name, landslide, barrier, methods)");
+}
+
+TEST(SceneErrors, UnknownLandslideKey) {
+  json j = without(base_scene(), "/landslide/thickness_m");
+  j["landslide"]["thicknes_m"] = 2.0;
+  EXPECT_EQ(error_of(j),
+            "landslide.thicknes_m: unknown key (allowed: thickness_m, velocity_m_s, density_kg_m3, "
+            "shape, material)");
+}
+
+TEST(SceneErrors, UnknownShapeKey) {
+  const std::string m = error_of(with(base_scene(), "/landslide/shape/sides", 3));
+  EXPECT_CONTAINS(m, "landslide.shape.sides: unknown key (allowed: kind, body_squares, length_m)");
+}
+
+TEST(SceneErrors, UnknownMaterialKey) {
+  const std::string m = error_of(with(base_scene(), "/landslide/material", {{"porosty", 0.5}}));
+  EXPECT_CONTAINS(m, "landslide.material.porosty: unknown key");
+  EXPECT_CONTAINS(m, "porosity");
+}
+
+TEST(SceneErrors, UnknownBarrierKey) {
+  const std::string m = error_of(with(base_scene(), "/barrier/hieght_m", 4));
+  EXPECT_CONTAINS(m, "barrier.hieght_m: unknown key (allowed: height_m, base_width_m");
+}
+
+TEST(SceneErrors, UnknownMethodParameterKeys) {
+  EXPECT_CONTAINS(error_of(with(base_scene(), "/methods/empirical/a3", 1)),
+                  "methods.empirical.a3: unknown key (allowed: a1, a2, tau, kappa)");
+  EXPECT_CONTAINS(error_of(with(base_scene(), "/methods/analytical/lamda", 0.5)),
+                  "methods.analytical.lamda: unknown key (allowed: lambda, tau)");
+  EXPECT_CONTAINS(error_of(with(base_scene(), "/methods/literature",
+                                {{"hydrostatic_k", 1}, {"hydrodynamic_alpha", 1}, {"k", 1}})),
+                  "methods.literature.k: unknown key");
+}
+
+TEST(SceneErrors, UnknownMethod) {
+  EXPECT_EQ(error_of(with(base_scene(), "/methods/ml", json::object())),
+            "methods.ml: unknown key (allowed: empirical, analytical, literature, mpm)");
+}
+
+TEST(SceneErrors, OddKeyIsQuotedInThePath) {
+  EXPECT_CONTAINS(error_of(with(base_scene(), "/barrier/height m", 4)),
+                  "barrier[\"height m\"]: unknown key");
+}
+
+// ---- missing keys -----------------------------------------------------------------------------
+
+TEST(SceneErrors, MissingBarrierHeight) {
+  EXPECT_EQ(error_of(without(base_scene(), "/barrier/height_m")),
+            "barrier.height_m: missing (required: number > 0, m)");
+}
+
+TEST(SceneErrors, MissingNameLandslideShapeAndKind) {
+  EXPECT_EQ(error_of(without(base_scene(), "/name")), "name: missing (required: non-empty string)");
+  EXPECT_EQ(error_of(without(base_scene(), "/landslide")), "landslide: missing (required: object)");
+  EXPECT_EQ(error_of(without(base_scene(), "/landslide/shape")),
+            "landslide.shape: missing (required: object)");
+  EXPECT_EQ(error_of(without(base_scene(), "/landslide/shape/kind")),
+            "landslide.shape.kind: missing (required: one of \"front-body-tail\", \"rectangle\")");
+  EXPECT_EQ(error_of(without(base_scene(), "/landslide/shape/body_squares")),
+            "landslide.shape.body_squares: missing (required: integer in [0, 1000000])");
+}
+
+TEST(SceneErrors, MissingTopWidthNamesTheBaseWidth) {
+  EXPECT_EQ(error_of(without(base_scene(), "/barrier/top_width_m")),
+            "barrier.top_width_m: missing (required: number in [0, base_width_m = 2], m)");
+}
+
+// ---- wrong types and non-finite numbers -------------------------------------------------------
+
+TEST(SceneErrors, NumberAsString) {
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide/velocity_m_s", "12")),
+            "landslide.velocity_m_s = \"12\": must be a number");
+}
+
+TEST(SceneErrors, NumberAsBoolAndNull) {
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide/thickness_m", true)),
+            "landslide.thickness_m = true: must be a number");
+  EXPECT_EQ(error_of(with(base_scene(), "/barrier/face_angle_deg", nullptr)),
+            "barrier.face_angle_deg = null: must be a number");
+}
+
+TEST(SceneErrors, WrongTypesForStringsBoolsAndObjects) {
+  EXPECT_EQ(error_of(with(base_scene(), "/name", 3)), "name = 3: must be a string");
+  EXPECT_EQ(error_of(with(base_scene(), "/name", "")), "name = \"\": must be a non-empty string");
+  EXPECT_EQ(error_of(with(base_scene(), "/barrier/fixed", "yes")),
+            "barrier.fixed = \"yes\": must be a boolean (true or false)");
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide", 3)), "landslide = 3: must be an object");
+  EXPECT_EQ(error_of(with(base_scene(), "/methods/empirical", true)),
+            "methods.empirical = true: must be an object");
+  EXPECT_EQ(error_of(with(base_scene(), "/methods/mpm", json::array({1}))),
+            "methods.mpm = [1]: must be an object");
+}
+
+TEST(SceneErrors, TopLevelNotAnObject) {
+  EXPECT_CONTAINS(error_of(json::array({1, 2})), "(top level) = [1,2]: a scene must be a JSON object");
+}
+
+TEST(SceneErrors, NonFiniteNumbers) {
+  // A 1e999 literal is a load_scene error (see SceneLoad.HugeExponentInFile); a DOM built in code
+  // can still hold infinities and NaN.
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide/thickness_m",
+                          std::numeric_limits<double>::infinity())),
+            "landslide.thickness_m = inf: must be finite");
+  EXPECT_EQ(error_of(with(base_scene(), "/barrier/height_m", -std::numeric_limits<double>::infinity())),
+            "barrier.height_m = -inf: must be finite");
+  EXPECT_EQ(error_of(with(base_scene(), "/methods/empirical/tau",
+                          std::numeric_limits<double>::quiet_NaN())),
+            "methods.empirical.tau = nan: must be finite");
+}
+
+// ---- out-of-range values ----------------------------------------------------------------------
+
+TEST(SceneErrors, NegativeAndZeroThickness) {
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide/thickness_m", -3)),
+            "landslide.thickness_m = -3: must be > 0 (m)");
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide/thickness_m", 0)),
+            "landslide.thickness_m = 0: must be > 0 (m)");
+}
+
+TEST(SceneErrors, OtherLandslideRanges) {
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide/velocity_m_s", -1.5)),
+            "landslide.velocity_m_s = -1.5: must be > 0 (m/s)");
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide/density_kg_m3", 0)),
+            "landslide.density_kg_m3 = 0: must be > 0 (kg/m^3)");
+}
+
+TEST(SceneErrors, MaterialRanges) {
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide/material", {{"porosity", 1}})),
+            "landslide.material.porosity = 1: must be in (0, 1)");
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide/material", {{"poisson_ratio", 0.5}})),
+            "landslide.material.poisson_ratio = 0.5: must be in (-1, 0.5)");
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide/material", {{"friction_angle_deg", 90}})),
+            "landslide.material.friction_angle_deg = 90: must be in [0, 90) (deg)");
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide/material", {{"cohesion_kpa", -1}})),
+            "landslide.material.cohesion_kpa = -1: must be >= 0 (kPa)");
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide/material", {{"liquid_viscosity_kpa_s", 0}})),
+            "landslide.material.liquid_viscosity_kpa_s = 0: must be > 0 (kPa s)");
+}
+
+TEST(SceneErrors, EmpiricalTauOutsideOpenUnitInterval) {
+  EXPECT_EQ(error_of(with(base_scene(), "/methods/empirical/tau", 1.0)),
+            "methods.empirical.tau = 1.0: must be in (0, 1)");
+  EXPECT_EQ(error_of(with(base_scene(), "/methods/empirical/tau", 0)),
+            "methods.empirical.tau = 0: must be in (0, 1)");
+}
+
+TEST(SceneErrors, EmpiricalA1AndA2) {
+  EXPECT_EQ(error_of(with(base_scene(), "/methods/empirical/a1", 0)),
+            "methods.empirical.a1 = 0: must be > 0");
+  EXPECT_EQ(error_of(with(base_scene(), "/methods/empirical/a2", 6)),
+            "methods.empirical.a2 = 6: must be in [-5, 5]");
+}
+
+TEST(SceneErrors, AnalyticalTauOutsideOpenUnitInterval) {
+  EXPECT_EQ(error_of(with(base_scene(), "/methods/analytical/tau", 1.2)),
+            "methods.analytical.tau = 1.2: must be in (0, 1)");
+}
+
+TEST(SceneErrors, AnalyticalLambdaNotPositive) {
+  EXPECT_EQ(error_of(with(base_scene(), "/methods/analytical/lambda", 0)),
+            "methods.analytical.lambda = 0: must be in (0, 1]");
+  EXPECT_EQ(error_of(with(base_scene(), "/methods/analytical/lambda", -0.1)),
+            "methods.analytical.lambda = -0.1: must be in (0, 1]");
+  EXPECT_EQ(error_of(with(base_scene(), "/methods/analytical/lambda", 1.01)),
+            "methods.analytical.lambda = 1.01: must be in (0, 1]");
+}
+
+TEST(SceneErrors, FaceAngleZeroAnd95) {
+  EXPECT_EQ(error_of(with(base_scene(), "/barrier/face_angle_deg", 0)),
+            "barrier.face_angle_deg = 0: must be in (0, 90] (deg)");
+  EXPECT_EQ(error_of(with(base_scene(), "/barrier/face_angle_deg", 95)),
+            "barrier.face_angle_deg = 95: must be in (0, 90] (deg)");
+}
+
+TEST(SceneErrors, DensityAndMassBoth) {
+  const std::string m = error_of(with(base_scene(), "/barrier/mass_kg_per_m", 14400));
+  EXPECT_CONTAINS(m, "barrier.density_kg_m3 = 2400");
+  EXPECT_CONTAINS(m, "barrier.mass_kg_per_m = 14400");
+  EXPECT_CONTAINS(m, "exactly one of");
+}
+
+TEST(SceneErrors, DensityAndMassNeither) {
+  const std::string m = error_of(without(base_scene(), "/barrier/density_kg_m3"));
+  EXPECT_CONTAINS(m, "barrier.density_kg_m3 / barrier.mass_kg_per_m: missing");
+  EXPECT_CONTAINS(m, "exactly one of density_kg_m3 > 0");
+}
+
+TEST(SceneErrors, BarrierMassNotPositive) {
+  json j = without(base_scene(), "/barrier/density_kg_m3");
+  j["barrier"]["mass_kg_per_m"] = -5;
+  EXPECT_EQ(error_of(j), "barrier.mass_kg_per_m = -5: must be > 0 (kg/m)");
+}
+
+TEST(SceneErrors, TopWiderThanBase) {
+  EXPECT_EQ(error_of(with(base_scene(), "/barrier/top_width_m", 3)),
+            "barrier.top_width_m = 3: must be in [0, base_width_m = 2] (m)");
+}
+
+TEST(SceneErrors, NegativeFriction) {
+  EXPECT_EQ(error_of(with(base_scene(), "/barrier/base_friction", -0.1)),
+            "barrier.base_friction = -0.1: must be >= 0");
+}
+
+TEST(SceneErrors, FaceAngleInconsistentWithWidths) {
+  // B1 with beta = 60: the face runs out 4 / tan(60) = 2.309 m > B - b = 1 m.
+  const std::string m = error_of(with(base_scene(), "/barrier/face_angle_deg", 60));
+  EXPECT_CONTAINS(m, "barrier.face_angle_deg = 60: the upstream face would run out");
+  EXPECT_CONTAINS(m, "2.309 m but base_width_m - top_width_m = 1 m");
+  EXPECT_CONTAINS(m, "face_angle_deg >= 75.96");   // atan(4 / 1)
+}
+
+TEST(SceneErrors, BodySquaresNotAnInteger) {
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide/shape/body_squares", 2.5)),
+            "landslide.shape.body_squares = 2.5: must be an integer");
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide/shape/body_squares", "4")),
+            "landslide.shape.body_squares = \"4\": must be an integer");
+}
+
+TEST(SceneErrors, BodySquaresNegative) {
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide/shape/body_squares", -1)),
+            "landslide.shape.body_squares = -1: must be an integer in [0, 1000000]");
+}
+
+TEST(SceneErrors, RectangleWithoutLength) {
+  json j = base_scene();
+  j["landslide"]["shape"] = {{"kind", "rectangle"}};
+  EXPECT_EQ(error_of(j), "landslide.shape.length_m: missing (required: number > 0, m)");
+}
+
+TEST(SceneErrors, ShapeKeysOfTheOtherKind) {
+  json j = base_scene();
+  j["landslide"]["shape"] = {{"kind", "rectangle"}, {"length_m", 10}, {"body_squares", 4}};
+  EXPECT_EQ(error_of(j),
+            "landslide.shape.body_squares = 4: not allowed when kind = \"rectangle\" (allowed: "
+            "kind, length_m)");
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide/shape/length_m", 10)),
+            "landslide.shape.length_m = 10: not allowed when kind = \"front-body-tail\" (allowed: "
+            "kind, body_squares)");
+}
+
+TEST(SceneErrors, UnknownShapeKind) {
+  EXPECT_EQ(error_of(with(base_scene(), "/landslide/shape/kind", "square")),
+            "landslide.shape.kind = \"square\": must be one of \"front-body-tail\", \"rectangle\"");
+}
+
+// ---- methods ----------------------------------------------------------------------------------
+
+TEST(SceneErrors, EmptyMethods) {
+  EXPECT_EQ(error_of(with(base_scene(), "/methods", json::object())),
+            "methods = {}: no method selected (allowed: empirical, analytical, literature, mpm)");
+}
+
+TEST(SceneErrors, LiteratureWithoutCoefficients) {
+  EXPECT_EQ(error_of(with(base_scene(), "/methods", {{"literature", json::object()}})),
+            "methods.literature.hydrostatic_k: missing (required: number > 0 when family = "
+            "\"mixed\")");
+  EXPECT_CONTAINS(error_of(with(base_scene(), "/methods",
+                                {{"literature", {{"family", "mixed"}, {"hydrostatic_k", 1}}}})),
+                  "methods.literature.hydrodynamic_alpha: missing");
+  EXPECT_CONTAINS(error_of(with(base_scene(), "/methods",
+                                {{"literature", {{"family", "hydrodynamic"}}}})),
+                  "methods.literature.hydrodynamic_alpha: missing");
+}
+
+TEST(SceneErrors, LiteraturePresetIsAnUnknownKey) {
+  // No named coefficient set is shipped: `preset` is rejected like every unknown key.
+  EXPECT_EQ(error_of(with(base_scene(), "/methods",
+                          {{"literature",
+                            {{"preset", "anything"}, {"hydrostatic_k", 1}, {"hydrodynamic_alpha", 1}}}})),
+            "methods.literature.preset: unknown key (allowed: family, hydrostatic_k, "
+            "hydrodynamic_alpha)");
+  EXPECT_CONTAINS(error_of(with(base_scene(), "/methods", {{"literature", {{"preset", "anything"}}}})),
+                  "methods.literature.preset: unknown key");
+}
+
+TEST(SceneErrors, LiteratureBadFamilyBadCoefficientAndUnusedCoefficient) {
+  EXPECT_EQ(error_of(with(base_scene(), "/methods", {{"literature", {{"family", "static"}}}})),
+            "methods.literature.family = \"static\": must be one of \"hydrostatic\", "
+            "\"hydrodynamic\", \"mixed\"");
+  EXPECT_EQ(error_of(with(base_scene(), "/methods",
+                          {{"literature", {{"family", "hydrodynamic"}, {"hydrodynamic_alpha", -1}}}})),
+            "methods.literature.hydrodynamic_alpha = -1: must be > 0");
+  EXPECT_EQ(error_of(with(base_scene(), "/methods",
+                          {{"literature",
+                            {{"family", "hydrostatic"}, {"hydrostatic_k", 1}, {"hydrodynamic_alpha", 2}}}})),
+            "methods.literature.hydrodynamic_alpha = 2: not used by family = \"hydrostatic\"");
+  EXPECT_EQ(error_of(with(base_scene(), "/methods",
+                          {{"literature", {{"hydrostatic_k", 0}, {"hydrodynamic_alpha", 1}}}})),
+            "methods.literature.hydrostatic_k = 0: must be > 0");
+}
+
+// ---- load_scene: files and malformed JSON -----------------------------------------------------
+
+TEST(SceneLoad, FileNotFoundNamesThePath) {
+  const std::string path = (fs::temp_directory_path() / "lsi_no_such_scene.json").string();
+  EXPECT_EQ(load_error_of(path), path + ": scene file not found");
+}
+
+TEST(SceneLoad, NaNLiteralReportsLineAndColumn) {
+  const TempFile f(
+      "{\n"
+      "  \"name\": \"x\",\n"
+      "  \"landslide\": {\"thickness_m\": NaN}\n"
+      "}\n");
+  const std::string m = load_error_of(f.path());
+  EXPECT_CONTAINS(m, f.path() + ":3:32: malformed JSON: ");
+  EXPECT_CONTAINS(m, "NaN and Infinity are not valid JSON");
+}
+
+TEST(SceneLoad, NegativeInfinityLiteral) {
+  const TempFile f("{\"name\": -Infinity}");
+  const std::string m = load_error_of(f.path());
+  EXPECT_CONTAINS(m, f.path() + ":1:11: malformed JSON: ");
+  EXPECT_CONTAINS(m, "NaN and Infinity are not valid JSON");
+}
+
+TEST(SceneLoad, MalformedJsonReportsLineAndColumn) {
+  // Missing comma after "x" on line 2: the parser stops at the end of the "landslide" string.
+  const TempFile f(
+      "{\n"
+      "  \"name\": \"x\"\n"
+      "  \"landslide\": {}\n"
+      "}\n");
+  const std::string m = load_error_of(f.path());
+  EXPECT_CONTAINS(m, f.path() + ":3:13: malformed JSON: syntax error");
+  EXPECT_EQ(m.find("NaN"), std::string::npos) << m;
+}
+
+TEST(SceneLoad, EmptyFile) {
+  const TempFile f("");
+  EXPECT_CONTAINS(load_error_of(f.path()), f.path() + ":1:1: malformed JSON: ");
+}
+
+TEST(SceneLoad, HugeExponentInFileIsNotFinite) {
+  const TempFile f(
+      "{\n"
+      "  \"name\": \"x\",\n"
+      "  \"landslide\": {\"velocity_m_s\": 6, \"thickness_m\": 1e999}\n"
+      "}\n");
+  EXPECT_EQ(load_error_of(f.path()),
+            f.path() + ":3:55: landslide.thickness_m = 1e999: must be finite (the number overflows "
+                       "a double)");
+}
+
+TEST(SceneLoad, HugeExponentInsideAnArrayNamesTheIndex) {
+  const TempFile f("{\"methods\": {\"mpm\": {\"xs\": [1, 2, -1e400]}}}");
+  EXPECT_CONTAINS(load_error_of(f.path()), "methods.mpm.xs[2] = -1e400: must be finite");
+}
+
+TEST(SceneLoad, DuplicateKey) {
+  const TempFile f("{\"name\": \"a\", \"landslide\": {\"thickness_m\": 2, \"thickness_m\": 3}}");
+  EXPECT_EQ(load_error_of(f.path()),
+            f.path() + ": landslide.thickness_m: duplicate key (each key may appear only once)");
+}
+
+TEST(SceneLoad, TopLevelMustBeAnObject) {
+  const TempFile f("[1, 2, 3]");
+  EXPECT_EQ(load_error_of(f.path()),
+            f.path() + ": the top level must be a JSON object, got array");
+}
+
+TEST(SceneLoad, ValidationErrorsComeThrough) {
+  const TempFile f(with(base_scene(), "/landslide/thickness_m", -3).dump());
+  EXPECT_EQ(load_error_of(f.path()), "landslide.thickness_m = -3: must be > 0 (m)");
+}
+
+}  // namespace
