@@ -139,6 +139,8 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_
     }
     o << "\n";
   }
+  o << "E displacement: rigid-block sliding under the empirical (fixed-barrier) pulse; A: the "
+       "two-body model. \"any\": no mass exceeds the tolerance (docs/models.md).\n";
   return o.str();
 }
 
