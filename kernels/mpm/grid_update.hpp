@@ -1,0 +1,47 @@
+// Grid update: v_old = p / m, v = v_old + dt f / m, then the walls (boundary.hpp). Returns the
+// kinetic energy the walls removed this step (J/m: inelastic normal stop plus Coulomb friction),
+// and adds the walls' reaction force (N/m, on the walls) to `wall_force`.
+#pragma once
+#include <Kokkos_Core.hpp>
+
+#include "kernels/mpm/boundary.hpp"
+#include "kernels/mpm/grid.hpp"
+
+namespace lsi::mpm {
+
+template <class ExecSpace, class MemorySpace>
+double grid_update(const Grid<MemorySpace>& g, const Boundaries& walls, double dt,
+                   double wall_force[2]) {
+  const double ox = g.origin[0], oy = g.origin[1], dx = g.dx, tol = 1e-9 * g.dx;
+  const int nx = g.nx;
+  double dissipated = 0.0, fx = 0.0, fy = 0.0;
+  Kokkos::parallel_reduce(
+      "lsi::mpm::grid_update", Kokkos::RangePolicy<ExecSpace>(0, g.size()),
+      KOKKOS_LAMBDA(const int n, double& lost, double& rx, double& ry) {
+        const double m = g.mass(n);
+        if (!(m > 0.0)) {
+          g.velocity(n, 0) = g.velocity(n, 1) = 0.0;
+          g.velocity_old(n, 0) = g.velocity_old(n, 1) = 0.0;
+          return;
+        }
+        double v[2];
+        for (int d = 0; d < 2; ++d) {
+          g.velocity_old(n, d) = g.momentum(n, d) / m;
+          v[d] = g.velocity_old(n, d) + dt * g.force(n, d) / m;
+        }
+        const double before[2] = {v[0], v[1]};
+        if (apply_walls(walls, ox + (n % nx) * dx, oy + (n / nx) * dx, v, tol)) {
+          lost += 0.5 * m * (before[0] * before[0] + before[1] * before[1] - v[0] * v[0] - v[1] * v[1]);
+          rx += -m * (v[0] - before[0]) / dt;
+          ry += -m * (v[1] - before[1]) / dt;
+        }
+        g.velocity(n, 0) = v[0];
+        g.velocity(n, 1) = v[1];
+      },
+      dissipated, fx, fy);
+  wall_force[0] += fx;
+  wall_force[1] += fy;
+  return dissipated;
+}
+
+}  // namespace lsi::mpm

@@ -1,0 +1,168 @@
+// The explicit MPM solver: one time step is a handful of named kernels,
+//   time step -> P2G -> grid update (walls) -> G2P (+ health) -> stress update,
+// templated on the Kokkos execution space so the same code runs on Serial, OpenMP and CUDA.
+#pragma once
+#include <Kokkos_Core.hpp>
+#include <Kokkos_ScatterView.hpp>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "kernels/mpm/boundary.hpp"
+#include "kernels/mpm/energy.hpp"
+#include "kernels/mpm/g2p.hpp"
+#include "kernels/mpm/grid.hpp"
+#include "kernels/mpm/grid_update.hpp"
+#include "kernels/mpm/p2g.hpp"
+#include "kernels/mpm/particles.hpp"
+#include "kernels/mpm/stress_update.hpp"
+#include "kernels/mpm/time_step.hpp"
+
+namespace lsi::mpm {
+
+enum class Status { Running, Finished, NonFinite, LeftGrid, TimeStepCollapse, EnergyGrowth };
+
+inline const char* describe(Status s) {
+  switch (s) {
+    case Status::Running: return "running";
+    case Status::Finished: return "finished";
+    case Status::NonFinite: return "unstable: non-finite velocity or position";
+    case Status::LeftGrid: return "unstable: a material point left the grid";
+    case Status::TimeStepCollapse: return "unstable: the time step collapsed";
+    case Status::EnergyGrowth: return "unstable: the total energy grew";
+  }
+  return "?";
+}
+
+struct Settings {
+  double courant = 0.5;
+  double max_time_step = std::numeric_limits<double>::infinity();   // s
+  double min_time_step = 1e-12;                                     // s; below: collapse
+  double gravity[2] = {0.0, -9.81};                                 // m/s^2
+  double flip_ratio = 0.0;            // 0: APIC; (0, 1]: FLIP/PIC blend without affine terms
+  bool atomic_scatter = false;        // P2G with atomics instead of duplicated ScatterViews
+  double energy_growth_limit = 0.5;   // relative growth of the total energy deemed unstable
+};
+
+template <class ExecSpace>
+class Solver {
+ public:
+  using Mem = typename ExecSpace::memory_space;
+
+  Solver(Grid<Mem> grid, Particles<Mem> particles, const std::vector<Material>& materials,
+         Boundaries walls, Settings settings)
+      : grid_(grid), particles_(particles), walls_(walls), settings_(settings),
+        user_max_dt_(settings.max_time_step) {
+    Kokkos::View<Material*, Mem> table("materials", materials.size());
+    auto host = Kokkos::create_mirror_view(table);
+    wave_speed_ = 0.0;
+    for (size_t i = 0; i < materials.size(); ++i) {
+      host(i) = materials[i];
+      wave_speed_ = std::max(wave_speed_, materials[i].wave_speed());
+      plastic_ = plastic_ || materials[i].model == Material::Model::MohrCoulomb;
+    }
+    Kokkos::deep_copy(table, host);
+    materials_ = table;
+    const auto p = particles_;
+    double vmax = 0.0;
+    Kokkos::parallel_reduce(
+        "lsi::mpm::initial_speed", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+        KOKKOS_LAMBDA(const int q, double& vm) {
+          const double s = math::sqrt(p.velocity(q, 0) * p.velocity(q, 0) +
+                                      p.velocity(q, 1) * p.velocity(q, 1));
+          if (s > vm) vm = s;
+        },
+        Kokkos::Max<double>(vmax));
+    max_speed_ = vmax;
+    initial_ = energy();
+    max_mechanical_ = initial_.kinetic + initial_.elastic;
+  }
+
+  // Advances one step. Returns Running, or the reason the run must stop.
+  Status step() {
+    dt_ = stable_time_step(grid_.dx, wave_speed_, max_speed_, settings_.courant,
+                           settings_.max_time_step);
+    if (!(dt_ >= settings_.min_time_step)) return status_ = Status::TimeStepCollapse;
+    if (settings_.atomic_scatter) p2g<ExecSpace, true>(particles_, grid_, settings_.gravity);
+    else p2g<ExecSpace, false>(particles_, grid_, settings_.gravity);
+    wall_force_[0] = wall_force_[1] = 0.0;
+    boundary_ += grid_update<ExecSpace>(grid_, walls_, dt_, wall_force_);
+    const G2PReport r = g2p<ExecSpace>(particles_, grid_, dt_, settings_.flip_ratio);
+    if (plastic_) stress_update<ExecSpace, true>(particles_, materials_, dt_);
+    else stress_update<ExecSpace, false>(particles_, materials_, dt_);
+    time_ += dt_;
+    ++steps_;
+    max_speed_ = r.max_speed;
+    if (r.non_finite > 0) return status_ = Status::NonFinite;
+    if (r.outside > 0) return status_ = Status::LeftGrid;
+    return status_ = Status::Running;
+  }
+
+  // Runs to end_time, calling on_output at t = 0 and every output_interval (and at the end).
+  // Energy growth is checked at each output.
+  Status run(double end_time, double output_interval,
+             const std::function<void(const Solver&)>& on_output = {}) {
+    if (on_output) on_output(*this);
+    double next_output = time_ + output_interval;
+    while (time_ < end_time * (1 - 1e-12)) {
+      settings_.max_time_step = std::min(user_max_dt_, end_time - time_);
+      const Status s = step();
+      if (s != Status::Running) return s;
+      if (time_ >= next_output * (1 - 1e-12) || time_ >= end_time * (1 - 1e-12)) {
+        next_output += output_interval;
+        if (energy_grew()) return status_ = Status::EnergyGrowth;
+        if (on_output) on_output(*this);
+      }
+    }
+    return status_ = Status::Finished;
+  }
+
+  EnergyReport energy() const {
+    EnergyReport e = particle_energies<ExecSpace>(particles_, materials_, settings_.gravity);
+    e.time = time_;
+    e.boundary = boundary_;
+    return e;
+  }
+  // (total(t) - total(0)) / (largest kinetic + elastic energy seen + dissipated work + change of
+  // potential energy): the energy balance residual, relative.
+  double energy_residual(const EnergyReport& e) const {
+    const double scale = max_mechanical_ + std::abs(e.plastic) + std::abs(e.boundary) +
+                         std::abs(e.potential - initial_.potential) + 1e-300;
+    return (e.total() - initial_.total()) / scale;
+  }
+
+  double time() const { return time_; }
+  double time_step() const { return dt_; }
+  long steps() const { return steps_; }
+  Status status() const { return status_; }
+  const double* wall_force() const { return wall_force_; }   // N/m on the walls, last step
+  const Particles<Mem>& particles() const { return particles_; }
+  const Grid<Mem>& grid() const { return grid_; }
+  const Settings& settings() const { return settings_; }
+  bool has_plasticity() const { return plastic_; }
+
+ private:
+  bool energy_grew() {
+    const EnergyReport e = energy();
+    max_mechanical_ = std::max(max_mechanical_, e.kinetic + e.elastic);
+    return !(energy_residual(e) <= settings_.energy_growth_limit);   // NaN counts as growth
+  }
+
+  Grid<Mem> grid_;
+  Particles<Mem> particles_;
+  Kokkos::View<const Material*, Mem> materials_;
+  Boundaries walls_;
+  Settings settings_;
+  double user_max_dt_;
+  double wave_speed_ = 0.0, max_speed_ = 0.0, dt_ = 0.0, time_ = 0.0, boundary_ = 0.0;
+  double wall_force_[2] = {0.0, 0.0};
+  long steps_ = 0;
+  bool plastic_ = false;
+  Status status_ = Status::Running;
+  EnergyReport initial_;
+  double max_mechanical_ = 0.0;
+};
+
+}  // namespace lsi::mpm
