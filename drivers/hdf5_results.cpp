@@ -290,6 +290,17 @@ void validate(const std::vector<MethodResult>& results) {
                                     h.name + "' has " + std::to_string(v.size()) +
                                     " samples but 'time' has " + std::to_string(n));
     }
+    for (const auto& [name, sr] : r.series) {
+      bool clash = name.empty() || name.find('/') != std::string::npos;
+      for (const auto& h : kHistories) clash = clash || name == h.name;
+      if (clash)
+        throw std::invalid_argument("write_results: method '" + r.method + "': series '" + name +
+                                    "' has an invalid or reserved name");
+      if (sr.values.size() != n)
+        throw std::invalid_argument("write_results: method '" + r.method + "': series '" + name +
+                                    "' has " + std::to_string(sr.values.size()) +
+                                    " samples but 'time' has " + std::to_string(n));
+    }
     for (const auto& [name, value] : r.extra) {
       (void)value;
       if (name.empty())
@@ -324,6 +335,8 @@ void write_file(const std::string& file, const std::string& scene_text,
         const auto& v = r.*(h.member);
         if (!v.empty()) write_dataset(g, h.name, v, h.units, h.description);
       }
+      for (const auto& [name, sr] : r.series)
+        write_dataset(g, name.c_str(), sr.values, sr.units.c_str(), sr.description.c_str());
       // NaN means "not given by this method" (e.g. no impact duration from a peak-force-only
       // family): such scalars are left out rather than stored as NaN.
       for (const auto& s : kScalars)
@@ -371,6 +384,25 @@ MethodResult read_group(hid_t file, const std::string& name) {
   r.method = name;
   for (const auto& h : kHistories)
     if (has_link(g, h.name)) r.*(h.member) = read_dataset(g, h.name);
+  // Every other dataset is a further series.
+  std::vector<std::string> links;
+  check(H5Literate(
+            g, H5_INDEX_NAME, H5_ITER_INC, nullptr,
+            [](hid_t, const char* link_name, const H5L_info_t*, void* data) -> herr_t {
+              try {
+                static_cast<std::vector<std::string>*>(data)->emplace_back(link_name);
+                return 0;
+              } catch (...) {
+                return -1;
+              }
+            },
+            &links),
+        "cannot list the datasets of group '" + name + "'");
+  for (const auto& l : links) {
+    bool known = false;
+    for (const auto& h : kHistories) known = known || l == h.name;
+    if (!known) r.series[l].values = read_dataset(g, l);
+  }
   for (const auto& s : kScalars)
     r.*(s.member) = has_attribute(g, s.name) ? read_double_attribute(g, s.name)
                                               : std::numeric_limits<double>::quiet_NaN();

@@ -1,5 +1,6 @@
 // `lsi`: the command line. Scenes in (JSON), summaries out (table or JSON), results in HDF5.
-// Exit codes: 0 success, 2 invalid input (scene, options), 1 any other failure (I/O, ...).
+// Exit codes: 0 success, 2 invalid input (scene, options), 3 an MPM run stopped unstable (what it
+// computed is still written), 1 any other failure (I/O, ...).
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -9,6 +10,8 @@
 
 #include "drivers/closed_form_methods.hpp"
 #include "drivers/hdf5_results.hpp"
+#include "drivers/mpm_runner.hpp"
+#include "drivers/mpm_scene.hpp"
 #include "drivers/report.hpp"
 #include "drivers/scene.hpp"
 
@@ -37,14 +40,49 @@ std::vector<std::string> parse_methods(const std::string& list) {
 
 // Loads a scene; validation errors (which name only the JSON path) get the file name in front,
 // so that `lsi compare` with many scenes says which file is wrong.
-lsi::Scene load(const std::string& path) {
+template <class F>
+auto with_path(const std::string& path, F&& f) {
   try {
-    return lsi::load_scene(path);
+    return f();
   } catch (const lsi::InputError& e) {
     const std::string what = e.what();
     if (what.rfind(path, 0) == 0) throw;
     throw lsi::InputError(path + ": " + what);
   }
+}
+
+lsi::Scene load(const std::string& path) {
+  return with_path(path, [&] { return lsi::load_scene(path); });
+}
+
+// An MPM verification scene (`mpm_case`): runs it, writes /mpm, prints a summary. Returns the
+// exit code: 0 finished, 3 stopped unstable (the histories up to the stop are still written).
+int run_mpm_case(const std::string& path, const nlohmann::json& doc, const std::string& out_path,
+                 const std::string& format) {
+  const lsi::MpmCase c = with_path(path, [&] { return lsi::parse_mpm_case(doc); });
+  const lsi::MpmOutcome o = lsi::run_mpm_case(c);
+  if (!out_path.empty()) lsi::write_results(out_path, c.source, {o.result});
+  const auto& res = o.result.series.at("energy_residual").values;
+  if (format == "json") {
+    nlohmann::json j = {{"status", o.status},        {"finished", o.finished},
+                        {"steps", o.steps},          {"particles", o.particles},
+                        {"end_time", o.result.time.empty() ? 0.0 : o.result.time.back()},
+                        {"energy_residual", res.empty() ? 0.0 : res.back()},
+                        {"solver_seconds", o.wall_seconds},
+                        {"particle_updates_per_second", o.particle_updates_per_second}};
+    std::cout << nlohmann::json{{"mpm", j}}.dump(2) << "\n";
+  } else {
+    std::printf("scene %s (MPM): %s after %ld steps, t = %.4g s; %d material points\n",
+                c.name.c_str(), o.status.c_str(), o.steps,
+                o.result.time.empty() ? 0.0 : o.result.time.back(), o.particles);
+    std::printf("energy balance residual %.3g; %.3g s in the solver, %.3g particle-updates/s\n",
+                res.empty() ? 0.0 : res.back(), o.wall_seconds, o.particle_updates_per_second);
+  }
+  if (!o.finished) {
+    std::cerr << "lsi: " << path << ": the MPM run stopped: " << o.status << "\n";
+    return 3;
+  }
+  return 0;
 }
 
 void check_format(const std::string& f) {
@@ -108,7 +146,9 @@ int main(int argc, char** argv) {
     check_format(format);
     const auto only = parse_methods(methods_list);
     if (*run) {
-      const lsi::Scene scene = load(scene_path);
+      const nlohmann::json doc = lsi::read_scene_document(scene_path);
+      if (lsi::is_mpm_case(doc)) return run_mpm_case(scene_path, doc, out_path, format);
+      const lsi::Scene scene = with_path(scene_path, [&] { return lsi::parse_scene(doc); });
       const auto results = lsi::run_closed_form_methods(scene, only);
       if (!out_path.empty()) lsi::write_results(out_path, scene.source, results);
       if (format == "json") std::cout << lsi::summary_json(results).dump(2) << "\n";

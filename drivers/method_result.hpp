@@ -25,6 +25,13 @@ struct MethodResult {
   double final_displacement = 0.0;                  // m; +infinity if the barrier never stops
   // Further method-specific scalars (e.g. "froude_number", "reduced_mass_kg_per_m"), SI units.
   std::map<std::string, double> extra;
+  // Further method-specific histories on the same `time` axis (e.g. the MPM's energies).
+  struct Series {
+    std::string units;
+    std::string description;
+    std::vector<double> values;
+  };
+  std::map<std::string, Series> series;
 };
 
 }  // namespace lsi

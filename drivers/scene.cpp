@@ -229,7 +229,7 @@ Scene parse_scene(const json& j) {
   return scene;
 }
 
-Scene load_scene(const std::string& path) {
+json read_scene_document(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(path, ec)) fail(path + ": scene file not found");
@@ -243,7 +243,9 @@ Scene load_scene(const std::string& path) {
   if (!j.is_object()) {
     fail(path + ": the top level must be a JSON object, got " + std::string(j.type_name()));
   }
-  return parse_scene(j);
+  return j;
 }
+
+Scene load_scene(const std::string& path) { return parse_scene(read_scene_document(path)); }
 
 }  // namespace lsi

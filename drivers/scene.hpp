@@ -100,6 +100,9 @@ struct Scene {
 // malformed JSON, unknown key, missing key, wrong type, non-finite number, out-of-range value,
 // inconsistent barrier geometry.
 Scene parse_scene(const nlohmann::json& j);
-Scene load_scene(const std::string& path);   // also reports malformed JSON with line/column
+Scene load_scene(const std::string& path);
+// Reads and parses a scene file as JSON (malformed JSON, missing file: InputError with the path);
+// the top level must be an object. No schema check.
+nlohmann::json read_scene_document(const std::string& path);   // also reports malformed JSON with line/column
 
 }  // namespace lsi

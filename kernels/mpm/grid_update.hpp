@@ -1,6 +1,9 @@
 // Grid update: v_old = p / m, v = v_old + dt f / m, then the walls (boundary.hpp). Returns the
-// kinetic energy the walls removed this step (J/m: inelastic normal stop plus Coulomb friction),
-// and adds the walls' reaction force (N/m, on the walls) to `wall_force`.
+// work the walls' reactions R = m (v - v_before) / dt dissipated this step, measured with the
+// mid-step velocity (v_old + v) / 2 that moves the particles (g2p.hpp), so that the node's kinetic
+// energy change is exactly dt (f + R) . v_mid: a head-on stop from V dissipates m V^2 / 2, a node
+// held at rest by the wall dissipates nothing, Coulomb sliding dissipates mu |R_n| |v_t| dt.
+// Adds the walls' reaction force (N/m, force on the walls) to `wall_force`.
 #pragma once
 #include <Kokkos_Core.hpp>
 
@@ -31,7 +34,8 @@ double grid_update(const Grid<MemorySpace>& g, const Boundaries& walls, double d
         }
         const double before[2] = {v[0], v[1]};
         if (apply_walls(walls, ox + (n % nx) * dx, oy + (n / nx) * dx, v, tol)) {
-          lost += 0.5 * m * (before[0] * before[0] + before[1] * before[1] - v[0] * v[0] - v[1] * v[1]);
+          for (int d = 0; d < 2; ++d)
+            lost -= m * (v[d] - before[d]) * 0.5 * (g.velocity_old(n, d) + v[d]);
           rx += -m * (v[0] - before[0]) / dt;
           ry += -m * (v[1] - before[1]) / dt;
         }

@@ -1,0 +1,159 @@
+#include "drivers/mpm_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "drivers/json_fields.hpp"
+#include "drivers/scene.hpp"
+
+namespace lsi {
+namespace jf = json_fields;
+
+MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& path) {
+  const jf::ObjectReader r(block, path,
+                           {"cell_size_m", "particles_per_cell", "courant", "end_time_s",
+                            "max_time_step_s", "output_interval_s", "transfer", "flip_ratio",
+                            "scatter"});
+  MpmSettings s;
+  s.cell_size_m = r.number("cell_size_m", jf::greater_than(0, "m"));
+  s.particles_per_cell = static_cast<int>(r.number_or("particles_per_cell", 4, jf::interval('[', 1, 64, ']')));
+  const int n = static_cast<int>(std::lround(std::sqrt(s.particles_per_cell)));
+  if (n * n != s.particles_per_cell)
+    r.fail_at("particles_per_cell", "must be a perfect square (1, 4, 9, 16, ...): n x n points per cell");
+  s.courant = r.number_or("courant", 0.5, jf::interval('(', 0, 10, ']'));
+  s.end_time_s = r.number("end_time_s", jf::greater_than(0, "s"));
+  s.max_time_step_s = r.number_or("max_time_step_s", 1e300, jf::greater_than(0, "s"));
+  s.output_interval_s = r.number_or("output_interval_s", s.end_time_s / 200, jf::greater_than(0, "s"));
+  const std::string transfer = r.choice("transfer", {"apic", "flip"}, std::string("apic"));
+  if (transfer == "flip") {
+    s.flip_ratio = r.number_or("flip_ratio", 0.99, jf::interval('(', 0, 1, ']'));
+  } else if (r.has("flip_ratio")) {
+    r.fail_at("flip_ratio", "only used with \"transfer\": \"flip\"");
+  }
+  s.atomic_scatter = r.choice("scatter", {"duplicated", "atomic"}, std::string("duplicated")) == "atomic";
+  return s;
+}
+
+bool is_mpm_case(const nlohmann::json& scene) {
+  return scene.is_object() && scene.contains("mpm_case");
+}
+
+namespace {
+std::array<double, 2> pair_of(const jf::ObjectReader& r, const std::string& key,
+                              const jf::Range& range) {
+  const nlohmann::json* v = r.find(key);
+  if (!v) r.fail_missing(key, "[number, number]");
+  if (!v->is_array() || v->size() != 2) r.fail_at(key, "must be an array of two numbers");
+  return {jf::check_number((*v)[0], r.path_of(key) + "[0]", range),
+          jf::check_number((*v)[1], r.path_of(key) + "[1]", range)};
+}
+
+mpm::Wall parse_wall(const jf::ObjectReader& walls, const std::string& side) {
+  mpm::Wall w;
+  if (auto o = walls.optional_object(side, {"position_m", "friction", "no_slip"})) {
+    w.active = true;
+    w.position = o->number("position_m", jf::any_number("m"));
+    w.friction = o->number_or("friction", 0.0, jf::at_least(0));
+    if (o->boolean_or("no_slip", false)) {
+      if (o->has("friction")) o->fail_at("no_slip", "give either friction or no_slip");
+      w.friction = -1.0;
+    }
+  }
+  return w;
+}
+}  // namespace
+
+MpmCase parse_mpm_case(const nlohmann::json& scene) {
+  const jf::ObjectReader top(scene, "", {"name", "mpm_case", "methods"});
+  MpmCase c;
+  c.source = scene;
+  c.name = top.string("name");
+  const jf::ObjectReader m = top.object("mpm_case", {"domain_m", "gravity_m_s2", "walls", "materials", "bodies"});
+  const jf::ObjectReader d = m.object("domain_m", {"x", "y"});
+  const auto x = pair_of(d, "x", jf::any_number("m")), y = pair_of(d, "y", jf::any_number("m"));
+  if (!(x[1] > x[0])) d.fail_at("x", "must be increasing [x_min, x_max]");
+  if (!(y[1] > y[0])) d.fail_at("y", "must be increasing [y_min, y_max]");
+  c.lower = {x[0], y[0]};
+  c.upper = {x[1], y[1]};
+  if (m.has("gravity_m_s2")) c.gravity = pair_of(m, "gravity_m_s2", jf::any_number("m/s^2"));
+  if (auto w = m.optional_object("walls", {"left", "right", "bottom", "top"})) {
+    c.walls.left = parse_wall(*w, "left");
+    c.walls.right = parse_wall(*w, "right");
+    c.walls.bottom = parse_wall(*w, "bottom");
+    c.walls.top = parse_wall(*w, "top");
+  }
+  const nlohmann::json* mats = m.find("materials");
+  if (!mats) m.fail_missing("materials", "object of named materials");
+  if (!mats->is_object() || mats->empty()) m.fail_at("materials", "must be a non-empty object of named materials");
+  constexpr double deg = 3.14159265358979323846 / 180.0;
+  for (const auto& [name, value] : mats->items()) {
+    const jf::ObjectReader r(value, m.path_of("materials") + "." + name,
+                             {"model", "density_kg_m3", "young_modulus_mpa", "poisson_ratio",
+                              "friction_angle_deg", "dilatancy_angle_deg", "cohesion_kpa",
+                              "tension_cutoff_kpa"});
+    mpm::Material mat;
+    const std::string model = r.choice("model", {"linear-elastic", "mohr-coulomb"});
+    mat.model = model == "mohr-coulomb" ? mpm::Material::Model::MohrCoulomb
+                                        : mpm::Material::Model::LinearElastic;
+    mat.density = r.number("density_kg_m3", jf::greater_than(0, "kg/m^3"));
+    mat.young_modulus = 1e6 * r.number("young_modulus_mpa", jf::greater_than(0, "MPa"));
+    mat.poisson_ratio = r.number("poisson_ratio", jf::interval('(', -1, 0.5, ')'));
+    if (mat.model == mpm::Material::Model::MohrCoulomb) {
+      mat.friction_angle = deg * r.number("friction_angle_deg", jf::interval('[', 0, 90, ')'));
+      mat.dilatancy_angle = deg * r.number_or("dilatancy_angle_deg", 0.0, jf::interval('[', 0, 90, ')'));
+      if (mat.dilatancy_angle > mat.friction_angle)
+        r.fail_at("dilatancy_angle_deg", "must not exceed friction_angle_deg");
+      mat.cohesion = 1e3 * r.number_or("cohesion_kpa", 0.0, jf::at_least(0, "kPa"));
+      mat.tension_cutoff = 1e3 * r.number_or("tension_cutoff_kpa", 0.0, jf::at_least(0, "kPa"));
+    } else {
+      for (const char* k : {"friction_angle_deg", "dilatancy_angle_deg", "cohesion_kpa", "tension_cutoff_kpa"})
+        if (r.has(k)) r.fail_at(k, "only used by \"model\": \"mohr-coulomb\"");
+    }
+    c.material_names.push_back(name);
+    c.materials.push_back(mat);
+  }
+  const nlohmann::json* bodies = m.find("bodies");
+  if (!bodies) m.fail_missing("bodies", "array of bodies");
+  if (!bodies->is_array() || bodies->empty()) m.fail_at("bodies", "must be a non-empty array");
+  const jf::ObjectReader methods = top.object("methods", {"mpm"});
+  if (!methods.has("mpm")) methods.fail_missing("mpm", "the MPM settings");
+  c.settings = parse_mpm_settings(methods.json().at("mpm"), "methods.mpm");
+  // Material points must stay more than one cell inside the grid (quadratic B-splines reach one
+  // node beyond their cell): bodies start at least two cells inside the domain.
+  const double pad = 2.0 * c.settings.cell_size_m;
+  const int n = static_cast<int>(std::lround(std::sqrt(c.settings.particles_per_cell)));
+  for (size_t i = 0; i < bodies->size(); ++i) {
+    const jf::ObjectReader b((*bodies)[i], m.path_of("bodies") + "[" + std::to_string(i) + "]",
+                             {"material", "polygon_m", "velocity_m_s", "geostatic_k0"});
+    mpm::BodySpec body;
+    const std::string mat = b.string("material");
+    auto it = std::find(c.material_names.begin(), c.material_names.end(), mat);
+    if (it == c.material_names.end())
+      b.fail_at("material", "unknown material (defined: " + jf::join(c.material_names, true) + ")");
+    body.material = static_cast<int>(it - c.material_names.begin());
+    const nlohmann::json* poly = b.find("polygon_m");
+    if (!poly) b.fail_missing("polygon_m", "array of >= 3 [x, y] vertices");
+    if (!poly->is_array() || poly->size() < 3) b.fail_at("polygon_m", "must be an array of >= 3 [x, y] vertices");
+    for (size_t k = 0; k < poly->size(); ++k) {
+      const std::string p = b.path_of("polygon_m") + "[" + std::to_string(k) + "]";
+      const auto& v = (*poly)[k];
+      if (!v.is_array() || v.size() != 2) jf::fail(p + " = " + jf::format_value(v) + ": must be [x, y]");
+      const double vx = jf::check_number(v[0], p + "[0]", jf::interval('[', c.lower[0] + pad, c.upper[0] - pad, ']', "m"));
+      const double vy = jf::check_number(v[1], p + "[1]", jf::interval('[', c.lower[1] + pad, c.upper[1] - pad, ']', "m"));
+      body.polygon.push_back({vx, vy});
+    }
+    if (b.has("velocity_m_s")) body.velocity = pair_of(b, "velocity_m_s", jf::any_number("m/s"));
+    if (auto k0 = b.optional_number("geostatic_k0", jf::at_least(0))) {
+      body.geostatic_k0 = *k0;
+      double top_y = -1e300;
+      for (const auto& v : body.polygon) top_y = std::max(top_y, v[1]);
+      body.surface_y = top_y;
+      body.gravity = std::hypot(c.gravity[0], c.gravity[1]);
+    }
+    body.points_per_cell_direction = n;
+    c.bodies.push_back(body);
+  }
+  return c;
+}
+
+}  // namespace lsi

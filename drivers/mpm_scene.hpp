@@ -1,0 +1,46 @@
+// MPM input: the `methods.mpm` block (numerical settings, shared by every MPM scene) and the
+// `mpm_case` block of a verification scene (domain, walls, materials, bodies), which replaces
+// `landslide` and `barrier` for problems that are not a landslide hitting a barrier. Both are
+// documented in docs/scene_schema.md.
+#pragma once
+#include <array>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "kernels/mpm/boundary.hpp"
+#include "kernels/mpm/constitutive/material.hpp"
+#include "kernels/mpm/particle_builder.hpp"
+
+namespace lsi {
+
+struct MpmSettings {
+  double cell_size_m = 0.1;
+  int particles_per_cell = 4;         // a perfect square: n x n points per cell
+  double courant = 0.5;
+  double end_time_s = 1.0;
+  double max_time_step_s = 1e300;
+  double output_interval_s = 0.01;    // histories are sampled at this interval
+  double flip_ratio = 0.0;            // "transfer": "apic" (0) or "flip" (flip_ratio in (0, 1])
+  bool atomic_scatter = false;        // "scatter": "duplicated" or "atomic"
+};
+
+struct MpmCase {
+  std::string name;
+  std::array<double, 2> lower{}, upper{};   // grid extent, m
+  std::array<double, 2> gravity{0.0, -9.81};
+  mpm::Boundaries walls;
+  std::vector<std::string> material_names;
+  std::vector<mpm::Material> materials;
+  std::vector<mpm::BodySpec> bodies;
+  MpmSettings settings;
+  nlohmann::json source;
+};
+
+// Parses `methods.mpm` (path names the block in messages). Throws InputError.
+MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& path);
+bool is_mpm_case(const nlohmann::json& scene);
+// Parses a whole verification scene {"name", "mpm_case", "methods": {"mpm": {...}}}.
+MpmCase parse_mpm_case(const nlohmann::json& scene);
+
+}  // namespace lsi
