@@ -19,7 +19,7 @@ struct EnergyReport {
 
 template <class ExecSpace, class MemorySpace>
 EnergyReport particle_energies(const Particles<MemorySpace>& p,
-                               const Kokkos::View<const Material*, MemorySpace>& materials,
+                               const Kokkos::View<const PreparedMaterial*, MemorySpace>& materials,
                                const double gravity[2]) {
   EnergyReport e;
   const double gx = gravity[0], gy = gravity[1];
@@ -29,7 +29,7 @@ EnergyReport particle_energies(const Particles<MemorySpace>& p,
         const double m = p.mass(q);
         k += 0.5 * m * (p.velocity(q, 0) * p.velocity(q, 0) + p.velocity(q, 1) * p.velocity(q, 1));
         const double s[4] = {p.stress(q, 0), p.stress(q, 1), p.stress(q, 2), p.stress(q, 3)};
-        el += p.volume(q) * elastic_energy_density(materials(p.material(q)), s);
+        el += p.volume(q) * elastic_energy_density(materials(p.material(q)).material, s);
         pot -= m * (gx * p.position(q, 0) + gy * p.position(q, 1));
         pl += p.plastic_work(q);
       },

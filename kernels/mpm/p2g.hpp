@@ -13,30 +13,55 @@
 
 namespace lsi::mpm {
 
-template <class ExecSpace, bool Atomic, class MemorySpace>
-void p2g(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, const double gravity[2]) {
-  namespace KE = Kokkos::Experimental;
+// The scatter targets of P2G, allocated once per solver and reset every step (allocating the
+// per-thread copies every step costs as much as the scatter itself on small grids).
+template <class ExecSpace, bool Atomic>
+struct GridScatter {
+  using Exec = ExecSpace;
 #ifdef KOKKOS_ENABLE_SERIAL
-  constexpr bool serial = std::is_same_v<ExecSpace, Kokkos::Serial>;
+  static constexpr bool serial = std::is_same_v<ExecSpace, Kokkos::Serial>;
 #else
-  constexpr bool serial = false;
+  static constexpr bool serial = false;
 #endif
-  using Duplication = std::conditional_t<Atomic || serial, KE::ScatterNonDuplicated, KE::ScatterDuplicated>;
-  using Contribution = std::conditional_t<Atomic && !serial, KE::ScatterAtomic, KE::ScatterNonAtomic>;
-  using Dup = KE::ScatterView<double*, Kokkos::LayoutRight, ExecSpace, KE::ScatterSum, Duplication,
-                              Contribution>;
-  using Dup2 = KE::ScatterView<double* [2], Kokkos::LayoutRight, ExecSpace, KE::ScatterSum,
-                               Duplication, Contribution>;
-  Kokkos::deep_copy(g.mass, 0.0);
-  Kokkos::deep_copy(g.momentum, 0.0);
-  Kokkos::deep_copy(g.force, 0.0);
-  Dup mass(g.mass);
-  Dup2 momentum(g.momentum), force(g.force);
+  static constexpr bool duplicated = !Atomic && !serial;
+  using Duplication = std::conditional_t<duplicated, Kokkos::Experimental::ScatterDuplicated,
+                                         Kokkos::Experimental::ScatterNonDuplicated>;
+  using Contribution = std::conditional_t<Atomic && !serial, Kokkos::Experimental::ScatterAtomic,
+                                          Kokkos::Experimental::ScatterNonAtomic>;
+  template <class Data>
+  using SV = Kokkos::Experimental::ScatterView<Data, Kokkos::LayoutRight, ExecSpace,
+                                               Kokkos::Experimental::ScatterSum, Duplication,
+                                               Contribution>;
+  SV<double*> mass;
+  SV<double* [2]> momentum, force;
+
+  GridScatter() = default;
+  template <class MemorySpace>
+  explicit GridScatter(const Grid<MemorySpace>& g)
+      : mass(g.mass), momentum(g.momentum), force(g.force) {}
+};
+
+template <class ExecSpace, bool Atomic, class MemorySpace>
+void p2g(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g,
+         GridScatter<ExecSpace, Atomic>& scatter, const double gravity[2]) {
+  namespace KE = Kokkos::Experimental;
+  if constexpr (GridScatter<ExecSpace, Atomic>::duplicated) {
+    Kokkos::deep_copy(g.mass, 0.0);   // the copies are summed into the grid
+    Kokkos::deep_copy(g.momentum, 0.0);
+    Kokkos::deep_copy(g.force, 0.0);
+  }
+  scatter.mass.reset();               // not duplicated: this zeroes the grid itself
+  scatter.momentum.reset();
+  scatter.force.reset();
+  auto& mass = scatter.mass;
+  auto& momentum = scatter.momentum;
+  auto& force = scatter.force;
   const double ox = g.origin[0], oy = g.origin[1], dx = g.dx, inv_dx = 1.0 / g.dx;
   const int nx = g.nx;
   const double gx = gravity[0], gy = gravity[1];
   Kokkos::parallel_for(
-      "lsi::mpm::p2g", Kokkos::RangePolicy<ExecSpace>(0, p.count), KOKKOS_LAMBDA(const int q) {
+      "lsi::mpm::p2g", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      KOKKOS_LAMBDA(const int q) {
         auto m_acc = mass.access();
         auto p_acc = momentum.access();
         auto f_acc = force.access();

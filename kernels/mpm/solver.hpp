@@ -55,11 +55,13 @@ class Solver {
          Boundaries walls, Settings settings)
       : grid_(grid), particles_(particles), walls_(walls), settings_(settings),
         user_max_dt_(settings.max_time_step) {
-    Kokkos::View<Material*, Mem> table("materials", materials.size());
+    if (settings_.atomic_scatter) atomic_scatter_ = GridScatter<ExecSpace, true>(grid_);
+    else duplicated_scatter_ = GridScatter<ExecSpace, false>(grid_);
+    Kokkos::View<PreparedMaterial*, Mem> table("materials", materials.size());
     auto host = Kokkos::create_mirror_view(table);
     wave_speed_ = 0.0;
     for (size_t i = 0; i < materials.size(); ++i) {
-      host(i) = materials[i];
+      host(i) = PreparedMaterial(materials[i]);
       wave_speed_ = std::max(wave_speed_, materials[i].wave_speed());
       plastic_ = plastic_ || materials[i].model == Material::Model::MohrCoulomb;
     }
@@ -85,8 +87,8 @@ class Solver {
     dt_ = stable_time_step(grid_.dx, wave_speed_, max_speed_, settings_.courant,
                            settings_.max_time_step);
     if (!(dt_ >= settings_.min_time_step)) return status_ = Status::TimeStepCollapse;
-    if (settings_.atomic_scatter) p2g<ExecSpace, true>(particles_, grid_, settings_.gravity);
-    else p2g<ExecSpace, false>(particles_, grid_, settings_.gravity);
+    if (settings_.atomic_scatter) p2g(particles_, grid_, atomic_scatter_, settings_.gravity);
+    else p2g(particles_, grid_, duplicated_scatter_, settings_.gravity);
     wall_force_[0] = wall_force_[1] = 0.0;
     boundary_ += grid_update<ExecSpace>(grid_, walls_, dt_, wall_force_);
     const G2PReport r = g2p<ExecSpace>(particles_, grid_, dt_, settings_.flip_ratio);
@@ -152,9 +154,11 @@ class Solver {
 
   Grid<Mem> grid_;
   Particles<Mem> particles_;
-  Kokkos::View<const Material*, Mem> materials_;
+  Kokkos::View<const PreparedMaterial*, Mem> materials_;
   Boundaries walls_;
   Settings settings_;
+  GridScatter<ExecSpace, true> atomic_scatter_;
+  GridScatter<ExecSpace, false> duplicated_scatter_;
   double user_max_dt_;
   double wave_speed_ = 0.0, max_speed_ = 0.0, dt_ = 0.0, time_ = 0.0, boundary_ = 0.0;
   double wall_force_[2] = {0.0, 0.0};

@@ -15,11 +15,11 @@ namespace lsi::mpm {
 
 template <class ExecSpace, bool WithPlasticity, class MemorySpace>
 void stress_update(const Particles<MemorySpace>& p,
-                   const Kokkos::View<const Material*, MemorySpace>& materials, double dt) {
+                   const Kokkos::View<const PreparedMaterial*, MemorySpace>& materials, double dt) {
   Kokkos::parallel_for(
       WithPlasticity ? "lsi::mpm::stress_update_plastic" : "lsi::mpm::stress_update_elastic",
       Kokkos::RangePolicy<ExecSpace>(0, p.count), KOKKOS_LAMBDA(const int q) {
-        const Material m = materials(p.material(q));
+        const PreparedMaterial& m = materials(p.material(q));
         const double Lxx = p.velocity_gradient(q, 0, 0), Lxy = p.velocity_gradient(q, 0, 1),
                      Lyx = p.velocity_gradient(q, 1, 0), Lyy = p.velocity_gradient(q, 1, 1);
         const double de[3] = {Lxx * dt, Lyy * dt, 0.5 * (Lxy + Lyx) * dt};
@@ -27,7 +27,7 @@ void stress_update(const Particles<MemorySpace>& p,
         jaumann_rotate(s, 0.5 * (Lxy - Lyx), dt);
         elastic_increment(m, de, s);
         if constexpr (WithPlasticity) {
-          if (m.model == Material::Model::MohrCoulomb)
+          if (m.material.model == Material::Model::MohrCoulomb)
             p.plastic_work(q) += p.volume(q) * mohr_coulomb_return(m, s);
         }
         for (int k = 0; k < 4; ++k) p.stress(q, k) = s[k];

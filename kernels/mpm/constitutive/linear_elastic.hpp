@@ -5,13 +5,17 @@
 
 namespace lsi::mpm {
 
-KOKKOS_INLINE_FUNCTION void elastic_increment(const Material& m, const double de[3], double s[4]) {
-  const double G = m.shear_modulus(), lam = m.lame_lambda();
+KOKKOS_INLINE_FUNCTION void elastic_increment(const PreparedMaterial& m, const double de[3],
+                                              double s[4]) {
+  const double G = m.shear_modulus, lam = m.lame_lambda;
   const double tr = de[0] + de[1];
   s[0] += lam * tr + 2.0 * G * de[0];
   s[1] += lam * tr + 2.0 * G * de[1];
   s[2] += 2.0 * G * de[2];
   s[3] += lam * tr;
+}
+KOKKOS_INLINE_FUNCTION void elastic_increment(const Material& m, const double de[3], double s[4]) {
+  elastic_increment(PreparedMaterial(m), de, s);
 }
 
 // Elastic strain energy density 1/2 sigma : C^-1 : sigma (J/m^3), with C^-1 from E and nu.

@@ -32,4 +32,21 @@ struct Material {
   }
 };
 
+// A material with the constants the kernels need every step computed once (moduli, and the
+// trigonometric functions of the Mohr-Coulomb angles).
+struct PreparedMaterial {
+  Material material;
+  double shear_modulus = 0.0, lame_lambda = 0.0;
+  double sin_phi = 0.0, cos_phi = 1.0, sin_psi = 0.0;
+
+  PreparedMaterial() = default;
+  KOKKOS_INLINE_FUNCTION explicit PreparedMaterial(const Material& m)
+      : material(m),
+        shear_modulus(m.shear_modulus()),
+        lame_lambda(m.lame_lambda()),
+        sin_phi(math::sin(m.friction_angle)),
+        cos_phi(math::cos(m.friction_angle)),
+        sin_psi(math::sin(m.dilatancy_angle)) {}
+};
+
 }  // namespace lsi::mpm

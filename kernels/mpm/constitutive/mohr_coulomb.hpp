@@ -34,7 +34,8 @@ KOKKOS_INLINE_FUNCTION InPlane in_plane(const double s[4]) {
 }
 }  // namespace detail
 
-KOKKOS_INLINE_FUNCTION double mohr_coulomb_return(const Material& m, double s[4]) {
+KOKKOS_INLINE_FUNCTION double mohr_coulomb_return(const PreparedMaterial& pm, double s[4]) {
+  const Material& m = pm.material;
   const detail::InPlane ip = detail::in_plane(s);
   // Principal values: in-plane major (0), in-plane minor (1), out-of-plane (2); sorted order.
   double p[3] = {ip.centre + ip.radius, ip.centre - ip.radius, s[3]};
@@ -49,10 +50,9 @@ KOKKOS_INLINE_FUNCTION double mohr_coulomb_return(const Material& m, double s[4]
   const double trial[3] = {p[order[0]], p[order[1]], p[order[2]]};   // s1 >= s2 >= s3
   double r[3] = {trial[0], trial[1], trial[2]};
 
-  const double sphi = math::sin(m.friction_angle), cphi = math::cos(m.friction_angle);
-  const double spsi = math::sin(m.dilatancy_angle);
+  const double sphi = pm.sin_phi, cphi = pm.cos_phi, spsi = pm.sin_psi;
   const double c = m.cohesion;
-  const double G = m.shear_modulus(), L = m.lame_lambda();
+  const double G = pm.shear_modulus, L = pm.lame_lambda;
   auto f_planes = [&](double a, double b) { return (a - b) + (a + b) * sphi - 2.0 * c * cphi; };
   const double scale = math::fabs(trial[0]) + math::fabs(trial[2]) + c + 1e-300;
   const double f = f_planes(trial[0], trial[2]);
@@ -112,6 +112,10 @@ KOKKOS_INLINE_FUNCTION double mohr_coulomb_return(const Material& m, double s[4]
   s[2] = radius * ip.s2;
   s[3] = back[2];
   return work;
+}
+
+KOKKOS_INLINE_FUNCTION double mohr_coulomb_return(const Material& m, double s[4]) {
+  return mohr_coulomb_return(PreparedMaterial(m), s);
 }
 
 }  // namespace lsi::mpm
