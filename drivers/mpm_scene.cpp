@@ -50,7 +50,7 @@ std::array<double, 2> pair_of(const jf::ObjectReader& r, const std::string& key,
 
 mpm::Wall parse_wall(const jf::ObjectReader& walls, const std::string& side) {
   mpm::Wall w;
-  if (auto o = walls.optional_object(side, {"position_m", "friction", "no_slip"})) {
+  if (auto o = walls.optional_object(side, {"position_m", "friction", "no_slip", "fixed"})) {
     w.active = true;
     w.position = o->number("position_m", jf::any_number("m"));
     w.friction = o->number_or("friction", 0.0, jf::at_least(0));
@@ -58,6 +58,7 @@ mpm::Wall parse_wall(const jf::ObjectReader& walls, const std::string& side) {
       if (o->has("friction")) o->fail_at("no_slip", "give either friction or no_slip");
       w.friction = -1.0;
     }
+    w.bilateral = o->boolean_or("fixed", false);
   }
   return w;
 }

@@ -1,7 +1,8 @@
 // Rigid, grid-aligned walls with Coulomb friction, applied to grid-node velocities: a node on or
 // beyond a wall loses the velocity component into the wall; its tangential velocity is reduced by
 // mu times the normal velocity removed (Coulomb), never reversed; it may leave the wall freely.
-// An inclined base is a horizontal base with gravity rotated by the slope angle.
+// A bilateral wall (a fixed support, e.g. the clamped end of a bar) also holds nodes that would
+// leave it. An inclined base is a horizontal base with gravity rotated by the slope angle.
 #pragma once
 #include <Kokkos_Core.hpp>
 
@@ -13,6 +14,7 @@ struct Wall {
   bool active = false;
   double position = 0.0;   // coordinate of the wall (x for left/right, y for bottom/top), m
   double friction = 0.0;   // Coulomb coefficient mu (0: smooth); a negative value means no slip
+  bool bilateral = false;  // true: the normal velocity is zero whatever its sign (fixed support)
 };
 
 struct Boundaries {
@@ -25,12 +27,12 @@ KOKKOS_INLINE_FUNCTION bool apply_walls(const Boundaries& b, double x, double y,
   bool acted = false;
   auto contact = [&](const Wall& w, int normal_axis, double inward) {
     const double vn = v[normal_axis] * inward;        // > 0: leaving the wall
-    if (vn >= 0.0) return;
+    if (vn >= 0.0 && !w.bilateral) return;
     acted = true;
     const int t = 1 - normal_axis;
     v[normal_axis] = 0.0;
     if (w.friction < 0.0) { v[t] = 0.0; return; }
-    const double vt = v[t], reduce = -w.friction * vn;  // mu |v_n|
+    const double vt = v[t], reduce = w.friction * math::fabs(vn);  // mu |v_n|
     v[t] = math::fabs(vt) <= reduce ? 0.0 : vt - (vt > 0.0 ? reduce : -reduce);
   };
   if (b.left.active && x <= b.left.position + tol) contact(b.left, 0, 1.0);

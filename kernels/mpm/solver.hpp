@@ -108,11 +108,18 @@ class Solver {
              const std::function<void(const Solver&)>& on_output = {}) {
     if (on_output) on_output(*this);
     double next_output = time_ + output_interval;
-    while (time_ < end_time * (1 - 1e-12)) {
+    struct Restore {   // the last step is clamped to end_time; the user's maximum comes back after
+      Settings& s;
+      double v;
+      ~Restore() { s.max_time_step = v; }
+    } restore{settings_, user_max_dt_};
+    // A leftover shorter than the collapse threshold is not a step worth taking.
+    const double close_enough = std::max(1e-12 * end_time, settings_.min_time_step);
+    while (end_time - time_ > close_enough) {
       settings_.max_time_step = std::min(user_max_dt_, end_time - time_);
       const Status s = step();
       if (s != Status::Running) return s;
-      if (time_ >= next_output * (1 - 1e-12) || time_ >= end_time * (1 - 1e-12)) {
+      if (time_ >= next_output * (1 - 1e-12) || end_time - time_ <= close_enough) {
         next_output += output_interval;
         if (energy_grew()) return status_ = Status::EnergyGrowth;
         if (on_output) on_output(*this);
