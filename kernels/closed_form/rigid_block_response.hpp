@@ -37,14 +37,19 @@ KOKKOS_INLINE_FUNCTION RigidBlockSummary rigid_block_response(const double* time
     if (!(t1 > t0)) { record(i + 1); continue; }
     const double s = (a1 - a0) / (t1 - t0);      // da/dt within the segment
     double ta = t0;
+    bool onset = false;   // ta is the computed stick -> slip instant: the drive equals friction
     for (int pass = 0; pass < 4 && ta < t1; ++pass) {
-      const double aa = a0 + s * (ta - t0);
+      // At the onset the acceleration is zero by construction; rounding (e.g. FMA contraction)
+      // may leave -1e-16 there, which would read as "stops at once" and lose the whole slide.
+      const double aa = onset ? 0.0 : a0 + s * (ta - t0);
+      onset = false;
       if (!sliding) {                              // stuck: does the drive beat friction?
         if (aa > 0.0) {
           sliding = true;
         } else if (s > 0.0 && a1 > 0.0) {
           ta = t0 - a0 / s;                        // drive = friction here
           sliding = true;
+          onset = true;
         } else {
           break;                                   // stuck to the end of the segment
         }

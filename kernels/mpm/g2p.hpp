@@ -18,9 +18,9 @@ struct G2PReport {
   int outside = 0;          // number of particles too close to the grid edge (or beyond)
 };
 
-template <class ExecSpace, class MemorySpace>
-G2PReport g2p(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, double dt,
-              double flip_ratio) {
+template <class ExecSpace, bool Flip, class MemorySpace>
+G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, double dt,
+                   double flip_ratio) {
   const double ox = g.origin[0], oy = g.origin[1], dx = g.dx, inv_dx = 1.0 / g.dx;
   const double apic = flip_ratio > 0.0 ? 0.0 : 4.0 * inv_dx * inv_dx;
   const double xmax = (g.nx - 2) * dx, ymax = (g.ny - 2) * dx;   // keep 1 cell of padding
@@ -32,32 +32,41 @@ G2PReport g2p(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, doubl
       KOKKOS_LAMBDA(const int q, double& vm, int& nonfinite, int& outside) {
         const double xp = p.position(q, 0) - ox, yp = p.position(q, 1) - oy;
         const Stencil1D sx = quadratic_bspline(xp, inv_dx), sy = quadratic_bspline(yp, inv_dx);
-        double v[2] = {0, 0}, dv[2] = {0, 0}, vmid[2] = {0, 0}, C[2][2] = {{0, 0}, {0, 0}}, L[2][2] = {{0, 0}, {0, 0}};
+        // Separable weights w = wx(a) wy(b): sums along each row first, then the row factors.
+        double wx[3], wxd[3], dwx[3];
         for (int a = 0; a < 3; ++a) {
-          const double dxa = (sx.base + a) * dx - xp;
-          for (int b = 0; b < 3; ++b) {
-            const double dyb = (sy.base + b) * dx - yp;
-            const int node = (sx.base + a) + nx * (sy.base + b);
-            const double w = sx.w[a] * sy.w[b];
-            const double gw[2] = {sx.dw[a] * sy.w[b], sx.w[a] * sy.dw[b]};
-            const double vi[2] = {g.velocity(node, 0), g.velocity(node, 1)};
-            const double d[2] = {dxa, dyb};
+          wx[a] = sx.w[a];
+          wxd[a] = sx.w[a] * ((sx.base + a) * dx - xp);
+          dwx[a] = sx.dw[a];
+        }
+        double v[2] = {0, 0}, dv[2] = {0, 0}, vmid[2] = {0, 0}, C[2][2] = {{0, 0}, {0, 0}},
+               L[2][2] = {{0, 0}, {0, 0}};
+        for (int b = 0; b < 3; ++b) {   // rows outside: the inner loop walks contiguous nodes
+          const double wy = sy.w[b], dwy = sy.dw[b], dyb = (sy.base + b) * dx - yp;
+          const int row = sx.base + nx * (sy.base + b);
+          double A0[2] = {0, 0}, A1[2] = {0, 0}, A2[2] = {0, 0}, O0[2] = {0, 0};
+          for (int a = 0; a < 3; ++a) {
             for (int r = 0; r < 2; ++r) {
-              v[r] += w * vi[r];
-              const double vo = g.velocity_old(node, r);
-              dv[r] += w * (vi[r] - vo);
-              vmid[r] += 0.5 * w * (vi[r] + vo);
-              for (int c = 0; c < 2; ++c) {
-                C[r][c] += w * vi[r] * d[c];
-                L[r][c] += vi[r] * gw[c];
-              }
+              const double vi = g.velocity(row + a, r), vo = g.velocity_old(row + a, r);
+              A0[r] += wx[a] * vi;
+              A1[r] += wxd[a] * vi;
+              A2[r] += dwx[a] * vi;
+              O0[r] += wx[a] * vo;
             }
+          }
+          for (int r = 0; r < 2; ++r) {
+            v[r] += wy * A0[r];
+            vmid[r] += 0.5 * wy * (A0[r] + O0[r]);
+            if constexpr (Flip) dv[r] += wy * (A0[r] - O0[r]);
+            C[r][0] += wy * A1[r];
+            C[r][1] += wy * dyb * A0[r];
+            L[r][0] += wy * A2[r];
+            L[r][1] += dwy * A0[r];
           }
         }
         for (int r = 0; r < 2; ++r) {
-          const double vnew = flip_ratio > 0.0
-                                  ? flip_ratio * (p.velocity(q, r) + dv[r]) + (1.0 - flip_ratio) * v[r]
-                                  : v[r];
+          double vnew = v[r];
+          if constexpr (Flip) vnew = flip_ratio * (p.velocity(q, r) + dv[r]) + (1.0 - flip_ratio) * v[r];
           p.velocity(q, r) = vnew;
           p.position(q, r) += dt * vmid[r];
           for (int c = 0; c < 2; ++c) {
@@ -78,6 +87,13 @@ G2PReport g2p(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, doubl
       },
       Kokkos::Max<double>(vmax), bad, out);
   return {vmax, bad, out};
+}
+
+template <class ExecSpace, class MemorySpace>
+G2PReport g2p(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, double dt,
+              double flip_ratio) {
+  return flip_ratio > 0.0 ? g2p_impl<ExecSpace, true>(p, g, dt, flip_ratio)
+                          : g2p_impl<ExecSpace, false>(p, g, dt, flip_ratio);
 }
 
 }  // namespace lsi::mpm

@@ -68,22 +68,35 @@ void p2g(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g,
         const double xp = p.position(q, 0) - ox, yp = p.position(q, 1) - oy;
         const Stencil1D sx = quadratic_bspline(xp, inv_dx), sy = quadratic_bspline(yp, inv_dx);
         const double m = p.mass(q), V = p.volume(q);
-        const double vx = p.velocity(q, 0), vy = p.velocity(q, 1);
-        const double c00 = p.affine(q, 0, 0), c01 = p.affine(q, 0, 1), c10 = p.affine(q, 1, 0),
-                     c11 = p.affine(q, 1, 1);
-        const double sxx = p.stress(q, 0), syy = p.stress(q, 1), sxy = p.stress(q, 2);
+        const double mv[2] = {m * p.velocity(q, 0), m * p.velocity(q, 1)};
+        const double mC[2][2] = {{m * p.affine(q, 0, 0), m * p.affine(q, 0, 1)},
+                                 {m * p.affine(q, 1, 0), m * p.affine(q, 1, 1)}};
+        const double Vs[3] = {V * p.stress(q, 0), V * p.stress(q, 1), V * p.stress(q, 2)};
+        // Separable weights w = wx(a) wy(b). Per node i:
+        //   mass     w m
+        //   momentum w (m v + m C (x_i - x_p))             = wx P[r] + wx dxa Q[r]
+        //   force   -V sigma grad(w) + w m g               = dwx F1[r] + wx F0[r]
+        // with the row factors P, Q, F0, F1 below.
+        double wx[3], wxd[3], dwx[3];
         for (int a = 0; a < 3; ++a) {
-          const double dxa = (sx.base + a) * dx - xp;
-          for (int b = 0; b < 3; ++b) {
-            const double dyb = (sy.base + b) * dx - yp;
-            const int node = (sx.base + a) + nx * (sy.base + b);
-            const double w = sx.w[a] * sy.w[b];
-            const double gwx = sx.dw[a] * sy.w[b], gwy = sx.w[a] * sy.dw[b];
-            m_acc(node) += w * m;
-            p_acc(node, 0) += w * m * (vx + c00 * dxa + c01 * dyb);
-            p_acc(node, 1) += w * m * (vy + c10 * dxa + c11 * dyb);
-            f_acc(node, 0) += -V * (sxx * gwx + sxy * gwy) + w * m * gx;
-            f_acc(node, 1) += -V * (sxy * gwx + syy * gwy) + w * m * gy;
+          wx[a] = sx.w[a];
+          wxd[a] = sx.w[a] * ((sx.base + a) * dx - xp);
+          dwx[a] = sx.dw[a];
+        }
+        for (int b = 0; b < 3; ++b) {
+          const double wy = sy.w[b], dwy = sy.dw[b], dyb = (sy.base + b) * dx - yp;
+          const double P[2] = {wy * (mv[0] + mC[0][1] * dyb), wy * (mv[1] + mC[1][1] * dyb)};
+          const double Q[2] = {wy * mC[0][0], wy * mC[1][0]};
+          const double F1[2] = {-Vs[0] * wy, -Vs[2] * wy};
+          const double F0[2] = {-Vs[2] * dwy + wy * m * gx, -Vs[1] * dwy + wy * m * gy};
+          const int row = sx.base + nx * (sy.base + b);
+          for (int a = 0; a < 3; ++a) {
+            const int node = row + a;
+            m_acc(node) += wx[a] * wy * m;
+            p_acc(node, 0) += wx[a] * P[0] + wxd[a] * Q[0];
+            p_acc(node, 1) += wx[a] * P[1] + wxd[a] * Q[1];
+            f_acc(node, 0) += dwx[a] * F1[0] + wx[a] * F0[0];
+            f_acc(node, 1) += dwx[a] * F1[1] + wx[a] * F0[1];
           }
         }
       });
