@@ -4,6 +4,7 @@
 
 #include <Kokkos_Core.hpp>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <random>
 
@@ -106,6 +107,7 @@ TYPED_TEST(ClosedFormBatch, MatchesScalarModels) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  setenv("OMP_PROC_BIND", "false", /*overwrite=*/0);   // no Kokkos warning in test discovery
   ::testing::InitGoogleTest(&argc, argv);
   Kokkos::ScopeGuard kokkos(argc, argv);
   return RUN_ALL_TESTS();

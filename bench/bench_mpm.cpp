@@ -1,0 +1,214 @@
+// MPM throughput (kernels/mpm): particle-updates per second, items_per_second = particles x steps /
+// seconds of the timed loop (no I/O, no energy evaluation: Solver::step() only).
+//
+// Scene: a dry column on a rough base, L0 = 1 m wide, H0 = 2 m high (a = 2), 2 x 2 points per cell,
+// n cells across L0 (n = 50: 20 000 points; n = 158: 199 712 points), a grid 4 L0 wide and H0 + 5
+// cells high (about as many nodes as points), smooth left wall, base friction tan(phi). Material
+// as in tests/mpm/test_mpm_column_collapse.cpp: rho 1800, nu 0.3, E = rho g H0 / 0.005, and for
+// Mohr-Coulomb phi 30 deg, psi 0, c 0, tension cut-off 0. Both models start from the geostatic
+// stress with K0 = 0.3, just below the active limit Ka = 0.333 of phi = 30 deg, so that the
+// Mohr-Coulomb column yields in the first step (a collapsing column is near the active state);
+// the elastic column uses the same start. The kernel benchmark of the Mohr-Coulomb stress update
+// reports the share of points that took the return mapping (plastic_share: 5-12 % after 5 steps);
+// every point pays for the principal stresses and the yield check. Each repetition of a `step/...`
+// benchmark builds the column afresh and runs a fixed number of steps (400 at 20 k, 40 at 200 k
+// points), so every repetition does the same physical work.
+//
+// Variants: the execution space (Serial, and the default host space: OpenMP when compiled in), the
+// P2G scatter (ScatterView duplicated per thread, or atomic; Serial needs neither and always uses
+// a plain view, so it is run once), and one benchmark per kernel called directly (p2g, grid_update,
+// g2p, stress_update without and with the Mohr-Coulomb return) on a column advanced 5 steps. The
+// kernels are timed on warm caches, one at a time: at 200 k points their sum is ~40 % below a
+// whole OpenMP step, whose kernels evict each other's data.
+//
+// Run (medians of 3 repetitions; the threads of the OpenMP space from OMP_NUM_THREADS, 1 and 2):
+//   OMP_NUM_THREADS=1 OMP_PROC_BIND=false build/bench/bench_mpm --benchmark_repetitions=3
+//       --benchmark_report_aggregates_only=true
+//   OMP_NUM_THREADS=2 OMP_PROC_BIND=false build/bench/bench_mpm --benchmark_repetitions=3
+//       --benchmark_report_aggregates_only=true
+// (--benchmark_filter=step/ for the whole steps only; --benchmark_out=mpm.json
+//  --benchmark_out_format=json to keep the numbers.) On a machine shared with other work, run one
+// benchmark at a time (--benchmark_filter='^NAME$') when the cores are idle, and keep the default
+// OpenMP wait policy: a competing process makes 2-thread runs several times slower.
+#include <benchmark/benchmark.h>
+
+#include <Kokkos_Core.hpp>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "kernels/mpm/particle_builder.hpp"
+#include "kernels/mpm/solver.hpp"
+
+namespace {
+using namespace lsi::mpm;
+
+constexpr double kG = 9.81;
+constexpr double kPi = 3.14159265358979323846;
+
+template <class Exec>
+struct Column {
+  using Mem = typename Exec::memory_space;
+  Grid<Mem> grid;
+  Particles<Mem> particles;
+  Material material;
+  Boundaries walls;
+  Settings settings;
+
+  Column(int n, bool plastic, bool atomic) {
+    const double L0 = 1.0, H0 = 2.0, dx = L0 / n;
+    material.model = plastic ? Material::Model::MohrCoulomb : Material::Model::LinearElastic;
+    material.density = 1800;
+    material.poisson_ratio = 0.3;
+    material.young_modulus = material.density * kG * H0 / 0.005;
+    material.friction_angle = 30.0 * kPi / 180.0;
+    material.dilatancy_angle = 0.0;
+    material.cohesion = 0.0;
+    material.tension_cutoff = 0.0;
+    const double x0 = 2 * dx, y0 = 2 * dx;
+    const double lo[2] = {0, 0}, hi[2] = {x0 + 4 * L0, y0 + H0 + 3 * dx};
+    grid = Grid<Mem>(lo, hi, dx);
+    BodySpec body;
+    body.polygon = {{{x0, y0}}, {{x0 + L0, y0}}, {{x0 + L0, y0 + H0}}, {{x0, y0 + H0}}};
+    body.points_per_cell_direction = 2;
+    body.geostatic_k0 = 0.3;
+    body.surface_y = y0 + H0;
+    body.gravity = kG;
+    particles = build_particles<Mem>({body}, {material}, lo, dx);
+    walls.left = {true, x0, 0.0};
+    walls.bottom = {true, y0, std::tan(material.friction_angle)};
+    walls.right = {true, grid.upper(0) - 2 * dx, 0.0};
+    settings.courant = 0.5;
+    settings.atomic_scatter = atomic;
+  }
+};
+
+template <class Exec>
+std::string exec_name() {
+#ifdef KOKKOS_ENABLE_SERIAL
+  if constexpr (std::is_same_v<Exec, Kokkos::Serial>) return "Serial";
+#endif
+  return std::string(Exec::name());
+}
+
+void common_counters(benchmark::State& state, int count, int nodes, int threads) {
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(count));
+  state.counters["particles"] = count;
+  state.counters["grid_nodes"] = nodes;
+  state.counters["threads"] = threads;
+}
+
+// Whole steps: time step, P2G, grid update with walls, G2P with the health check, stress update.
+template <class Exec>
+void bm_step(benchmark::State& state, int n, bool plastic, bool atomic) {
+  Column<Exec> c(n, plastic, atomic);
+  Solver<Exec> solver(c.grid, c.particles, {c.material}, c.walls, c.settings);
+  for (auto _ : state) {
+    if (solver.step() != Status::Running) {
+      state.SkipWithError(describe(solver.status()));
+      break;
+    }
+  }
+  Exec().fence();
+  common_counters(state, c.particles.count, c.grid.size(), Exec().concurrency());
+}
+
+enum class Kernel { P2G, P2GAtomic, GridUpdate, G2P, StressElastic, StressPlastic };
+
+template <class Exec>
+void bm_kernel(benchmark::State& state, int n, Kernel k) {
+  using Mem = typename Exec::memory_space;
+  Column<Exec> c(n, true, k == Kernel::P2GAtomic);
+  Solver<Exec> solver(c.grid, c.particles, {c.material}, c.walls, c.settings);
+  for (int i = 0; i < 5; ++i) solver.step();   // nonzero velocities, gradients, stresses
+  const double dt = solver.time_step();
+  Kokkos::View<PreparedMaterial*, Mem> table("materials", 1);
+  auto host = Kokkos::create_mirror_view(table);
+  host(0) = PreparedMaterial(c.material);
+  Kokkos::deep_copy(table, host);
+  const Kokkos::View<const PreparedMaterial*, Mem> materials = table;
+  GridScatter<Exec, false> duplicated(c.grid);   // allocated once, as in the solver
+  GridScatter<Exec, true> atomic(c.grid);
+  const auto& p = c.particles;
+  const auto& g = c.grid;
+  double wall_force[2] = {0, 0};
+  for (auto _ : state) {
+    switch (k) {
+      case Kernel::P2G: p2g(p, g, duplicated, c.settings.gravity); break;
+      case Kernel::P2GAtomic: p2g(p, g, atomic, c.settings.gravity); break;
+      case Kernel::GridUpdate:
+        benchmark::DoNotOptimize(grid_update<Exec>(g, c.walls, dt, wall_force));
+        break;
+      case Kernel::G2P: benchmark::DoNotOptimize(g2p<Exec>(p, g, dt, c.settings.flip_ratio)); break;
+      case Kernel::StressElastic: stress_update<Exec, false>(p, materials, dt); break;
+      case Kernel::StressPlastic: stress_update<Exec, true>(p, materials, dt); break;
+    }
+    Exec().fence();
+  }
+  common_counters(state, p.count, g.size(), Exec().concurrency());
+  if (k == Kernel::StressPlastic) {
+    // Share of the points that took the return mapping in one more call.
+    Kokkos::View<double*, Mem> before("before", p.count);
+    Kokkos::deep_copy(before, p.plastic_work);
+    stress_update<Exec, true>(p, materials, dt);
+    int yielded = 0;
+    const auto work = p.plastic_work;
+    Kokkos::parallel_reduce(
+        "count_plastic", Kokkos::RangePolicy<Exec>(0, p.count),
+        KOKKOS_LAMBDA(const int q, int& s) { s += work(q) != before(q) ? 1 : 0; }, yielded);
+    state.counters["plastic_share"] = static_cast<double>(yielded) / p.count;
+  }
+}
+
+template <class Exec>
+void register_space(bool with_atomic) {
+  const std::string ex = exec_name<Exec>();
+  for (const int n : {50, 158}) {
+    const int steps = n == 50 ? 400 : 40;
+    const std::string size = "/particles:" + std::to_string(8 * n * n);
+    for (const bool plastic : {false, true}) {
+      for (const bool atomic : {false, true}) {
+        if (atomic && !with_atomic) continue;
+        const std::string name = "step/" + ex + (plastic ? "/mohr_coulomb" : "/elastic") +
+                                 (with_atomic ? (atomic ? "/atomic" : "/duplicated") : "") + size;
+        benchmark::RegisterBenchmark(name.c_str(), bm_step<Exec>, n, plastic, atomic)
+            ->Iterations(steps)
+            ->UseRealTime()
+            ->Unit(benchmark::kMillisecond);
+      }
+    }
+    struct K { Kernel k; const char* name; };
+    std::vector<K> kernels = {{Kernel::P2G, with_atomic ? "p2g_duplicated" : "p2g"},
+                              {Kernel::GridUpdate, "grid_update"},
+                              {Kernel::G2P, "g2p"},
+                              {Kernel::StressElastic, "stress_update_elastic"},
+                              {Kernel::StressPlastic, "stress_update_plastic"}};
+    if (with_atomic) kernels.insert(kernels.begin() + 1, {Kernel::P2GAtomic, "p2g_atomic"});
+    for (const auto& k : kernels) {
+      const std::string name = "kernel/" + ex + "/" + k.name + size;
+      benchmark::RegisterBenchmark(name.c_str(), bm_kernel<Exec>, n, k.k)
+          ->UseRealTime()
+          ->Unit(benchmark::kMicrosecond);
+    }
+  }
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  Kokkos::ScopeGuard kokkos(argc, argv);
+  benchmark::Initialize(&argc, argv);
+  using Host = Kokkos::DefaultHostExecutionSpace;
+#ifdef KOKKOS_ENABLE_SERIAL
+  if constexpr (!std::is_same_v<Host, Kokkos::Serial>) register_space<Host>(true);
+  register_space<Kokkos::Serial>(false);
+#else
+  register_space<Host>(true);
+#endif
+  benchmark::AddCustomContext("kokkos_version", std::to_string(KOKKOS_VERSION));
+  benchmark::AddCustomContext("git_revision", LSI_GIT_REVISION);
+  benchmark::AddCustomContext("default_host_execution_space", Host::name());
+  benchmark::AddCustomContext("default_host_concurrency", std::to_string(Host().concurrency()));
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

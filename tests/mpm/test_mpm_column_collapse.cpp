@@ -1,0 +1,228 @@
+// Verification (against experiments): collapse of a two-dimensional granular column.
+//
+// A column L0 wide and H0 = a L0 high, held by a smooth wall on its left (the symmetry plane of a
+// column released on both sides; the quasi-2D experiments use a box with a gate), is released on
+// a rough horizontal base and spreads until it stops. The law: Lube, Huppert, Sparks & Freundt,
+// "Collapses of two-dimensional granular columns", Phys. Rev. E 72, 041301 (2005), as quoted by
+// Lagree, Staron & Popinet, J. Fluid Mech. 686:378 (2011), eqs. 3.1-3.2:
+//   (L_f - L0) / L0 = 1.2 a          for a <~ 1.8
+//   (L_f - L0) / L0 = 1.9 a^(2/3)    for a >~ 2.8
+// and for the final height H_f / L0 = a for small a: a short column collapses by the avalanche of
+// its flank along a Coulomb failure plane and its top stays where it was (H_f = H0). The height
+// of tall columns is quoted with different exponents (a^0.4 attributed to Lube et al., not
+// confirmed from the paper; a^(1/3) for Lajeunesse, Monnier & Homsy, Phys. Fluids 17, 103302
+// (2005), as quoted by K. Kumar, PhD thesis, Cambridge 2015, ch. 2), so it is printed, not
+// asserted. Scatter between experiments: Lajeunesse et al. fit 1.8 a and 2.3 a^(2/3) in a similar
+// channel, a run-out 50 % above Lube's at small a and 21 % above at a = 3 (the secondary sources
+// disagree on which fit belongs to which experiment: docs/verification.md).
+//
+// Model: Mohr-Coulomb, phi = 30 deg, psi = 0, c = 0, tension cut-off 0, nu = 0.3, rho = 1800,
+// E = rho g H0 / 0.005 (0.5 % elastic strain under the column's weight, stiff enough not to matter,
+// soft enough for a cheap time step), base friction tan(phi), 2 x 2 points per cell, Courant 0.5,
+// APIC. L_f and H_f: the farthest / highest point plus half a point spacing. At rest: kinetic
+// energy below 1e-3 of the potential energy released, checked every T/4, T = sqrt(H0 / g).
+//
+// a = 0.5 (32 cells across L0) is asserted: run-out within 20 % of Lube et al., H_f = H0 within
+// 3 %. a = 3 (16 cells across L0) is run and reported against the law but its run-out is NOT
+// asserted against it: a rate-independent Mohr-Coulomb continuum over-predicts the run-out of tall
+// columns, most likely because the falling grains lose energy in collisions that the continuum
+// does not have (L_f measured here +28 % over Lube at 16, +39 % at 24, +45 % at 32 cells per L0,
+// growing with resolution; the same over-prediction by MPM with Mohr-Coulomb for a > ~1.7, against
+// DEM and experiments, is reported by Kumar 2015, ch. 4). The a = 3 case asserts what the solver
+// must still do there: finish, keep the energy balance, and stay within a regression band
+// (docs/verification.md).
+//
+// Both cases check the energy balance, Solver::energy_residual, in [-0.2, +0.05]: a negative value
+// is numerical dissipation, kinetic energy lost by the discretisation (grid transfers, impact on
+// the base) that neither the plastic nor the wall work accounts for. It shrinks as the grid is
+// refined (a = 0.5: -10.0, -6.9, -5.3, -3.6 % at 16, 24, 32, 48 cells per L0; a = 3: -2.3, -1.7,
+// -1.4 % at 16, 24, 32), as numerical dissipation should; up to 20 % is tolerated. A positive
+// residual is energy created by the scheme: more than 5 % would mean an instability or an
+// accounting error.
+//
+// Backends: a = 0.5 on every backend, a = 3 on Serial only (on the default host space if Serial
+// is not compiled in): same kernels, and this small problem (3 072 points) gains nothing from
+// threads. Measured on the 2 shared cores of the development machine (ctest, OMP_NUM_THREADS=2,
+// OMP_WAIT_POLICY=passive as registered in CMakeLists.txt): Serial a = 0.5 1.2 s, Serial a = 3
+// 5-6 s, OpenMP a = 0.5 1.3-2.2 s; OpenMP a = 3 would add 3-5 s idle, 8 s with a competing process,
+// 210 s with a whole `ctest -j2` running beside it (every step is ~13 fork-join regions).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <type_traits>
+
+#include "kernels/mpm/particle_builder.hpp"
+#include "kernels/mpm/solver.hpp"
+#include "support/backends.hpp"
+
+namespace {
+using namespace lsi::mpm;
+
+constexpr double kG = 9.81;
+constexpr double kPi = 3.14159265358979323846;
+
+// Lube et al. (2005): L_f / L0 (outside the transition 1.8 < a < 2.8).
+double lube_runout(double a) { return 1.0 + (a < 2.3 ? 1.2 * a : 1.9 * std::cbrt(a * a)); }
+// Lajeunesse et al. (2005), for the scatter: L_f / L0.
+double lajeunesse_runout(double a) { return 1.0 + (a < 2.3 ? 1.8 * a : 2.3 * std::cbrt(a * a)); }
+
+struct Collapse {
+  double a = 0, Lf = 0, Hf = 0;   // L_f / L0, H_f / L0
+  double residual = 0, t_over_T = 0, right_room = 0;
+  double kinetic_ratio = 0;       // kinetic / released potential energy at the end
+  double plastic_share = 0, boundary_share = 0;   // of the released potential energy
+  bool at_rest = false;
+  long steps = 0;
+  int points = 0;
+  double seconds = 0;
+  Status status = Status::Running;
+};
+
+template <class Exec>
+Collapse collapse(double a, int cells_per_L0) {
+  using Mem = typename Exec::memory_space;
+  Collapse R;
+  R.a = a;
+  const double L0 = 1.0, H0 = a * L0, dx = L0 / cells_per_L0, h = dx / 2;
+  Material m;
+  m.model = Material::Model::MohrCoulomb;
+  m.density = 1800;
+  m.poisson_ratio = 0.3;
+  m.young_modulus = m.density * kG * H0 / 0.005;
+  m.friction_angle = 30.0 * kPi / 180.0;
+  m.dilatancy_angle = 0.0;
+  m.cohesion = 0.0;
+  m.tension_cutoff = 0.0;
+  // Walls on grid lines two cells inside the grid; room on the right for 1.6 times the run-out of
+  // the law (more than the measured over-prediction at a = 3).
+  const double x0 = 2 * dx, y0 = 2 * dx;
+  const double lo[2] = {0, 0}, hi[2] = {x0 + 1.6 * lube_runout(a) * L0 + 3 * dx, y0 + H0 + 4 * dx};
+  Grid<Mem> grid(lo, hi, dx);
+  BodySpec body;
+  body.polygon = {{{x0, y0}}, {{x0 + L0, y0}}, {{x0 + L0, y0 + H0}}, {{x0, y0 + H0}}};
+  body.points_per_cell_direction = 2;
+  auto particles = build_particles<Mem>({body}, {m}, lo, dx);
+  R.points = particles.count;
+  Boundaries walls;
+  walls.left = {true, x0, 0.0};
+  walls.bottom = {true, y0, std::tan(m.friction_angle)};
+  const double x_right = grid.upper(0) - 2 * dx;
+  walls.right = {true, x_right, 0.0};
+  Settings s;
+  s.courant = 0.5;
+  Solver<Exec> solver(grid, particles, {m}, walls, s);
+
+  const double T = std::sqrt(H0 / kG);
+  const EnergyReport e0 = solver.energy();
+  const auto start = std::chrono::steady_clock::now();
+  EnergyReport e = e0;
+  double t = 0;
+  while (t < 10 * T) {
+    t += 0.25 * T;
+    R.status = solver.run(t, 0.25 * T);
+    if (R.status != Status::Finished) return R;
+    e = solver.energy();
+    const double released = e0.potential - e.potential;
+    R.kinetic_ratio = e.kinetic / released;
+    if (t >= 2 * T && R.kinetic_ratio < 1e-3) {
+      R.at_rest = true;
+      break;
+    }
+  }
+  R.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  R.t_over_T = t / T;
+  R.steps = solver.steps();
+  R.residual = solver.energy_residual(e);
+  const double released = e0.potential - e.potential;
+  R.plastic_share = e.plastic / released;
+  R.boundary_share = e.boundary / released;
+  auto x = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), particles.position);
+  double xm = -1e300, ym = -1e300;
+  for (int q = 0; q < particles.count; ++q) {
+    xm = std::max(xm, x(q, 0));
+    ym = std::max(ym, x(q, 1));
+  }
+  R.Lf = (xm - x0 + h / 2) / L0;
+  R.Hf = (ym - y0 + h / 2) / L0;
+  R.right_room = (x_right - xm) / dx;
+  return R;
+}
+
+void print(const Collapse& R, const char* backend) {
+  const double lube = lube_runout(R.a), laj = lajeunesse_runout(R.a);
+  const double h_small = R.a, h_04 = std::pow(R.a, 0.4), h_13 = std::cbrt(R.a);
+  std::printf("[measured] %s a = %.1f (%d points, %ld steps, t = %.2f T, %.2f s, %s): "
+              "L_f/L0 = %.3f vs Lube %.3f (%+.1f %%), Lajeunesse %.3f (%+.1f %%); "
+              "H_f/L0 = %.3f vs a %.3f (%+.1f %%), a^0.4 %.3f (%+.1f %%), a^(1/3) %.3f (%+.1f %%); "
+              "energy residual %+.4f; plastic work %.3f, wall work %.3f of the released potential "
+              "energy; kinetic/released %.1e\n",
+              backend, R.a, R.points, R.steps, R.t_over_T, R.seconds, describe(R.status), R.Lf,
+              lube,
+              100 * (R.Lf / lube - 1), laj, 100 * (R.Lf / laj - 1), R.Hf, h_small,
+              100 * (R.Hf / h_small - 1), h_04, 100 * (R.Hf / h_04 - 1), h_13,
+              100 * (R.Hf / h_13 - 1), R.residual, R.plastic_share, R.boundary_share,
+              R.kinetic_ratio);
+}
+
+void check_common(const Collapse& R) {
+  ASSERT_EQ(R.status, Status::Finished) << describe(R.status);
+  EXPECT_TRUE(R.at_rest) << "still moving at t = " << R.t_over_T << " T";
+  // See the header: numerical dissipation up to 20 %, no more than 5 % energy created.
+  EXPECT_GT(R.residual, -0.2);
+  EXPECT_LT(R.residual, 0.05);
+  // The deposit must not have reached the right wall (it would cut the run-out short).
+  EXPECT_GT(R.right_room, 2.0);
+}
+
+template <class Exec>
+const char* backend_name() {
+#ifdef KOKKOS_ENABLE_SERIAL
+  if constexpr (std::is_same_v<Exec, Kokkos::Serial>) return "Serial";
+#endif
+  return Exec::name();
+}
+
+template <class Exec>
+class MpmColumnCollapse : public ::testing::Test {};
+TYPED_TEST_SUITE(MpmColumnCollapse, lsi::test::Backends);
+
+// a = 0.5: flank avalanche, truncated-cone deposit.
+TYPED_TEST(MpmColumnCollapse, ShortColumnRunOutAndHeight) {
+  const Collapse R = collapse<TypeParam>(0.5, 32);
+  print(R, backend_name<TypeParam>());
+  check_common(R);
+  // Run-out within 20 % of Lube et al. (2005); measured +6.6 %. The experiments scatter more
+  // than that (Lajeunesse et al.: +50 %), so 20 % is a statement about this model, not the data.
+  EXPECT_LT(std::fabs(R.Lf / lube_runout(R.a) - 1), 0.2);
+  // The top of the column is not reached by the failure plane: H_f = H0, less the elastic
+  // shortening (0.25 % on average) and the half-spacing of the measurement; 3 %.
+  EXPECT_LT(std::fabs(R.Hf / R.a - 1), 0.03);
+}
+
+// a = 3: free fall of the upper column, conical deposit. One backend only (see the header).
+#ifdef KOKKOS_ENABLE_SERIAL
+using TallColumnSpace = Kokkos::Serial;
+#else
+using TallColumnSpace = Kokkos::DefaultHostExecutionSpace;
+#endif
+TYPED_TEST(MpmColumnCollapse, TallColumnFinishesAndReportsRunOut) {
+  using Exec = TypeParam;
+  if (!std::is_same_v<Exec, TallColumnSpace>)
+    GTEST_SKIP() << "a = 3 runs on " << backend_name<TallColumnSpace>() << " only (run time)";
+  const Collapse R = collapse<Exec>(3.0, 16);
+  print(R, backend_name<Exec>());
+  check_common(R);
+  // Not a verification against Lube et al. (see the header): the rate-independent continuum
+  // over-predicts the run-out of tall columns. Regression band at 16 cells per L0, measured
+  // L_f/L0 = 6.34, +28 % over Lube and +10 % over Lajeunesse et al.: longer than Lube's law, and
+  // less than 1.5 times it.
+  const double ratio = R.Lf / lube_runout(R.a);
+  EXPECT_GT(ratio, 1.0);
+  EXPECT_LT(ratio, 1.5);
+  // Far below the initial height: the whole column took part in the collapse.
+  EXPECT_LT(R.Hf, 0.6 * R.a);
+}
+}  // namespace
