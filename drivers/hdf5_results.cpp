@@ -313,7 +313,8 @@ void validate(const std::vector<MethodResult>& results) {
 }
 
 void write_file(const std::string& file, const std::string& scene_text,
-                const std::vector<MethodResult>& results) {
+                const std::vector<MethodResult>& results,
+                const std::function<void(long long file_id)>& extra) {
   // Track link creation order in the root group so that read_results returns the methods in the
   // order they were given.
   Handle fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "cannot create a file-creation property list");
@@ -349,6 +350,7 @@ void write_file(const std::string& file, const std::string& scene_text,
     }
     g.close("cannot close group '" + r.method + "'");
   }
+  if (extra) extra(static_cast<long long>(f.get()));
 
   check(H5Fflush(f, H5F_SCOPE_GLOBAL), "cannot flush the file");
   f.close("cannot close the file");
@@ -401,7 +403,11 @@ MethodResult read_group(hid_t file, const std::string& name) {
   for (const auto& l : links) {
     bool known = false;
     for (const auto& h : kHistories) known = known || l == h.name;
-    if (!known) r.series[l].values = read_dataset(g, l);
+    if (known) continue;
+    // Only datasets are histories; subgroups (the MPM particle snapshots, /mpm/snapshots) are not.
+    Handle obj(H5Oopen(g, l.c_str(), H5P_DEFAULT), H5Oclose, "cannot open '" + l + "'");
+    if (H5Iget_type(obj) != H5I_DATASET) continue;
+    r.series[l].values = read_dataset(g, l);
   }
   for (const auto& s : kScalars)
     r.*(s.member) = has_attribute(g, s.name) ? read_double_attribute(g, s.name)
@@ -434,7 +440,8 @@ MethodResult read_group(hid_t file, const std::string& name) {
 }  // namespace
 
 void write_results(const std::string& path, const nlohmann::json& scene,
-                   const std::vector<MethodResult>& results) {
+                   const std::vector<MethodResult>& results,
+                   const std::function<void(long long file_id)>& extra) {
   validate(results);
   std::string scene_text;
   try {
@@ -460,7 +467,7 @@ void write_results(const std::string& path, const nlohmann::json& scene,
 
   SilenceHdf5Errors silence;
   try {
-    write_file(tmp, scene_text, results);
+    write_file(tmp, scene_text, results, extra);
     fsync_file(tmp);
     if (std::rename(tmp.c_str(), path.c_str()) != 0)
       throw std::runtime_error("cannot rename '" + tmp + "' onto it: " + std::strerror(errno));

@@ -11,6 +11,7 @@
 //                           only the non-empty ones; each with string attributes units, description
 // Strings are variable-length UTF-8 scalars (h5py reads them as str).
 #pragma once
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -27,8 +28,12 @@ namespace lsi {
 // containing '/', an empty extra name or one clashing with a reserved attribute name.
 // Throws std::runtime_error (message: path + what failed) for any I/O or HDF5 failure; the
 // temporary file is removed and an existing file at `path` is left untouched.
+// `extra`, if set, is called with the open file's id (an hid_t) after the method groups are written
+// and before the file is closed and renamed, to add further objects (e.g. MPM particle snapshots,
+// drivers/mpm_snapshots.hpp); an exception from it fails the whole write as above.
 void write_results(const std::string& path, const nlohmann::json& scene,
-                   const std::vector<MethodResult>& results);
+                   const std::vector<MethodResult>& results,
+                   const std::function<void(long long file_id)>& extra = {});
 
 struct StoredResults {
   nlohmann::json scene;

@@ -11,6 +11,7 @@
 #include "drivers/closed_form_methods.hpp"
 #include "drivers/hdf5_results.hpp"
 #include "drivers/mpm_runner.hpp"
+#include "drivers/mpm_snapshots.hpp"
 #include "drivers/mpm_scene.hpp"
 #include "drivers/report.hpp"
 #include "drivers/scene.hpp"
@@ -61,7 +62,17 @@ int run_mpm_case(const std::string& path, const nlohmann::json& doc, const std::
                  const std::string& format) {
   const lsi::MpmCase c = with_path(path, [&] { return lsi::parse_mpm_case(doc); });
   const lsi::MpmOutcome o = lsi::run_mpm_case(c);
-  if (!out_path.empty()) lsi::write_results(out_path, c.source, {o.result});
+  if (!out_path.empty()) {
+    if (o.snapshots.empty()) {
+      lsi::write_results(out_path, c.source, {o.result});
+    } else {
+      // Both files are written atomically; the XDMF index only after its HDF5 file is in place.
+      lsi::write_results(out_path, c.source, {o.result}, [&](long long file_id) {
+        lsi::write_mpm_snapshots(file_id, o.snapshots);
+      });
+      lsi::write_mpm_snapshots_xdmf(out_path, o.snapshots);
+    }
+  }
   const auto& res = o.result.series.at("energy_residual").values;
   if (format == "json") {
     nlohmann::json j = {{"status", o.status},        {"finished", o.finished},

@@ -1,6 +1,7 @@
 #include "drivers/mpm_runner.hpp"
 
 #include <Kokkos_Core.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 
@@ -9,6 +10,34 @@
 
 namespace lsi {
 namespace {
+
+template <class Mem>
+MpmSnapshot take_snapshot(const mpm::Particles<Mem>& p, double time) {
+  MpmSnapshot s;
+  s.time = time;
+  s.count = p.count;
+  const size_t n = static_cast<size_t>(p.count);
+  const auto pos = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.position);
+  const auto vel = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.velocity);
+  const auto sig = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.stress);
+  const auto eps = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.deviatoric_strain);
+  const auto wp = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.plastic_work);
+  s.position.resize(2 * n);
+  s.velocity.resize(2 * n);
+  s.stress.resize(4 * n);
+  s.deviatoric_strain.resize(n);
+  s.plastic_work.resize(n);
+  for (size_t i = 0; i < n; ++i) {   // element access: correct whatever the views' layout
+    for (size_t k = 0; k < 2; ++k) {
+      s.position[2 * i + k] = pos(i, k);
+      s.velocity[2 * i + k] = vel(i, k);
+    }
+    for (size_t k = 0; k < 4; ++k) s.stress[4 * i + k] = sig(i, k);
+    s.deviatoric_strain[i] = eps(i);
+    s.plastic_work[i] = wp(i);
+  }
+  return s;
+}
 
 void ensure_kokkos() {
   if (Kokkos::is_initialized()) return;
@@ -50,6 +79,10 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
       sr.description = what;
       sr.values.push_back(v);
     };
+    const double snap_dt = c.settings.snapshot_interval_s;
+    long next_snap = 0;   // index of the next snapshot time, next_snap * snap_dt
+    // Output times overshoot their targets by a step; this only absorbs the solver's rounding.
+    const double snap_tol = 1e-9 * std::min(snap_dt, c.settings.output_interval_s);
     const auto t0 = std::chrono::steady_clock::now();
     double io_seconds = 0.0;
     const mpm::Status status = solver.run(
@@ -69,6 +102,15 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
           add("time_step", "s", "time step of the last step", sv.time_step());
           add("wall_force_x", "N/m", "reaction of the walls on the material, x", -sv.wall_force()[0]);
           add("wall_force_y", "N/m", "reaction of the walls on the material, y", -sv.wall_force()[1]);
+          const double t = sv.time();
+          // The solver's own test for its last output (mpm::Solver::run).
+          const bool at_end =
+              c.settings.end_time_s - t <= std::max(1e-12 * c.settings.end_time_s, s.min_time_step);
+          if (snap_dt > 0 &&
+              (t + snap_tol >= next_snap * snap_dt || (at_end && out.snapshots.back().time < t))) {
+            out.snapshots.push_back(take_snapshot(sv.particles(), t));
+            while (next_snap * snap_dt <= t + snap_tol) ++next_snap;
+          }
           io_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
         });
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -13,7 +13,7 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
   const jf::ObjectReader r(block, path,
                            {"cell_size_m", "particles_per_cell", "courant", "end_time_s",
                             "max_time_step_s", "output_interval_s", "transfer", "flip_ratio",
-                            "scatter"});
+                            "scatter", "snapshot_interval_s"});
   MpmSettings s;
   s.cell_size_m = r.number("cell_size_m", jf::greater_than(0, "m"));
   s.particles_per_cell = static_cast<int>(r.number_or("particles_per_cell", 4, jf::interval('[', 1, 64, ']')));
@@ -31,6 +31,7 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
     r.fail_at("flip_ratio", "only used with \"transfer\": \"flip\"");
   }
   s.atomic_scatter = r.choice("scatter", {"duplicated", "atomic"}, std::string("duplicated")) == "atomic";
+  s.snapshot_interval_s = r.optional_number("snapshot_interval_s", jf::greater_than(0, "s")).value_or(0.0);
   return s;
 }
 

@@ -23,6 +23,7 @@ struct MpmSettings {
   double output_interval_s = 0.01;    // histories are sampled at this interval
   double flip_ratio = 0.0;            // "transfer": "apic" (0) or "flip" (flip_ratio in (0, 1])
   bool atomic_scatter = false;        // "scatter": "duplicated" or "atomic"
+  double snapshot_interval_s = 0.0;   // particle snapshots every this many seconds; 0 = none
 };
 
 struct MpmCase {

@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <hdf5.h>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <sys/wait.h>
@@ -249,6 +251,116 @@ TEST(Cli, MpmSceneErrorsNameTheField) {
     const Outcome r = run("run " + p.string());
     EXPECT_EQ(r.code, 2) << r.out;
     EXPECT_NE(r.out.find(c.expect), std::string::npos) << r.out;
+  }
+}
+
+// Reads one double dataset (any rank) of an HDF5 file: values and dimensions.
+std::vector<double> read_h5_doubles(hid_t file, const std::string& name, std::vector<hsize_t>& dims) {
+  std::vector<double> v;
+  const hid_t d = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
+  if (d < 0) return v;
+  const hid_t space = H5Dget_space(d);
+  dims.assign(static_cast<size_t>(H5Sget_simple_extent_ndims(space)), 0);
+  H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  v.resize(static_cast<size_t>(H5Sget_simple_extent_npoints(space)));
+  if (!v.empty()) H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  H5Sclose(space);
+  H5Dclose(d);
+  return v;
+}
+
+TEST(Cli, MpmSnapshotsAreWrittenWithAnXdmfIndex) {
+  const fs::path scene =
+      write_file("mpm_snap.json", mpm_block_scene(0.5, R"(, "snapshot_interval_s": 0.1)"));
+  const fs::path out = temp_dir() / "snap" / "mpm_snap.h5";
+  const fs::path xdmf = temp_dir() / "snap" / "mpm_snap.xdmf";
+  fs::remove(xdmf);
+  const Outcome r = run("run " + scene.string() + " --out " + out.string() + " --format json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const int particles = nlohmann::json::parse(r.out.substr(r.out.find('{')))["mpm"]["particles"];
+  ASSERT_GT(particles, 0);
+
+  // The histories still read back (the snapshot group is not taken for a history).
+  const auto stored = lsi::read_results(out.string());
+  ASSERT_EQ(stored.results.size(), 1u);
+  const auto& t = stored.results[0].time;
+  EXPECT_EQ(stored.results[0].series.count("snapshots"), 0u);
+
+  const hid_t f = H5Fopen(out.string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  H5G_info_t info;
+  ASSERT_GE(H5Gget_info_by_name(f, "/mpm/snapshots", &info, H5P_DEFAULT), 0);
+  ASSERT_EQ(info.nlinks, 4u);   // t = 0, 0.1, 0.2, 0.3
+  for (int k = 0; k < 4; ++k) {
+    char group[64];
+    std::snprintf(group, sizeof group, "/mpm/snapshots/%06d", k);
+    double time = -1;
+    const hid_t a = H5Aopen_by_name(f, group, "time", H5P_DEFAULT, H5P_DEFAULT);
+    ASSERT_GE(a, 0) << group;
+    H5Aread(a, H5T_NATIVE_DOUBLE, &time);
+    H5Aclose(a);
+    // Snapshots are taken at history outputs, which are not aligned to the snapshot interval:
+    // the snapshot time is the first output time that reaches k * 0.1 s (0 and the end exactly).
+    const auto first = std::find_if(t.begin(), t.end(), [&](double x) { return x >= k * 0.1 - 1e-9; });
+    ASSERT_NE(first, t.end()) << group;
+    EXPECT_NEAR(time, *first, 1e-9) << group;
+    EXPECT_LT(time - k * 0.1, 0.01) << group;   // within the 0.01 s output interval
+    if (k == 0 || k == 3) {
+      EXPECT_NEAR(time, k * 0.1, 1e-9) << group;
+    }
+    for (const auto& [name, cols] : std::vector<std::pair<std::string, hsize_t>>{
+             {"position", 3}, {"velocity", 3}, {"stress", 4}, {"deviatoric_strain", 0},
+             {"plastic_work", 0}}) {
+      std::vector<hsize_t> dims;
+      const auto v = read_h5_doubles(f, std::string(group) + "/" + name, dims);
+      ASSERT_EQ(dims.size(), cols == 0 ? 1u : 2u) << group << "/" << name;
+      EXPECT_EQ(dims[0], static_cast<hsize_t>(particles)) << group << "/" << name;
+      if (cols > 0) {
+        EXPECT_EQ(dims[1], cols) << group << "/" << name;
+      }
+      for (double x : v) ASSERT_TRUE(std::isfinite(x)) << group << "/" << name;
+      EXPECT_GT(H5Aexists_by_name(f, (std::string(group) + "/" + name).c_str(), "units",
+                                  H5P_DEFAULT), 0) << group << "/" << name;
+    }
+  }
+  H5Fclose(f);
+
+  ASSERT_TRUE(fs::exists(xdmf));
+  std::ifstream in(xdmf);
+  const std::string x((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(x.find("<Xdmf"), std::string::npos);
+  EXPECT_NE(x.find(R"(GridType="Collection" CollectionType="Temporal")"), std::string::npos);
+  size_t grids = 0;
+  for (size_t pos = x.find("<Grid "); pos != std::string::npos; pos = x.find("<Grid ", pos + 1))
+    if (x.substr(pos, x.find('>', pos) - pos).find(R"(GridType="Uniform")") != std::string::npos)
+      ++grids;
+  EXPECT_EQ(grids, 4u);
+  EXPECT_NE(x.find("mpm_snap.h5:/mpm/snapshots/000003/position"), std::string::npos);
+  EXPECT_EQ(x.find(temp_dir().string()), std::string::npos);   // the HDF5 file by name only
+  EXPECT_NE(x.find(R"(TopologyType="Polyvertex" NumberOfElements=")" + std::to_string(particles)),
+            std::string::npos);
+}
+
+TEST(Cli, MpmSnapshotsOffWritesNoXdmf) {
+  const fs::path scene = write_file("mpm_nosnap.json", mpm_block_scene(0.5));
+  const fs::path out = temp_dir() / "mpm_nosnap.h5";
+  fs::remove(temp_dir() / "mpm_nosnap.xdmf");
+  const Outcome r = run("run " + scene.string() + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_FALSE(fs::exists(temp_dir() / "mpm_nosnap.xdmf"));
+  const hid_t f = H5Fopen(out.string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  EXPECT_EQ(H5Lexists(f, "/mpm/snapshots", H5P_DEFAULT), 0);
+  H5Fclose(f);
+}
+
+TEST(Cli, MpmBadSnapshotIntervalNamesTheField) {
+  for (const char* bad : {R"(, "snapshot_interval_s": 0)", R"(, "snapshot_interval_s": -0.1)",
+                          R"(, "snapshot_interval_s": "0.1")"}) {
+    const fs::path p = write_file("mpm_bad_snap.json", mpm_block_scene(0.5, bad));
+    const Outcome r = run("run " + p.string());
+    EXPECT_EQ(r.code, 2) << bad << ": " << r.out;
+    EXPECT_NE(r.out.find("methods.mpm.snapshot_interval_s"), std::string::npos) << r.out;
   }
 }
 
