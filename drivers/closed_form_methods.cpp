@@ -105,11 +105,22 @@ TwoBodyCoefficients two_body_coefficients(const Scene& scene, bool fixed) {
 
 double face_angle(const Scene& s) { return math::degrees_to_radians(s.barrier.face_angle_deg); }
 
-MethodResult empirical_with_mass(const Scene& scene, double barrier_mass) {
+// The scene's impacts: one place that turns scene values into model inputs.
+EmpiricalImpact empirical_impact_of(const Scene& scene) {
   const SceneLandslide& l = scene.landslide;
-  const EmpiricalImpact imp = empirical_impact(l.thickness_m, l.velocity_m_s, l.density_kg_m3,
-                                               l.mass_kg_per_m(), face_angle(scene),
-                                               empirical_coefficients(scene));
+  return empirical_impact(l.thickness_m, l.velocity_m_s, l.density_kg_m3, l.mass_kg_per_m(),
+                          face_angle(scene), empirical_coefficients(scene));
+}
+
+// m2 = +infinity for a fixed barrier.
+TwoBodyImpact two_body_impact_of(const Scene& scene, double m2) {
+  const SceneLandslide& l = scene.landslide;
+  return two_body_impact(l.mass_kg_per_m(), l.velocity_m_s, l.equivalent_length_m(), m2,
+                         two_body_coefficients(scene, scene.barrier.fixed));
+}
+
+MethodResult empirical_with_mass(const Scene& scene, double barrier_mass) {
+  const EmpiricalImpact imp = empirical_impact_of(scene);
   MethodResult r;
   r.method = "empirical";
   fill_histories(r, scene, imp.pulse, resolve_face_force(face_angle(scene)), barrier_mass,
@@ -124,12 +135,10 @@ MethodResult empirical_with_mass(const Scene& scene, double barrier_mass) {
 }
 
 MethodResult analytical_with_mass(const Scene& scene, double barrier_mass) {
-  const SceneLandslide& l = scene.landslide;
   const bool fixed = scene.barrier.fixed;
   const double m2 = fixed ? std::numeric_limits<double>::infinity() : barrier_mass;
   const TwoBodyCoefficients c = two_body_coefficients(scene, fixed);
-  const TwoBodyImpact imp =
-      two_body_impact(l.mass_kg_per_m(), l.velocity_m_s, l.equivalent_length_m(), m2, c);
+  const TwoBodyImpact imp = two_body_impact_of(scene, m2);
   MethodResult r;
   r.method = "analytical";
   fill_histories(r, scene, imp.pulse, resolve_face_force(face_angle(scene)), m2,
@@ -217,8 +226,16 @@ std::vector<MassDesign> design_barrier_mass(const Scene& scene, double max_displ
       return std::string(method) == "empirical" ? empirical_with_mass(scene, m)
                                                 : analytical_with_mass(scene, m);
     };
+    // The search needs only the final displacement: no histories, no stability check per mass.
+    const bool empirical = std::string(method) == "empirical";
+    const ForcePulse empirical_pulse = empirical_impact_of(scene).pulse;   // independent of m2
+    const double beta = face_angle(scene), mu_b = scene.barrier.base_friction;
     const auto found = minimum_barrier_mass(
-        [&](double m) { return run(m).final_displacement; }, max_displacement_m);
+        [&](double m) {
+          const ForcePulse p = empirical ? empirical_pulse : two_body_impact_of(scene, m).pulse;
+          return final_displacement_under(p, m, mu_b, beta);
+        },
+        max_displacement_m);
     MassDesign d;
     d.method = method;
     d.mass_kg_per_m = found.mass;

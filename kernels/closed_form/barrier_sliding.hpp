@@ -12,6 +12,7 @@
 //                             sB = c (F_res - F_peak) / (m2 (T2 - T1))            (eqs. 17, 18)
 //   C          t > T2:        a = c F_res / m2 - g', until v2 = 0                 (eq. 20)
 #pragma once
+#include "kernels/closed_form/face_resolution.hpp"
 #include "kernels/closed_form/force_pulse.hpp"
 #include "kernels/closed_form/sliding_block.hpp"
 
@@ -82,6 +83,19 @@ KOKKOS_INLINE_FUNCTION BarrierMotion barrier_motion(const ForcePulse& p, const S
     m.final_displacement = math::infinity();
   }
   return m;
+}
+
+// Final displacement of a barrier of the given mass (+infinity: fixed, no motion) under a pulse
+// normal to a face at angle face_angle (rad), no face shear: what sweeps and the inverse design
+// need, without the time histories.
+KOKKOS_INLINE_FUNCTION double final_displacement_under(const ForcePulse& pulse, double barrier_mass,
+                                                       double base_friction, double face_angle) {
+  if (!math::isfinite(barrier_mass)) return 0.0;
+  SlidingBlock block;
+  block.mass = barrier_mass;
+  block.base_friction = base_friction;
+  block.drive = resolve_face_force(face_angle).sliding_drive(base_friction);
+  return barrier_motion(pulse, block).final_displacement;
 }
 
 }  // namespace lsi

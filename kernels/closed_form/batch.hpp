@@ -35,17 +35,6 @@ struct ClosedFormOutputs {
   View final_displacement;  // m (0 for a fixed barrier, +infinity if it never stops)
 };
 
-namespace detail {
-KOKKOS_INLINE_FUNCTION double final_displacement_under(const ForcePulse& pulse, double barrier_mass,
-                                                       double base_friction, double face_angle) {
-  if (!math::isfinite(barrier_mass)) return 0.0;
-  SlidingBlock block;
-  block.mass = barrier_mass;
-  block.base_friction = base_friction;
-  block.drive = resolve_face_force(face_angle).sliding_drive(base_friction);
-  return barrier_motion(pulse, block).final_displacement;
-}
-}  // namespace detail
 
 template <class ExecSpace, class MemorySpace>
 void evaluate_two_body_batch(const ExecSpace& space, const ClosedFormInputs<MemorySpace>& in,
@@ -61,7 +50,7 @@ void evaluate_two_body_batch(const ExecSpace& space, const ClosedFormInputs<Memo
         out.peak_force(i) = imp.pulse.peak;
         out.rise_time(i) = imp.pulse.rise_time;
         out.impact_duration(i) = imp.pulse.duration;
-        out.final_displacement(i) = detail::final_displacement_under(
+        out.final_displacement(i) = final_displacement_under(
             imp.pulse, in.barrier_mass(i), in.base_friction(i), in.face_angle(i));
       });
 }
@@ -80,7 +69,7 @@ void evaluate_empirical_batch(const ExecSpace& space, const ClosedFormInputs<Mem
         out.peak_force(i) = imp.pulse.peak;
         out.rise_time(i) = imp.pulse.rise_time;
         out.impact_duration(i) = imp.pulse.duration;
-        out.final_displacement(i) = detail::final_displacement_under(
+        out.final_displacement(i) = final_displacement_under(
             imp.pulse, in.barrier_mass(i), in.base_friction(i), in.face_angle(i));
       });
 }
