@@ -139,7 +139,7 @@ void bm_kernel(benchmark::State& state, int n, Kernel k) {
       case Kernel::GridUpdate:
         benchmark::DoNotOptimize(grid_update<Exec>(g, c.walls, dt, wall_force));
         break;
-      case Kernel::G2P: benchmark::DoNotOptimize(g2p<Exec>(p, g, dt, c.settings.flip_ratio)); break;
+      case Kernel::G2P: benchmark::DoNotOptimize(g2p<Exec>(p, g, dt, c.settings.transfer, c.settings.flip_ratio)); break;
       case Kernel::StressElastic: stress_update<Exec, false>(p, materials, dt); break;
       case Kernel::StressPlastic: stress_update<Exec, true>(p, materials, dt); break;
     }

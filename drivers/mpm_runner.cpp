@@ -67,6 +67,7 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
     s.max_time_step = c.settings.max_time_step_s;
     s.gravity[0] = c.gravity[0];
     s.gravity[1] = c.gravity[1];
+    s.transfer = c.settings.apic ? mpm::Transfer::Apic : mpm::Transfer::FlipPic;
     s.flip_ratio = c.settings.flip_ratio;
     s.atomic_scatter = c.settings.atomic_scatter;
     mpm::Solver<Exec> solver(grid, particles, c.materials, c.walls, s);

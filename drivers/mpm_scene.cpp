@@ -24,10 +24,14 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
   s.end_time_s = r.number("end_time_s", jf::greater_than(0, "s"));
   s.max_time_step_s = r.number_or("max_time_step_s", 1e300, jf::greater_than(0, "s"));
   s.output_interval_s = r.number_or("output_interval_s", s.end_time_s / 200, jf::greater_than(0, "s"));
-  const std::string transfer = r.choice("transfer", {"apic", "flip"}, std::string("apic"));
+  const std::string transfer = r.choice("transfer", {"apic", "flip", "pic"}, std::string("apic"));
+  s.apic = transfer == "apic";
   if (transfer == "flip") {
-    s.flip_ratio = r.number_or("flip_ratio", 0.99, jf::interval('(', 0, 1, ']'));
-  } else if (r.has("flip_ratio")) {
+    s.flip_ratio = r.number_or("flip_ratio", 0.99, jf::interval('[', 0, 1, ']'));
+  } else if (transfer == "pic") {
+    s.flip_ratio = 0.0;
+  }
+  if (transfer != "flip" && r.has("flip_ratio")) {
     r.fail_at("flip_ratio", "only used with \"transfer\": \"flip\"");
   }
   s.atomic_scatter = r.choice("scatter", {"duplicated", "atomic"}, std::string("duplicated")) == "atomic";

@@ -21,7 +21,8 @@ struct MpmSettings {
   double end_time_s = 1.0;
   double max_time_step_s = 1e300;
   double output_interval_s = 0.01;    // histories are sampled at this interval
-  double flip_ratio = 0.0;            // "transfer": "apic" (0) or "flip" (flip_ratio in (0, 1])
+  bool apic = true;                   // "transfer": "apic", or "flip" / "pic" (a FLIP/PIC blend)
+  double flip_ratio = 0.99;           // "flip": flip_ratio in [0, 1]; "pic": 0
   bool atomic_scatter = false;        // "scatter": "duplicated" or "atomic"
   double snapshot_interval_s = 0.0;   // particle snapshots every this many seconds; 0 = none
 };

@@ -1,5 +1,5 @@
 // Grid to particle: velocity (APIC: the grid velocity interpolated, with the affine matrix
-// C = 4/dx^2 sum w v_i (x_i - x_p)^T; or a FLIP/PIC blend), velocity gradient L = sum v_i grad(w)^T,
+// C = 4/dx^2 sum w v_i (x_i - x_p)^T; or a FLIP/PIC blend, plain PIC at flip_ratio 0), velocity gradient L = sum v_i grad(w)^T,
 // and position x += dt sum w (v_i_old + v_i) / 2 (trapezoidal: exact for constant acceleration). In the same pass it reduces the largest particle speed (for the
 // next time step) and flags non-finite values or particles leaving the grid (health check).
 #pragma once
@@ -12,6 +12,8 @@
 
 namespace lsi::mpm {
 
+enum class Transfer { Apic, FlipPic };
+
 struct G2PReport {
   double max_speed = 0.0;   // m/s
   int non_finite = 0;       // number of particles with a non-finite velocity or position
@@ -22,7 +24,7 @@ template <class ExecSpace, bool Flip, class MemorySpace>
 G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, double dt,
                    double flip_ratio) {
   const double ox = g.origin[0], oy = g.origin[1], dx = g.dx, inv_dx = 1.0 / g.dx;
-  const double apic = flip_ratio > 0.0 ? 0.0 : 4.0 * inv_dx * inv_dx;
+  const double apic = Flip ? 0.0 : 4.0 * inv_dx * inv_dx;
   const double xmax = (g.nx - 2) * dx, ymax = (g.ny - 2) * dx;   // keep 1 cell of padding
   const int nx = g.nx;
   double vmax = 0.0;
@@ -91,9 +93,9 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
 
 template <class ExecSpace, class MemorySpace>
 G2PReport g2p(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, double dt,
-              double flip_ratio) {
-  return flip_ratio > 0.0 ? g2p_impl<ExecSpace, true>(p, g, dt, flip_ratio)
-                          : g2p_impl<ExecSpace, false>(p, g, dt, flip_ratio);
+              Transfer transfer, double flip_ratio) {
+  return transfer == Transfer::FlipPic ? g2p_impl<ExecSpace, true>(p, g, dt, flip_ratio)
+                                       : g2p_impl<ExecSpace, false>(p, g, dt, 0.0);
 }
 
 }  // namespace lsi::mpm

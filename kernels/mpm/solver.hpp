@@ -41,7 +41,8 @@ struct Settings {
   double max_time_step = std::numeric_limits<double>::infinity();   // s
   double min_time_step = 1e-12;                                     // s; below: collapse
   double gravity[2] = {0.0, -9.81};                                 // m/s^2
-  double flip_ratio = 0.0;            // 0: APIC; (0, 1]: FLIP/PIC blend without affine terms
+  Transfer transfer = Transfer::Apic;   // APIC, or a FLIP/PIC blend without affine terms
+  double flip_ratio = 0.99;           // FlipPic only: share of FLIP, [0, 1] (0: plain PIC)
   bool atomic_scatter = false;        // P2G with atomics instead of duplicated ScatterViews
   double energy_growth_limit = 0.5;   // relative growth of the total energy deemed unstable
 };
@@ -91,7 +92,7 @@ class Solver {
     else p2g(particles_, grid_, duplicated_scatter_, settings_.gravity);
     wall_force_[0] = wall_force_[1] = 0.0;
     boundary_ += grid_update<ExecSpace>(grid_, walls_, dt_, wall_force_);
-    const G2PReport r = g2p<ExecSpace>(particles_, grid_, dt_, settings_.flip_ratio);
+    const G2PReport r = g2p<ExecSpace>(particles_, grid_, dt_, settings_.transfer, settings_.flip_ratio);
     if (plastic_) stress_update<ExecSpace, true>(particles_, materials_, dt_);
     else stress_update<ExecSpace, false>(particles_, materials_, dt_);
     time_ += dt_;

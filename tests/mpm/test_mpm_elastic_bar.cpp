@@ -94,6 +94,7 @@ BarRun run_bar(int cells, double flip_ratio, double courant, double periods,
   Kokkos::deep_copy(particles.velocity, v);
   Settings s;
   s.courant = courant;
+  s.transfer = flip_ratio > 0.0 ? Transfer::FlipPic : Transfer::Apic;   // 0: APIC
   s.flip_ratio = flip_ratio;
   s.gravity[0] = s.gravity[1] = 0.0;
   Solver<Exec> solver(grid, particles, {m}, Boundaries{}, s);
