@@ -1,5 +1,6 @@
 // The explicit MPM solver: one time step is a handful of named kernels,
-//   time step -> P2G -> grid update (walls) -> G2P (+ health) -> stress update,
+//   time step -> P2G -> grid update (walls) [-> barrier contact -> barrier motion]
+//   -> G2P (+ health) -> stress update,
 // templated on the Kokkos execution space so the same code runs on Serial, OpenMP and CUDA.
 #pragma once
 #include <Kokkos_Core.hpp>
@@ -10,6 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "kernels/mpm/barrier_contact.hpp"
+#include "kernels/mpm/barrier_dynamics.hpp"
+#include "kernels/mpm/barrier_shape.hpp"
 #include "kernels/mpm/boundary.hpp"
 #include "kernels/mpm/energy.hpp"
 #include "kernels/mpm/g2p.hpp"
@@ -45,6 +49,15 @@ struct Settings {
   double flip_ratio = 0.99;           // FlipPic only: share of FLIP, [0, 1] (0: plain PIC)
   bool atomic_scatter = false;        // P2G with atomics instead of duplicated ScatterViews
   double energy_growth_limit = 0.5;   // relative growth of the total energy deemed unstable
+};
+
+// A rigid barrier in the scene: its shape (at zero displacement), the face friction tan(delta)
+// and, unless fixed, its motion on the base (a fixed barrier runs no barrier dynamics).
+struct Barrier {
+  BarrierShape shape;
+  double face_friction = 0.0;
+  bool fixed = true;
+  BarrierMotion motion;   // mass, base friction, gravity; state (displacement, velocity)
 };
 
 template <class ExecSpace>
@@ -92,6 +105,12 @@ class Solver {
     else p2g(particles_, grid_, duplicated_scatter_, settings_.gravity);
     wall_force_[0] = wall_force_[1] = 0.0;
     boundary_ += grid_update<ExecSpace>(grid_, walls_, dt_, wall_force_);
+    if (has_barrier_) {
+      contact_ = barrier_contact<ExecSpace>(grid_, barrier_.shape, barrier_.motion.displacement,
+                                            barrier_.motion.velocity, barrier_.face_friction, dt_);
+      boundary_ += contact_.work;
+      if (!barrier_.fixed) barrier_.motion.advance(contact_.total(0), contact_.total(1), dt_);
+    }
     const G2PReport r = g2p<ExecSpace>(particles_, grid_, dt_, settings_.transfer, settings_.flip_ratio);
     if (plastic_) stress_update<ExecSpace, true>(particles_, materials_, dt_);
     else stress_update<ExecSpace, false>(particles_, materials_, dt_);
@@ -143,6 +162,16 @@ class Solver {
     return (e.total() - initial_.total()) / scale;
   }
 
+  // Adds a rigid barrier (before the first step).
+  void attach_barrier(const Barrier& b) {
+    barrier_ = b;
+    has_barrier_ = true;
+  }
+  bool has_barrier() const { return has_barrier_; }
+  const Barrier& barrier() const { return barrier_; }
+  // Contact forces on the barrier during the last step, per face (N/m).
+  const BarrierContactReport& barrier_contact_report() const { return contact_; }
+
   double time() const { return time_; }
   double time_step() const { return dt_; }
   long steps() const { return steps_; }
@@ -172,6 +201,9 @@ class Solver {
   double wall_force_[2] = {0.0, 0.0};
   long steps_ = 0;
   bool plastic_ = false;
+  bool has_barrier_ = false;
+  Barrier barrier_;
+  BarrierContactReport contact_;
   Status status_ = Status::Running;
   EnergyReport initial_;
   double max_mechanical_ = 0.0;

@@ -1,0 +1,84 @@
+// Frictional contact between the material and the rigid barrier, on the grid (after the grid
+// update and the walls, before G2P). The barrier is a rigid body with a known velocity field
+// (a horizontal translation V), so the multi-velocity contact of Bardenhagen et al. (2000)
+// reduces to a projection at the nodes the barrier covers: a node with mass on or inside the
+// barrier (barrier_shape.hpp, within 1e-9 dx) whose velocity relative to the barrier points into
+// the nearest face (v_rel . n < 0) loses that normal component; its tangential relative velocity
+// is reduced by tan(delta) times the normal velocity removed (Coulomb), never reversed. A node
+// moving away from the face is left free: the flow may separate from the barrier.
+// The impulse the nodes receive, summed, is minus the impulse on the barrier (paper eq. 26: the
+// force on the barrier is the sum of the contact forces): returned per face as a force (N/m),
+// with the work the contact took from the material, measured with the mid-step node velocity as
+// for the walls (grid_update.hpp).
+#pragma once
+#include <Kokkos_Core.hpp>
+
+#include "kernels/common/math.hpp"
+#include "kernels/mpm/barrier_shape.hpp"
+#include "kernels/mpm/grid.hpp"
+
+namespace lsi::mpm {
+
+struct BarrierContactReport {
+  double force[3][2] = {{0, 0}, {0, 0}, {0, 0}};   // N/m on the barrier, per face, (x, y)
+  double work = 0.0;   // J/m taken from the material this step (> 0: dissipated or given to the barrier)
+  int nodes = 0;       // nodes in contact this step
+  double total(int d) const { return force[0][d] + force[1][d] + force[2][d]; }
+};
+
+template <class ExecSpace, class MemorySpace>
+BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierShape& shape,
+                                     double displacement, double velocity, double friction,
+                                     double dt) {
+  const double ox = g.origin[0], oy = g.origin[1], dx = g.dx, tol = 1e-9 * g.dx;
+  const int nx = g.nx;
+  const BarrierShape b = shape;
+  BarrierContactReport r;
+  double f[6] = {0, 0, 0, 0, 0, 0}, work = 0.0;
+  int nodes = 0;
+  Kokkos::parallel_reduce(
+      "lsi::mpm::barrier_contact", Kokkos::RangePolicy<ExecSpace>(0, g.size()),
+      KOKKOS_LAMBDA(const int n, double& f0, double& f1, double& f2, double& f3, double& f4,
+                    double& f5, double& w, int& count) {
+        const double m = g.mass(n);
+        if (!(m > 0.0)) return;
+        const double x = ox + (n % nx) * dx - displacement, y = oy + (n / nx) * dx;
+        if (y < b.toe[1] - tol) return;   // below the base: the base wall's business
+        int k = 0;
+        if (b.outside_distance(x, y, k) > tol) return;
+        const double nxk = b.face[k].normal[0], nyk = b.face[k].normal[1];
+        const double v[2] = {g.velocity(n, 0), g.velocity(n, 1)};
+        const double rel[2] = {v[0] - velocity, v[1]};
+        const double vn = rel[0] * nxk + rel[1] * nyk;
+        if (vn >= 0.0) return;
+        // Tangential relative velocity after removing the normal part, then Coulomb.
+        double t[2] = {rel[0] - vn * nxk, rel[1] - vn * nyk};
+        const double vt = math::sqrt(t[0] * t[0] + t[1] * t[1]);
+        const double reduce = friction * (-vn);
+        const double keep = vt <= reduce ? 0.0 : (vt - reduce) / vt;
+        t[0] *= keep;
+        t[1] *= keep;
+        const double vnew[2] = {velocity + t[0], t[1]};
+        double imp[2];
+        for (int d = 0; d < 2; ++d) {
+          imp[d] = m * (vnew[d] - v[d]);   // impulse on the node
+          w -= imp[d] * 0.5 * (g.velocity_old(n, d) + vnew[d]);
+          g.velocity(n, d) = vnew[d];
+        }
+        const double fx = -imp[0] / dt, fy = -imp[1] / dt;   // on the barrier
+        if (k == 0) { f0 += fx; f1 += fy; }
+        else if (k == 1) { f2 += fx; f3 += fy; }
+        else { f4 += fx; f5 += fy; }
+        ++count;
+      },
+      f[0], f[1], f[2], f[3], f[4], f[5], work, nodes);
+  for (int k = 0; k < 3; ++k) {
+    r.force[k][0] = f[2 * k];
+    r.force[k][1] = f[2 * k + 1];
+  }
+  r.work = work;
+  r.nodes = nodes;
+  return r;
+}
+
+}  // namespace lsi::mpm

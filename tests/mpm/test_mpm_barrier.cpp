@@ -1,0 +1,238 @@
+// Verification of the rigid barrier (kernels/mpm/barrier_*.hpp):
+//  * its motion on the base under a known load (barrier_dynamics.hpp) against the closed forms:
+//    a constant push, a push then free deceleration to rest, sticking below the friction
+//    threshold (including the extra base friction of a downward load), and a triangular pulse on
+//    an inclined face against the exact piecewise-linear response of the analytical model
+//    (kernels/closed_form/rigid_block_response.hpp);
+//  * the contact of an elastic block with a fixed barrier (barrier_contact.hpp) against
+//    one-dimensional wave theory and momentum conservation;
+//  * a free, frictionless barrier hit by the block: momentum of block + barrier conserved.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "kernels/closed_form/rigid_block_response.hpp"
+#include "kernels/mpm/particle_builder.hpp"
+#include "kernels/mpm/solver.hpp"
+#include "support/backends.hpp"
+
+namespace {
+using namespace lsi::mpm;
+
+constexpr double kG = 9.81;
+constexpr double kPi = 3.14159265358979323846;
+
+BarrierMotion block(double mass, double mu) {
+  BarrierMotion b;
+  b.mass = mass;
+  b.base_friction = mu;
+  b.gravity = kG;
+  return b;
+}
+
+// Constant push F > mu M g: x = (F - mu M g) t^2 / (2 M). The update is exact for a constant
+// force (mean velocity of the step), so only round-off remains: 1e-12 relative.
+TEST(BarrierMotion, ConstantPushGivesUniformAcceleration) {
+  BarrierMotion b = block(5000.0, 0.5);
+  const double F = 40000.0, dt = 1e-3;
+  const int n = 1500;
+  for (int i = 0; i < n; ++i) b.advance(F, 0.0, dt);
+  const double t = n * dt, a = (F - 0.5 * 5000.0 * kG) / 5000.0;
+  EXPECT_NEAR(b.displacement / (0.5 * a * t * t), 1.0, 1e-12);
+  EXPECT_NEAR(b.velocity / (a * t), 1.0, 1e-12);
+  // Friction work: tan(delta_b) M g times the distance slid.
+  EXPECT_NEAR(b.friction_work / (0.5 * 5000.0 * kG * b.displacement), 1.0, 1e-12);
+}
+
+// Push F for T, then nothing: it decelerates at mu g and stops at
+//   x = a T^2 / 2 + (a T)^2 / (2 mu g),  a = (F - mu M g) / M,
+// within the step where v reaches zero (located exactly). 1e-12 relative (round-off).
+TEST(BarrierMotion, PushThenStopsWhereTheClosedFormSays) {
+  BarrierMotion b = block(8000.0, 0.4);
+  const double F = 60000.0, dt = 1e-3, T = 0.5;
+  int i = 0;
+  for (; i < 500; ++i) b.advance(F, 0.0, dt);
+  for (; i < 3000; ++i) b.advance(0.0, 0.0, dt);
+  const double a = (F - 0.4 * 8000.0 * kG) / 8000.0;
+  const double x = 0.5 * a * T * T + (a * T) * (a * T) / (2 * 0.4 * kG);
+  EXPECT_EQ(b.velocity, 0.0);
+  EXPECT_NEAR(b.displacement / x, 1.0, 1e-12);
+}
+
+// Below the threshold nothing moves, exactly; a downward load on the barrier (F_y < 0) raises
+// the base's normal force, so a push above mu M g but below mu (M g - F_y) sticks too.
+TEST(BarrierMotion, SticksBelowTheFrictionThreshold) {
+  BarrierMotion b = block(5000.0, 0.5);
+  const double limit = 0.5 * 5000.0 * kG;
+  for (int i = 0; i < 1000; ++i) b.advance(0.999 * limit, 0.0, 1e-3);
+  EXPECT_EQ(b.displacement, 0.0);
+  EXPECT_EQ(b.velocity, 0.0);
+  for (int i = 0; i < 1000; ++i) b.advance(1.5 * limit, -0.6 * 5000.0 * kG, 1e-3);
+  EXPECT_EQ(b.displacement, 0.0);
+  // and slides once the same push has no downward load to help the base.
+  b.advance(1.5 * limit, 0.0, 1e-3);
+  EXPECT_GT(b.displacement, 0.0);
+}
+
+// Triangular normal pulse on a face inclined at beta = 70 deg (peak 60 kN/m at T1 = 0.1 s, end
+// T2 = 0.6 s), resolved as the flow's force on the barrier, (N sin(beta), -N cos(beta)), and
+// sampled at mid-step: the final displacement against the exact response of the analytical
+// model's sliding block (drive sin(beta) - mu cos(beta)). Mid-step sampling is second order in
+// dt: at dt = T2 / 60 000 the error is ~1e-9; asserted 1e-6 relative (the brief's bound).
+TEST(BarrierMotion, TriangularPulseMatchesTheExactRigidBlockResponse) {
+  const double M = 6000.0, mu = 0.45, beta = 70.0 * kPi / 180.0, P = 60000.0, T1 = 0.1, T2 = 0.6;
+  auto N = [&](double t) {
+    if (t <= 0.0 || t >= T2) return 0.0;
+    return t < T1 ? P * t / T1 : P * (T2 - t) / (T2 - T1);
+  };
+  BarrierMotion b = block(M, mu);
+  const int steps = 120000;   // to 2 T2: the block has stopped
+  const double dt = 2 * T2 / steps;
+  for (int i = 0; i < steps; ++i) {
+    const double n = N((i + 0.5) * dt);
+    b.advance(n * std::sin(beta), -n * std::cos(beta), dt);
+  }
+  lsi::SlidingBlock sb;
+  sb.mass = M;
+  sb.base_friction = mu;
+  sb.drive = std::sin(beta) - mu * std::cos(beta);
+  const double t[4] = {0.0, T1, T2, 2 * T2}, f[4] = {0.0, P, 0.0, 0.0};
+  const lsi::RigidBlockSummary exact = lsi::rigid_block_response(t, f, 4, sb);
+  std::printf("[measured] pulse: barrier %.9f m, exact %.9f m\n", b.displacement,
+              exact.final_displacement);
+  ASSERT_GT(exact.final_displacement, 0.01);   // the pulse does move it
+  EXPECT_NEAR(b.displacement / exact.final_displacement, 1.0, 1e-6);
+  EXPECT_EQ(b.velocity, 0.0);
+}
+
+// An elastic block (nu = 0, so plane strain is one-dimensional along x: constrained modulus
+// = E) of length L and height h moves at v0 onto a fixed vertical barrier face, without gravity.
+// One-dimensional wave theory (a bar hitting a rigid wall): the contact lasts 2 L / c,
+// c = sqrt(E / rho), with the constant force rho c v0 h, and the bar leaves at -v0: impulse
+// 2 M v0.
+struct ImpactRun {
+  double impulse = 0;              // N s/m on the barrier (x), time integral of the contact force
+  double momentum_change = 0;      // kg m/s per m, block before - after (x)
+  double rebound = 0;              // final velocity / -v0
+  double duration = 0;             // s, time with a contact force
+  double plateau = 0;              // N/m, median contact force while in contact
+  double barrier_momentum = 0;     // free barrier: M_b V at the end
+  double block_mass = 0;
+};
+
+template <class Exec>
+ImpactRun impact(bool free_barrier, double barrier_mass = 0.0, double dx = 0.05) {
+  using Mem = typename Exec::memory_space;
+  Material m;
+  m.density = 2000;
+  m.young_modulus = 1e7;
+  m.poisson_ratio = 0.0;
+  const double L = 1.0, h = 0.4, v0 = 2.0;
+  const double lo[2] = {0, 0}, hi[2] = {4.0, 1.0};
+  Grid<Mem> grid(lo, hi, dx);
+  BodySpec body;
+  const double x0 = 0.5, y0 = 0.3;   // the block's front touches the face at t = 0
+  body.polygon = {{{x0, y0}}, {{x0 + L, y0}}, {{x0 + L, y0 + h}}, {{x0, y0 + h}}};
+  auto particles = build_particles<Mem>({body}, {m}, lo, dx);
+  {
+    auto v = Kokkos::create_mirror_view(particles.velocity);
+    for (int q = 0; q < particles.count; ++q) {
+      v(q, 0) = v0;
+      v(q, 1) = 0.0;
+    }
+    Kokkos::deep_copy(particles.velocity, v);
+  }
+  Settings s;
+  s.courant = 0.5;
+  s.gravity[0] = s.gravity[1] = 0.0;
+  Solver<Exec> solver(grid, particles, {m}, Boundaries{}, s);
+  Barrier b;
+  // Vertical face at x = 1.5 (on a grid line), 0.8 m high from y = 0.1: covers the block.
+  b.shape = BarrierShape(x0 + L, 0.1, 0.8, 0.6, 0.6, 0.5 * kPi);
+  b.face_friction = 0.0;
+  b.fixed = !free_barrier;
+  b.motion.mass = barrier_mass;
+  b.motion.base_friction = 0.0;
+  b.motion.gravity = 0.0;
+  solver.attach_barrier(b);
+  auto mass = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), particles.mass);
+  auto vel = Kokkos::create_mirror_view(particles.velocity);
+  auto momentum = [&] {
+    Kokkos::deep_copy(vel, particles.velocity);
+    double p = 0;
+    for (int q = 0; q < particles.count; ++q) p += mass(q) * vel(q, 0);
+    return p;
+  };
+  ImpactRun r;
+  for (int q = 0; q < particles.count; ++q) r.block_mass += mass(q);
+  const double p0 = momentum();
+  const double c = std::sqrt(m.young_modulus / m.density);
+  const double t_end = 2 * L / c + 0.1;   // contact, and a margin
+  std::vector<double> forces;
+  while (solver.time() < t_end) {
+    EXPECT_EQ(solver.step(), Status::Running);
+    const double fx = solver.barrier_contact_report().total(0);
+    r.impulse += fx * solver.time_step();
+    if (fx > 0) {
+      r.duration += solver.time_step();
+      forces.push_back(fx);
+    }
+  }
+  const double p1 = momentum();
+  r.momentum_change = p0 - p1;
+  r.rebound = -(p1 / r.block_mass) / v0;
+  std::sort(forces.begin(), forces.end());
+  r.plateau = forces.empty() ? 0 : forces[forces.size() / 2];
+  r.barrier_momentum = barrier_mass * solver.barrier().motion.velocity;
+  return r;
+}
+
+template <class Exec>
+class MpmBarrier : public ::testing::Test {};
+TYPED_TEST_SUITE(MpmBarrier, lsi::test::Backends);
+
+// Grid contact is inelastic at the scale of a cell (the nodes the barrier stops carry mass from
+// material up to 1.5 cells away), so the rebound falls short of v0 by an amount that shrinks
+// with the cell size: measured rebound 0.910, 0.946, 0.965, 0.977 and contact duration +14, +8,
+// +3.7, +1.2 % at dx = 0.1, 0.05, 0.025, 0.0125 m. The test runs dx = 0.05 and 0.025 m.
+TYPED_TEST(MpmBarrier, ElasticBlockOnFixedBarrierReturnsItsMomentumChange) {
+  const double rho = 2000, E = 1e7, v0 = 2.0, h = 0.4, L = 1.0;
+  const double c = std::sqrt(E / rho);
+  const ImpactRun coarse = impact<TypeParam>(false, 0.0, 0.05);
+  const ImpactRun r = impact<TypeParam>(false, 0.0, 0.025);
+  for (const ImpactRun* q : {&coarse, &r}) {
+    std::printf("[measured] impulse %.2f N s/m, momentum change %.2f, 2 M v0 %.2f, rebound "
+                "%.4f, contact %.4f s (2L/c %.4f s), plateau force %.0f N/m (rho c v0 h %.0f)\n",
+                q->impulse, q->momentum_change, 2 * q->block_mass * v0, q->rebound, q->duration,
+                2 * L / c, q->plateau, rho * c * v0 * h);
+    // The impulse the barrier receives is the block's momentum change: the contact is the only
+    // horizontal force, so they agree to round-off (the brief's bound is 2 %).
+    EXPECT_NEAR(q->impulse / q->momentum_change, 1.0, 1e-9);
+  }
+  // Against the wave solution at dx = 0.025 m: impulse 2 M v0 within 2 % (measured -1.7 %),
+  // contact duration 2 L / c within 5 % (measured +3.7 %; the contact opens and closes one node
+  // column at a time), plateau force rho c v0 h within 5 % (the median force in contact; it
+  // rings about the plateau).
+  EXPECT_NEAR(r.impulse / (2 * r.block_mass * v0), 1.0, 0.02);
+  EXPECT_NEAR(r.duration / (2 * L / c), 1.0, 0.05);
+  EXPECT_NEAR(r.plateau / (rho * c * v0 * h), 1.0, 0.05);
+  // The loss converges away: halving the cell shrinks the rebound deficit to 0.65 of its value
+  // (measured); asserted below 0.8.
+  EXPECT_LT((1 - r.rebound) / (1 - coarse.rebound), 0.8);
+}
+
+// A free, frictionless barrier (mass = the block's) on a frictionless base, no gravity: the
+// only horizontal forces are the contact's, so the block's momentum lost is the barrier's gained,
+// to round-off.
+TYPED_TEST(MpmBarrier, FreeBarrierConservesMomentum) {
+  const double block_mass = 2000 * 1.0 * 0.4;
+  const ImpactRun r = impact<TypeParam>(true, block_mass);
+  std::printf("[measured] free barrier: block lost %.4f, barrier gained %.4f kg m/s per m\n",
+              r.momentum_change, r.barrier_momentum);
+  EXPECT_GT(r.barrier_momentum, 0.3 * block_mass * 2.0);   // it did push the barrier
+  EXPECT_NEAR(r.barrier_momentum / r.momentum_change, 1.0, 1e-9);
+}
+
+}  // namespace
