@@ -14,23 +14,31 @@
 // (2005), as quoted by K. Kumar, PhD thesis, Cambridge 2015, ch. 2), so it is printed, not
 // asserted. Scatter between experiments: Lajeunesse et al. fit 1.8 a and 2.3 a^(2/3) in a similar
 // channel, a run-out 50 % above Lube's at small a and 21 % above at a = 3 (the secondary sources
-// disagree on which fit belongs to which experiment: docs/verification.md).
+// disagree on which fit belongs to which experiment: docs/verification.md); Balmforth & Kerswell,
+// J. Fluid Mech. 538:399 (2005, abstract), find (L_f - L0)/L0 ~ a^(0.65 +- 0.05) in narrow and
+// a^(0.9 +- 0.1) in wide channels with a prefactor that depends on the material.
 //
 // Model: Mohr-Coulomb, phi = 30 deg, psi = 0, c = 0, tension cut-off 0, nu = 0.3, rho = 1800,
 // E = rho g H0 / 0.005 (0.5 % elastic strain under the column's weight, stiff enough not to matter,
 // soft enough for a cheap time step), base friction tan(phi), 2 x 2 points per cell, Courant 0.5,
-// APIC. L_f and H_f: the farthest / highest point plus half a point spacing. At rest: kinetic
+// APIC. L_f and H_f: the farthest / highest point plus half a point spacing; L_body: the end of
+// the deposit where it is at least L0/16 thick (highest point per grid column). At rest: kinetic
 // energy below 1e-3 of the potential energy released, checked every T/4, T = sqrt(H0 / g).
 //
 // a = 0.5 (32 cells across L0) is asserted: run-out within 20 % of Lube et al., H_f = H0 within
 // 3 %. a = 3 (16 cells across L0) is run and reported against the law but its run-out is NOT
-// asserted against it: a rate-independent Mohr-Coulomb continuum over-predicts the run-out of tall
-// columns, most likely because the falling grains lose energy in collisions that the continuum
-// does not have (L_f measured here +28 % over Lube at 16, +39 % at 24, +45 % at 32 cells per L0,
-// growing with resolution; the same over-prediction by MPM with Mohr-Coulomb for a > ~1.7, against
-// DEM and experiments, is reported by Kumar 2015, ch. 4). The a = 3 case asserts what the solver
-// must still do there: finish, keep the energy balance, and stay within a regression band
-// (docs/verification.md).
+// asserted against it. The farthest point over-predicts it, +28 % at 16, +38 % at 24, +44 % at 32
+// cells per L0, growing with resolution: it belongs to a tail less than one cell thick (mostly
+// points of the outer face of the column) whose length is set by numerical dissipation. The body
+// of the deposit converges: its end where it is L0/16 thick lies at 5.81, 5.75, 5.63 L0 (+17, +16,
+// +14 % over Lube, within 3 % of Lajeunesse et al.), but that number depends on the thickness
+// chosen (L0/25: +24 to +32 %; L0/12.5: +7 to +10 %) and the experiments' front criterion is not
+// known to us, so it is printed and regression-checked, not claimed as a verification. The same
+// over-prediction of tall-column run-outs by MPM with Mohr-Coulomb, against DEM, is reported by
+// Kumar (PhD thesis, Cambridge 2015, ch. 4) for a > ~1.7. The a = 3 case asserts what the solver
+// must still do there: finish, keep the energy balance, and stay within regression bands
+// (docs/verification.md, which also lists the sensitivity to friction, base friction, transfer
+// scheme, stiffness and time step).
 //
 // Both cases check the energy balance, Solver::energy_residual, in [-0.2, +0.05]: a negative value
 // is numerical dissipation, kinetic energy lost by the discretisation (grid transfers, impact on
@@ -53,6 +61,7 @@
 #include <cmath>
 #include <cstdio>
 #include <type_traits>
+#include <vector>
 
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
@@ -69,8 +78,13 @@ double lube_runout(double a) { return 1.0 + (a < 2.3 ? 1.2 * a : 1.9 * std::cbrt
 // Lajeunesse et al. (2005), for the scatter: L_f / L0.
 double lajeunesse_runout(double a) { return 1.0 + (a < 2.3 ? 1.8 * a : 2.3 * std::cbrt(a * a)); }
 
+// Thickness that bounds the resolved deposit body: L0/16, one cell (two points) of the a = 3 grid,
+// fixed in units of L0 so that every resolution measures the same thing (docs/verification.md).
+constexpr double kBodyThickness = 1.0 / 16;
+
 struct Collapse {
   double a = 0, Lf = 0, Hf = 0;   // L_f / L0, H_f / L0
+  double Lbody = 0;               // end of the deposit thicker than kBodyThickness L0, / L0
   double residual = 0, t_over_T = 0, right_room = 0;
   double kinetic_ratio = 0;       // kinetic / released potential energy at the end
   double plastic_share = 0, boundary_share = 0;   // of the released potential energy
@@ -147,6 +161,19 @@ Collapse collapse(double a, int cells_per_L0) {
   }
   R.Lf = (xm - x0 + h / 2) / L0;
   R.Hf = (ym - y0 + h / 2) / L0;
+  // Deposit profile: highest point (+ h/2) in each grid column right of the left wall; the body
+  // ends at the right edge of the last column at least kBodyThickness L0 thick.
+  const int columns = static_cast<int>((xm - x0) / dx) + 1;
+  std::vector<double> top(columns, 0.0);
+  for (int q = 0; q < particles.count; ++q) {
+    const int c = std::clamp(static_cast<int>((x(q, 0) - x0) / dx), 0, columns - 1);
+    top[c] = std::max(top[c], x(q, 1) - y0 + h / 2);
+  }
+  for (int c = columns - 1; c >= 0; --c)
+    if (top[c] >= kBodyThickness * L0) {
+      R.Lbody = (c + 1) * dx / L0;
+      break;
+    }
   R.right_room = (x_right - xm) / dx;
   return R;
 }
@@ -156,12 +183,14 @@ void print(const Collapse& R, const char* backend) {
   const double h_small = R.a, h_04 = std::pow(R.a, 0.4), h_13 = std::cbrt(R.a);
   std::printf("[measured] %s a = %.1f (%d points, %ld steps, t = %.2f T, %.2f s, %s): "
               "L_f/L0 = %.3f vs Lube %.3f (%+.1f %%), Lajeunesse %.3f (%+.1f %%); "
+              "body (>= L0/16 thick) ends at %.3f L0 (%+.1f %% Lube, %+.1f %% Lajeunesse); "
               "H_f/L0 = %.3f vs a %.3f (%+.1f %%), a^0.4 %.3f (%+.1f %%), a^(1/3) %.3f (%+.1f %%); "
               "energy residual %+.4f; plastic work %.3f, wall work %.3f of the released potential "
               "energy; kinetic/released %.1e\n",
               backend, R.a, R.points, R.steps, R.t_over_T, R.seconds, describe(R.status), R.Lf,
               lube,
-              100 * (R.Lf / lube - 1), laj, 100 * (R.Lf / laj - 1), R.Hf, h_small,
+              100 * (R.Lf / lube - 1), laj, 100 * (R.Lf / laj - 1), R.Lbody,
+              100 * (R.Lbody / lube - 1), 100 * (R.Lbody / laj - 1), R.Hf, h_small,
               100 * (R.Hf / h_small - 1), h_04, 100 * (R.Hf / h_04 - 1), h_13,
               100 * (R.Hf / h_13 - 1), R.residual, R.plastic_share, R.boundary_share,
               R.kinetic_ratio);
@@ -222,6 +251,13 @@ TYPED_TEST(MpmColumnCollapse, TallColumnFinishesAndReportsRunOut) {
   const double ratio = R.Lf / lube_runout(R.a);
   EXPECT_GT(ratio, 1.0);
   EXPECT_LT(ratio, 1.5);
+  // The deposit body (at least L0/16 thick) converges with the grid (5.81, 5.75, 5.63 L0 at 16,
+  // 24, 32 cells): measured 5.81 L0, +17 % over Lube. Regression band: between Lube's law and
+  // 1.3 times it (a kernel change that moves it outside should be looked at, not the band).
+  EXPECT_GT(R.Lbody / lube_runout(R.a), 1.0);
+  EXPECT_LT(R.Lbody / lube_runout(R.a), 1.3);
+  // The tail beyond the body is thin: the body reaches at least 85 % of the farthest point.
+  EXPECT_GT(R.Lbody / R.Lf, 0.85);
   // Far below the initial height: the whole column took part in the collapse.
   EXPECT_LT(R.Hf, 0.6 * R.a);
 }
