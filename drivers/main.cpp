@@ -3,13 +3,18 @@
 // computed is still written), 1 any other failure (I/O, ...).
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
 
 #include "drivers/closed_form_methods.hpp"
 #include "drivers/hdf5_results.hpp"
+#include "drivers/mpm_impact.hpp"
 #include "drivers/mpm_runner.hpp"
 #include "drivers/mpm_snapshots.hpp"
 #include "drivers/mpm_scene.hpp"
@@ -18,7 +23,7 @@
 
 namespace {
 
-constexpr const char* known_methods[] = {"empirical", "analytical", "literature"};
+constexpr const char* known_methods[] = {"empirical", "analytical", "literature", "mpm"};
 
 std::vector<std::string> parse_methods(const std::string& list) {
   std::vector<std::string> out;
@@ -27,12 +32,9 @@ std::vector<std::string> parse_methods(const std::string& list) {
     if (m.empty()) continue;
     bool ok = false;
     for (const char* k : known_methods) ok = ok || m == k;
-    if (m == "mpm")
-      throw lsi::InputError("--methods mpm: the MPM method is not part of this build yet "
-                            "(allowed: empirical, analytical, literature)");
     if (!ok)
       throw lsi::InputError("--methods " + m + ": unknown method (allowed: empirical, "
-                            "analytical, literature)");
+                            "analytical, literature, mpm)");
     out.push_back(m);
   }
   if (!list.empty() && out.empty()) throw lsi::InputError("--methods: empty list");
@@ -54,6 +56,31 @@ auto with_path(const std::string& path, F&& f) {
 
 lsi::Scene load(const std::string& path) {
   return with_path(path, [&] { return lsi::load_scene(path); });
+}
+
+// The methods of a landslide scene: the closed forms it selects (or `only`), then the MPM if the
+// scene has `methods.mpm` (or `only` names it). An MPM run that stops unstable still returns
+// what it computed; `mpm_status` then holds the reason (empty when finished or not run).
+std::vector<lsi::MethodResult> run_scene(const std::string& path, const lsi::Scene& scene,
+                                         const std::vector<std::string>& only,
+                                         std::string& mpm_status) {
+  const bool named_mpm = std::find(only.begin(), only.end(), "mpm") != only.end();
+  std::vector<std::string> closed;
+  for (const auto& m : only)
+    if (m != "mpm") closed.push_back(m);
+  std::vector<lsi::MethodResult> results;
+  if (only.empty() || !closed.empty()) results = lsi::run_closed_form_methods(scene, closed);
+  const bool want_mpm = only.empty() ? scene.methods.mpm.has_value() : named_mpm;
+  mpm_status.clear();
+  if (!want_mpm) return results;
+  if (!scene.methods.mpm)
+    throw lsi::InputError(path + ": --methods mpm: the scene has no methods.mpm block "
+                          "(cell_size_m, ...; docs/scene_schema.md)");
+  const lsi::MpmCase c = with_path(path, [&] { return lsi::impact_case(scene); });
+  const lsi::MpmOutcome o = lsi::run_mpm_case(c);
+  results.push_back(o.result);
+  if (!o.finished) mpm_status = o.status;
+  return results;
 }
 
 // An MPM verification scene (`mpm_case`): runs it, writes /mpm, prints a summary. Returns the
@@ -104,6 +131,15 @@ void check_format(const std::string& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
+#ifdef __linux__
+  // OpenMP threads that sleep when idle: with the default (spinning) policy an MPM run on cores
+  // shared with any other work was 10-40 times slower on the 2-core development machine (an
+  // impact scene: 28 s instead of 1.6 s). The OpenMP runtime reads the variable when it loads,
+  // before main, so it is set here and the program restarts itself once; a user's own setting
+  // (e.g. OMP_WAIT_POLICY=active on a dedicated machine) is kept.
+  if (!std::getenv("OMP_WAIT_POLICY") && setenv("OMP_WAIT_POLICY", "passive", 1) == 0)
+    execv("/proc/self/exe", argv);   // returns only on failure: then run as we are
+#endif
   CLI::App app{"lsi: landslide-structure interaction. Empirical (Di Perna et al. 2022) and "
                "analytical (Cuomo et al. 2022) design methods for barriers hit by flow-like "
                "landslides."};
@@ -160,10 +196,15 @@ int main(int argc, char** argv) {
       const nlohmann::json doc = lsi::read_scene_document(scene_path);
       if (lsi::is_mpm_case(doc)) return run_mpm_case(scene_path, doc, out_path, format);
       const lsi::Scene scene = with_path(scene_path, [&] { return lsi::parse_scene(doc); });
-      const auto results = lsi::run_closed_form_methods(scene, only);
+      std::string mpm_status;
+      const auto results = run_scene(scene_path, scene, only, mpm_status);
       if (!out_path.empty()) lsi::write_results(out_path, scene.source, results);
       if (format == "json") std::cout << lsi::summary_json(results).dump(2) << "\n";
       else std::cout << lsi::summary_table(scene, results);
+      if (!mpm_status.empty()) {
+        std::cerr << "lsi: " << scene_path << ": the MPM run stopped: " << mpm_status << "\n";
+        return 3;
+      }
     } else if (*design) {
       const lsi::Scene scene = load(design_scene);
       const auto designs = lsi::design_barrier_mass(scene, max_displacement, only);
@@ -171,9 +212,15 @@ int main(int argc, char** argv) {
       else std::cout << lsi::design_table(scene, designs, max_displacement);
     } else if (*compare) {
       std::vector<lsi::ComparisonRow> rows;
+      bool unstable = false;
       for (const auto& path : compare_scenes) {
         const lsi::Scene scene = load(path);
-        lsi::ComparisonRow row{scene.name, lsi::run_closed_form_methods(scene, only), {}};
+        std::string mpm_status;
+        lsi::ComparisonRow row{scene.name, run_scene(path, scene, only, mpm_status), {}};
+        if (!mpm_status.empty()) {
+          std::cerr << "lsi: " << path << ": the MPM run stopped: " << mpm_status << "\n";
+          unstable = true;
+        }
         if (!scene.barrier.fixed) row.designs = lsi::design_barrier_mass(scene, max_displacement, only);
         if (!out_dir.empty()) {
           const auto file = std::filesystem::path(out_dir) / (scene.name + ".h5");
@@ -183,6 +230,7 @@ int main(int argc, char** argv) {
       }
       if (format == "json") std::cout << lsi::comparison_json(rows, max_displacement).dump(2) << "\n";
       else std::cout << lsi::comparison_table(rows, max_displacement);
+      if (unstable) return 3;
     }
   } catch (const lsi::InputError& e) {
     std::cerr << "lsi: error: " << e.what() << "\n";

@@ -3,8 +3,10 @@
 #include <Kokkos_Core.hpp>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 
+#include "kernels/mpm/overtopping.hpp"
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
 
@@ -50,6 +52,31 @@ void ensure_kokkos() {
   });
 }
 
+// Peak force (normal to the upstream face) and its time (rise time); impact duration: the last
+// time the normal force differs from its final value (mean of the last 5 % of the samples, the
+// static load of what the barrier retains) by more than 10 % of the peak; final displacement of
+// the barrier (+infinity if it still slides at the end of the run).
+void summarize_impact(MethodResult& r, const mpm::Barrier& barrier) {
+  const size_t n = r.force.size();
+  const size_t peak = std::max_element(r.force.begin(), r.force.end()) - r.force.begin();
+  r.peak_force = r.force[peak];
+  r.rise_time = r.time[peak];
+  const size_t tail = std::max<size_t>(1, n / 20);
+  double final_force = 0.0;
+  for (size_t i = n - tail; i < n; ++i) final_force += r.force[i] / tail;
+  r.impact_duration = r.time[peak];
+  for (size_t i = peak; i < n; ++i)
+    if (std::fabs(r.force[i] - final_force) > 0.1 * r.peak_force) r.impact_duration = r.time[i];
+  r.final_displacement = barrier.motion.sliding() ? std::numeric_limits<double>::infinity()
+                                                  : barrier.motion.displacement;
+  r.extra["final_force"] = final_force;
+  r.extra["peak_force_horizontal"] =
+      *std::max_element(r.force_horizontal.begin(), r.force_horizontal.end());
+  r.extra["displacement_at_end"] = barrier.motion.displacement;
+  const auto& over = r.series.at("overtopped_volume").values;
+  r.extra["overtopped_volume_m2"] = over.back();
+}
+
 }  // namespace
 
 MpmOutcome run_mpm_case(const MpmCase& c) {
@@ -71,6 +98,7 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
     s.flip_ratio = c.settings.flip_ratio;
     s.atomic_scatter = c.settings.atomic_scatter;
     mpm::Solver<Exec> solver(grid, particles, c.materials, c.walls, s);
+    if (c.barrier) solver.attach_barrier(*c.barrier);
 
     MethodResult& r = out.result;
     r.method = "mpm";
@@ -86,6 +114,36 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
     const double snap_tol = 1e-9 * std::min(snap_dt, c.settings.output_interval_s);
     const auto t0 = std::chrono::steady_clock::now();
     double io_seconds = 0.0;
+    double last_output = 0.0;
+    bool barrier_left = false;
+    // Impact outputs: the contact forces as averages over each output interval (impulse /
+    // interval: the force of one step rings with the contact of single node columns).
+    auto impact_outputs = [&](double t, const mpm::EnergyReport& e) {
+      double imp[3][2];
+      solver.take_barrier_impulse(imp);
+      const double span = t - last_output;
+      const double inv = span > 0.0 ? 1.0 / span : 0.0;
+      const auto& face = c.barrier->shape.face[mpm::BarrierShape::Upstream];
+      const double fx = (imp[0][0] + imp[1][0] + imp[2][0]) * inv;
+      const double fy = (imp[0][1] + imp[1][1] + imp[2][1]) * inv;
+      const double fn = -(imp[0][0] * face.normal[0] + imp[0][1] * face.normal[1]) * inv;
+      r.force.push_back(fn);
+      r.force_horizontal.push_back(fx);
+      r.force_vertical.push_back(-fy);
+      r.landslide_kinetic_energy.push_back(e.kinetic);
+      const auto& motion = solver.barrier().motion;
+      r.barrier_velocity.push_back(motion.velocity);
+      r.barrier_displacement.push_back(motion.displacement);
+      const mpm::OvertoppingReport o = mpm::overtopping<Exec>(
+          solver.particles(), c.barrier->shape.crest_upstream_x() + motion.displacement);
+      add("overtopped_volume", "m^2", "volume of material downstream of the upstream crest corner",
+          o.overtopped);
+      add("barrier_friction_work", "J/m", "work dissipated by the barrier's base friction",
+          motion.friction_work);
+      add("barrier_kinetic_energy", "J/m", "kinetic energy of the barrier",
+          0.5 * motion.mass * motion.velocity * motion.velocity);
+      last_output = t;
+    };
     const mpm::Status status = solver.run(
         c.settings.end_time_s, c.settings.output_interval_s, [&](const mpm::Solver<Exec>& sv) {
           const auto a = std::chrono::steady_clock::now();
@@ -103,6 +161,7 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
           add("time_step", "s", "time step of the last step", sv.time_step());
           add("wall_force_x", "N/m", "reaction of the walls on the material, x", -sv.wall_force()[0]);
           add("wall_force_y", "N/m", "reaction of the walls on the material, y", -sv.wall_force()[1]);
+          if (c.barrier) impact_outputs(sv.time(), e);
           const double t = sv.time();
           // The solver's own test for its last output (mpm::Solver::run).
           const bool at_end =
@@ -113,16 +172,30 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
             while (next_snap * snap_dt <= t + snap_tol) ++next_snap;
           }
           io_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
+        },
+        [&](const mpm::Solver<Exec>& sv) {
+          // An impact run may end once the landslide has (almost) stopped and the barrier too.
+          if (!c.barrier || r.landslide_kinetic_energy.empty()) return false;
+          const auto& motion = sv.barrier().motion;
+          if (c.barrier->shape.toe[0] + c.barrier->shape.base_width + motion.displacement >
+              c.walls.right.position - 2.0 * c.settings.cell_size_m) {
+            barrier_left = true;   // it would push into the downstream wall
+            return true;
+          }
+          return r.landslide_kinetic_energy.back() < 1e-3 * c.landslide_initial_kinetic_energy &&
+                 !sv.barrier().motion.sliding();
         });
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    out.finished = status == mpm::Status::Finished;
-    out.status = mpm::describe(status);
+    out.finished = status == mpm::Status::Finished && !barrier_left;
+    out.status = barrier_left ? "stopped: the barrier reached the downstream end of the grid"
+                              : mpm::describe(status);
     out.steps = solver.steps();
     out.wall_seconds = total - io_seconds;
     out.particle_updates_per_second =
         out.wall_seconds > 0 ? double(particles.count) * solver.steps() / out.wall_seconds : 0.0;
     r.peak_force = r.rise_time = r.impact_duration = r.final_displacement =
         std::numeric_limits<double>::quiet_NaN();   // not an impact: not given
+    if (c.barrier && !r.force.empty()) summarize_impact(r, solver.barrier());
     r.extra["particles"] = particles.count;
     r.extra["steps"] = static_cast<double>(solver.steps());
     r.extra["end_time"] = solver.time();

@@ -9,11 +9,13 @@
 namespace lsi {
 namespace jf = json_fields;
 
-MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& path) {
-  const jf::ObjectReader r(block, path,
-                           {"cell_size_m", "particles_per_cell", "courant", "end_time_s",
-                            "max_time_step_s", "output_interval_s", "transfer", "flip_ratio",
-                            "scatter", "snapshot_interval_s"});
+MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& path,
+                               bool impact) {
+  std::vector<std::string> keys = {"cell_size_m", "particles_per_cell", "courant", "end_time_s",
+                                   "max_time_step_s", "output_interval_s", "transfer",
+                                   "flip_ratio", "scatter", "snapshot_interval_s"};
+  if (impact) keys.push_back("base_friction");
+  const jf::ObjectReader r(block, path, keys);
   MpmSettings s;
   s.cell_size_m = r.number("cell_size_m", jf::greater_than(0, "m"));
   s.particles_per_cell = static_cast<int>(r.number_or("particles_per_cell", 4, jf::interval('[', 1, 64, ']')));
@@ -21,9 +23,18 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
   if (n * n != s.particles_per_cell)
     r.fail_at("particles_per_cell", "must be a perfect square (1, 4, 9, 16, ...): n x n points per cell");
   s.courant = r.number_or("courant", 0.5, jf::interval('(', 0, 10, ']'));
-  s.end_time_s = r.number("end_time_s", jf::greater_than(0, "s"));
+  if (impact) {
+    const auto t = r.optional_number("end_time_s", jf::greater_than(0, "s"));
+    s.end_time_given = t.has_value();
+    s.end_time_s = t.value_or(1.0);   // replaced by the impact scene's default
+    s.base_friction = r.number_or("base_friction", 0.0, jf::at_least(0));
+  } else {
+    s.end_time_s = r.number("end_time_s", jf::greater_than(0, "s"));
+  }
   s.max_time_step_s = r.number_or("max_time_step_s", 1e300, jf::greater_than(0, "s"));
-  s.output_interval_s = r.number_or("output_interval_s", s.end_time_s / 200, jf::greater_than(0, "s"));
+  // Impact scenes without end_time_s get their default interval with their default end time.
+  s.output_interval_s = r.number_or("output_interval_s", s.end_time_given ? s.end_time_s / 200 : 0.0,
+                                    jf::greater_than(0, "s"));
   const std::string transfer = r.choice("transfer", {"apic", "flip", "pic"}, std::string("apic"));
   s.apic = transfer == "apic";
   if (transfer == "flip") {

@@ -5,9 +5,11 @@
 #pragma once
 #include <array>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "kernels/mpm/barrier.hpp"
 #include "kernels/mpm/boundary.hpp"
 #include "kernels/mpm/constitutive/material.hpp"
 #include "kernels/mpm/particle_builder.hpp"
@@ -25,6 +27,9 @@ struct MpmSettings {
   double flip_ratio = 0.99;           // "flip": flip_ratio in [0, 1]; "pic": 0
   bool atomic_scatter = false;        // "scatter": "duplicated" or "atomic"
   double snapshot_interval_s = 0.0;   // particle snapshots every this many seconds; 0 = none
+  // Impact scenes only (a landslide scene with `methods.mpm`):
+  double base_friction = 0.0;         // Coulomb coefficient of the base under the flow (paper: 0)
+  bool end_time_given = true;         // false: end_time_s is the impact scene's default
 };
 
 struct MpmCase {
@@ -37,10 +42,15 @@ struct MpmCase {
   std::vector<mpm::BodySpec> bodies;
   MpmSettings settings;
   nlohmann::json source;
+  // Impact scenes: the rigid barrier, and the scene's landslide (for the impact outputs).
+  std::optional<mpm::Barrier> barrier;
+  double landslide_initial_kinetic_energy = 0.0;   // J/m
 };
 
-// Parses `methods.mpm` (path names the block in messages). Throws InputError.
-MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& path);
+// Parses `methods.mpm` (path names the block in messages). Throws InputError. `impact`: the block
+// of a landslide scene (accepts base_friction; end_time_s optional).
+MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& path,
+                               bool impact = false);
 bool is_mpm_case(const nlohmann::json& scene);
 // Parses a whole verification scene {"name", "mpm_case", "methods": {"mpm": {...}}}.
 MpmCase parse_mpm_case(const nlohmann::json& scene);

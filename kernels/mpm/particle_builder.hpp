@@ -18,9 +18,11 @@ struct BodySpec {
   std::array<double, 2> velocity = {0.0, 0.0};    // initial velocity, m/s
   int points_per_cell_direction = 2;              // n: n^2 points per cell
   // Geostatic initial stress under gravity magnitude g: sigma_yy = -rho g (surface_y - y),
-  // sigma_xx = sigma_zz = K0 sigma_yy. Off when geostatic_k0 < 0.
+  // sigma_xx = sigma_zz = K0 sigma_yy. Off when geostatic_k0 < 0. With surface_from_polygon the
+  // surface is the polygon's top above each point (sloping fronts and tails), not surface_y.
   double geostatic_k0 = -1.0;
   double surface_y = 0.0;
+  bool surface_from_polygon = false;
   double gravity = 9.81;
 };
 
@@ -32,6 +34,18 @@ inline bool inside_polygon(const std::vector<std::array<double, 2>>& poly, doubl
     if ((a[1] > y) != (b[1] > y) && x < (b[0] - a[0]) * (y - a[1]) / (b[1] - a[1]) + a[0]) in = !in;
   }
   return in;
+}
+
+// The highest point of the polygon's boundary on the vertical line through x (-1e300 if none).
+inline double polygon_top(const std::vector<std::array<double, 2>>& poly, double x) {
+  double top = -1e300;
+  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const auto& a = poly[i];
+    const auto& b = poly[j];
+    if ((a[0] <= x) == (b[0] <= x)) continue;   // the edge does not cross the line
+    top = std::max(top, a[1] + (b[1] - a[1]) * (x - a[0]) / (b[0] - a[0]));
+  }
+  return top;
 }
 
 template <class MemorySpace>
@@ -61,7 +75,9 @@ Particles<MemorySpace> build_particles(const std::vector<BodySpec>& bodies,
             Point p{x, y, body.velocity[0], body.velocity[1], mat.density * V, V, {0, 0, 0, 0},
                     body.material};
             if (body.geostatic_k0 >= 0.0) {
-              const double syy = -mat.density * body.gravity * (body.surface_y - y);
+              const double top = body.surface_from_polygon ? polygon_top(body.polygon, x)
+                                                           : body.surface_y;
+              const double syy = -mat.density * body.gravity * (top - y);
               p.s[1] = syy;
               p.s[0] = p.s[3] = body.geostatic_k0 * syy;
             }

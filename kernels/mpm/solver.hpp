@@ -11,9 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "kernels/mpm/barrier.hpp"
 #include "kernels/mpm/barrier_contact.hpp"
-#include "kernels/mpm/barrier_dynamics.hpp"
-#include "kernels/mpm/barrier_shape.hpp"
 #include "kernels/mpm/boundary.hpp"
 #include "kernels/mpm/energy.hpp"
 #include "kernels/mpm/g2p.hpp"
@@ -49,15 +48,6 @@ struct Settings {
   double flip_ratio = 0.99;           // FlipPic only: share of FLIP, [0, 1] (0: plain PIC)
   bool atomic_scatter = false;        // P2G with atomics instead of duplicated ScatterViews
   double energy_growth_limit = 0.5;   // relative growth of the total energy deemed unstable
-};
-
-// A rigid barrier in the scene: its shape (at zero displacement), the face friction tan(delta)
-// and, unless fixed, its motion on the base (a fixed barrier runs no barrier dynamics).
-struct Barrier {
-  BarrierShape shape;
-  double face_friction = 0.0;
-  bool fixed = true;
-  BarrierMotion motion;   // mass, base friction, gravity; state (displacement, velocity)
 };
 
 template <class ExecSpace>
@@ -109,6 +99,8 @@ class Solver {
       contact_ = barrier_contact<ExecSpace>(grid_, barrier_.shape, barrier_.motion.displacement,
                                             barrier_.motion.velocity, barrier_.face_friction, dt_);
       boundary_ += contact_.work;
+      for (int k = 0; k < 3; ++k)
+        for (int d = 0; d < 2; ++d) contact_impulse_[k][d] += contact_.force[k][d] * dt_;
       if (!barrier_.fixed) barrier_.motion.advance(contact_.total(0), contact_.total(1), dt_);
     }
     const G2PReport r = g2p<ExecSpace>(particles_, grid_, dt_, settings_.transfer, settings_.flip_ratio);
@@ -123,9 +115,11 @@ class Solver {
   }
 
   // Runs to end_time, calling on_output at t = 0 and every output_interval (and at the end).
-  // Energy growth is checked at each output.
+  // Energy growth is checked at each output. If given, `done` is asked after each output whether
+  // the run may end early (e.g. everything is at rest): then the status is Finished.
   Status run(double end_time, double output_interval,
-             const std::function<void(const Solver&)>& on_output = {}) {
+             const std::function<void(const Solver&)>& on_output = {},
+             const std::function<bool(const Solver&)>& done = {}) {
     if (on_output) on_output(*this);
     double next_output = time_ + output_interval;
     struct Restore {   // the last step is clamped to end_time; the user's maximum comes back after
@@ -143,6 +137,7 @@ class Solver {
         next_output += output_interval;
         if (energy_grew()) return status_ = Status::EnergyGrowth;
         if (on_output) on_output(*this);
+        if (done && done(*this)) break;
       }
     }
     return status_ = Status::Finished;
@@ -171,6 +166,14 @@ class Solver {
   const Barrier& barrier() const { return barrier_; }
   // Contact forces on the barrier during the last step, per face (N/m).
   const BarrierContactReport& barrier_contact_report() const { return contact_; }
+  // Contact impulse on the barrier per face (N s/m, x and y) since the last call; resets it.
+  void take_barrier_impulse(double impulse[3][2]) {
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 2; ++d) {
+        impulse[k][d] = contact_impulse_[k][d];
+        contact_impulse_[k][d] = 0.0;
+      }
+  }
 
   double time() const { return time_; }
   double time_step() const { return dt_; }
@@ -204,6 +207,7 @@ class Solver {
   bool has_barrier_ = false;
   Barrier barrier_;
   BarrierContactReport contact_;
+  double contact_impulse_[3][2] = {{0, 0}, {0, 0}, {0, 0}};
   Status status_ = Status::Running;
   EnergyReport initial_;
   double max_mechanical_ = 0.0;
