@@ -1,0 +1,141 @@
+// Two-phase grid update, per node (the order of Anura3D-type codes): the liquid acceleration
+// first, from the liquid momentum equation with the Darcy drag, then the solid from the MIXTURE
+// equation minus the liquid inertia,
+//   m_L a_L = f_L - Q (v_L - v_S)                       (liquid, f_L = V n p grad w + m_L g)
+//   m_S a_S = f_mix - m_L a_L                           (mixture, f_mix with the total stress)
+// so that m_S a_S + m_L a_L = f_mix exactly whatever the drag treatment.
+//   Drag::Explicit      the drag uses the relative velocity at the start of the step,
+//                       w0 = v_L0 - v_S0. Stable for dt < 2 / (Q (1/m_L + 1/m_S)) (the
+//                       permeability limit of the time step, two_phase_time_step.hpp).
+//   Drag::SemiImplicit  the drag uses the relative velocity at the END of the step, solved per
+//                       node in closed form (no system: Q couples only the two phases of one
+//                       node): with the drag-free trial velocities
+//                         v_L* = v_L0 + dt f_L / m_L,   v_S* = v_S0 + dt (f_mix - f_L) / m_S,
+//                         w1 = (v_L* - v_S*) / (1 + dt Q (1/m_L + 1/m_S)),
+//                         v_L = v_L* - dt Q w1 / m_L,  then a_L = (v_L - v_L0)/dt and a_S as above.
+//                       The relative velocity decays monotonically for any dt: no permeability
+//                       limit.
+// Then the walls (boundary.hpp, apply_walls) act on both phases: the solid with `walls`, the
+// liquid with `liquid_walls` (normally the same walls: no penetration of the liquid = an
+// impermeable boundary; leave a wall out of liquid_walls to let the liquid through).
+// Reductions (J/m this step, measured with the mid-step velocities that move the points):
+// wall dissipation, drag dissipation dt Q w_drag . w_mid, and the work of gravity on the
+// relative (seepage) flow dt m_L g . w_mid, which the points' potential energy does not see
+// (points move with the solid). The force on the walls follows the paper's eq. 26:
+// F = -(m_S dv_S + m_L dv_L) / dt summed over the nodes a wall acted on.
+#pragma once
+#include <Kokkos_Core.hpp>
+
+#include "kernels/mpm/boundary.hpp"
+#include "kernels/mpm/two_phase/two_phase_grid.hpp"
+
+namespace lsi::mpm::two_phase {
+
+enum class Drag { Explicit, SemiImplicit };
+
+struct GridUpdateReport {
+  double wall_dissipation = 0.0;     // J/m
+  double drag_dissipation = 0.0;     // J/m
+  double seepage_gravity_work = 0.0; // J/m
+  double wall_force[2] = {0.0, 0.0}; // N/m, on the walls
+};
+
+template <class ExecSpace, bool SemiImplicit, class MemorySpace>
+GridUpdateReport two_phase_grid_update_impl(const TwoPhaseGrid<MemorySpace>& g,
+                                            const Boundaries& walls,
+                                            const Boundaries& liquid_walls, double dt,
+                                            const double gravity[2]) {
+  const auto S = g.solid;
+  const auto L = g.liquid;
+  const auto drag = g.drag;
+  const double ox = S.origin[0], oy = S.origin[1], dx = S.dx, tol = 1e-9 * S.dx;
+  const double gx = gravity[0], gy = gravity[1];
+  const int nx = S.nx;
+  GridUpdateReport rep;
+  double fx = 0.0, fy = 0.0;
+  Kokkos::parallel_reduce(
+      SemiImplicit ? "lsi::mpm::two_phase::grid_update_semi_implicit"
+                   : "lsi::mpm::two_phase::grid_update_explicit",
+      Kokkos::RangePolicy<ExecSpace>(0, S.size()),
+      KOKKOS_LAMBDA(const int i, double& wall_lost, double& drag_lost, double& seep, double& rx,
+                    double& ry) {
+        const double mS = S.mass(i), mL = L.mass(i);
+        if (!(mS > 0.0)) {
+          for (int d = 0; d < 2; ++d)
+            S.velocity(i, d) = S.velocity_old(i, d) = L.velocity(i, d) = L.velocity_old(i, d) = 0.0;
+          return;
+        }
+        const bool wet = mL > 0.0;
+        const double Q = wet ? drag(i) : 0.0;
+        double vS0[2], vL0[2], vS[2], vL[2], wd[2];
+        for (int d = 0; d < 2; ++d) {
+          vS0[d] = S.momentum(i, d) / mS;
+          vL0[d] = wet ? L.momentum(i, d) / mL : vS0[d];
+        }
+        if (!wet) {
+          for (int d = 0; d < 2; ++d) {
+            vS[d] = vS0[d] + dt * S.force(i, d) / mS;
+            vL[d] = vS[d];
+            wd[d] = 0.0;
+          }
+        } else if constexpr (SemiImplicit) {
+          const double relax = 1.0 / (1.0 + dt * Q * (1.0 / mL + 1.0 / mS));
+          for (int d = 0; d < 2; ++d) {
+            const double fL = L.force(i, d), fmix = S.force(i, d);
+            const double vLs = vL0[d] + dt * fL / mL, vSs = vS0[d] + dt * (fmix - fL) / mS;
+            wd[d] = (vLs - vSs) * relax;
+            vL[d] = vLs - dt * Q * wd[d] / mL;
+            const double aL = (vL[d] - vL0[d]) / dt;
+            vS[d] = vS0[d] + dt * (fmix - mL * aL) / mS;
+          }
+        } else {
+          for (int d = 0; d < 2; ++d) {
+            wd[d] = vL0[d] - vS0[d];
+            const double aL = (L.force(i, d) - Q * wd[d]) / mL;
+            vL[d] = vL0[d] + dt * aL;
+            vS[d] = vS0[d] + dt * (S.force(i, d) - mL * aL) / mS;
+          }
+        }
+        const double bS[2] = {vS[0], vS[1]}, bL[2] = {vL[0], vL[1]};
+        const double x = ox + (i % nx) * dx, y = oy + (i / nx) * dx;
+        const bool hitS = apply_walls(walls, x, y, vS, tol);
+        const bool hitL = wet && apply_walls(liquid_walls, x, y, vL, tol);
+        double vSm[2], vLm[2];
+        for (int d = 0; d < 2; ++d) {
+          vSm[d] = 0.5 * (vS0[d] + vS[d]);
+          vLm[d] = 0.5 * (vL0[d] + vL[d]);
+        }
+        if (hitS || hitL) {
+          for (int d = 0; d < 2; ++d)
+            wall_lost -= mS * (vS[d] - bS[d]) * vSm[d] + (wet ? mL * (vL[d] - bL[d]) * vLm[d] : 0.0);
+          rx += -(mS * (vS[0] - bS[0]) + (wet ? mL * (vL[0] - bL[0]) : 0.0)) / dt;
+          ry += -(mS * (vS[1] - bS[1]) + (wet ? mL * (vL[1] - bL[1]) : 0.0)) / dt;
+        }
+        if (wet) {
+          const double wm[2] = {vLm[0] - vSm[0], vLm[1] - vSm[1]};
+          drag_lost += dt * Q * (wd[0] * wm[0] + wd[1] * wm[1]);
+          seep += dt * mL * (gx * wm[0] + gy * wm[1]);
+        }
+        for (int d = 0; d < 2; ++d) {
+          S.velocity_old(i, d) = vS0[d];
+          S.velocity(i, d) = vS[d];
+          L.velocity_old(i, d) = vL0[d];
+          L.velocity(i, d) = vL[d];
+        }
+      },
+      rep.wall_dissipation, rep.drag_dissipation, rep.seepage_gravity_work, fx, fy);
+  rep.wall_force[0] = fx;
+  rep.wall_force[1] = fy;
+  return rep;
+}
+
+template <class ExecSpace, class MemorySpace>
+GridUpdateReport two_phase_grid_update(const TwoPhaseGrid<MemorySpace>& g, const Boundaries& walls,
+                                       const Boundaries& liquid_walls, double dt,
+                                       const double gravity[2], Drag drag) {
+  return drag == Drag::SemiImplicit
+             ? two_phase_grid_update_impl<ExecSpace, true>(g, walls, liquid_walls, dt, gravity)
+             : two_phase_grid_update_impl<ExecSpace, false>(g, walls, liquid_walls, dt, gravity);
+}
+
+}  // namespace lsi::mpm::two_phase

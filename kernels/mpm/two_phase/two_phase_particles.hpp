@@ -1,0 +1,49 @@
+// Two-phase (saturated soil) material points, single-point formulation (the paper's section 3.3;
+// Jassim et al. 2013): each point is a volume V of the mixture and carries both phases.
+// The solid skeleton reuses the single-phase SoA (`solid`): position (moves with the solid),
+// solid velocity, APIC affine matrix, solid velocity gradient, EFFECTIVE stress sigma' (tension
+// positive), SOLID mass m_S = (1 - n0) rho_S V0, mixture volume V, plastic work, ... so that the
+// single-phase stress update (Jaumann + elastic / Mohr-Coulomb) and energy kernels apply to it
+// unchanged. The liquid fields are added here; a dry scene never allocates them.
+// Sign convention: pore pressure p is COMPRESSION POSITIVE; total stress sigma = sigma' - p I.
+#pragma once
+#include <Kokkos_Core.hpp>
+
+#include "kernels/mpm/particles.hpp"
+
+namespace lsi::mpm::two_phase {
+
+template <class MemorySpace>
+struct TwoPhaseParticles {
+  int count = 0;
+  Particles<MemorySpace> solid;                               // skeleton (see above)
+  Kokkos::View<double* [2], MemorySpace> liquid_velocity;     // m/s
+  Kokkos::View<double* [2][2], MemorySpace> liquid_affine;    // APIC C of the liquid, 1/s
+  Kokkos::View<double*, MemorySpace> liquid_divergence;       // div v_L of the last step, 1/s
+  Kokkos::View<double*, MemorySpace> liquid_mass;             // kg/m, m_L = n0 rho_L V0 (constant)
+  Kokkos::View<double*, MemorySpace> porosity;                // n, current
+  Kokkos::View<double*, MemorySpace> pore_pressure;           // Pa, compression positive
+  Kokkos::View<double*, MemorySpace> conductivity;            // hydraulic conductivity k, m/s
+  Kokkos::View<double* [2], MemorySpace> traction;            // N/m, surface load on the point
+                                                              // (applied to the mixture)
+
+  TwoPhaseParticles() = default;
+  explicit TwoPhaseParticles(int n) : count(n), solid(n) {
+    liquid_velocity = decltype(liquid_velocity)("p_liquid_velocity", n);
+    liquid_affine = decltype(liquid_affine)("p_liquid_affine", n);
+    liquid_divergence = decltype(liquid_divergence)("p_liquid_divergence", n);
+    liquid_mass = decltype(liquid_mass)("p_liquid_mass", n);
+    porosity = decltype(porosity)("p_porosity", n);
+    pore_pressure = decltype(pore_pressure)("p_pore_pressure", n);
+    conductivity = decltype(conductivity)("p_conductivity", n);
+    traction = decltype(traction)("p_traction", n);
+  }
+};
+
+// The pore liquid, one per solver (SI).
+struct Liquid {
+  double density = 1000.0;        // rho_L, kg/m^3
+  double bulk_modulus = 2.2e9;    // K_L, Pa
+};
+
+}  // namespace lsi::mpm::two_phase

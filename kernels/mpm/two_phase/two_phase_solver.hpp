@@ -1,0 +1,224 @@
+// The explicit two-phase (saturated, single-point) MPM solver, separate from the single-phase
+// Solver so that dry scenes allocate no liquid field and run no liquid kernel. One step:
+//   time step (eq. 25, two_phase_time_step.hpp)
+//   -> P2G of both phases + drag (two_phase_p2g.hpp)
+//   -> grid update: liquid first, solid from the mixture; explicit or semi-implicit drag; walls
+//      for both phases (two_phase_grid_update.hpp)
+//   -> G2P of both phases, points move with the solid, health (two_phase_g2p.hpp)
+//   -> effective stress: the single-phase stress update on the skeleton (stress_update.hpp:
+//      Jaumann + linear elastic / Mohr-Coulomb, volume)
+//   -> pore pressure and porosity (pore_pressure_update.hpp)
+// Status and describe() are the single-phase ones (solver.hpp).
+#pragma once
+#include <Kokkos_Core.hpp>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "kernels/mpm/boundary.hpp"
+#include "kernels/mpm/solver.hpp"
+#include "kernels/mpm/stress_update.hpp"
+#include "kernels/mpm/two_phase/pore_pressure_update.hpp"
+#include "kernels/mpm/two_phase/two_phase_energy.hpp"
+#include "kernels/mpm/two_phase/two_phase_g2p.hpp"
+#include "kernels/mpm/two_phase/two_phase_grid.hpp"
+#include "kernels/mpm/two_phase/two_phase_grid_update.hpp"
+#include "kernels/mpm/two_phase/two_phase_p2g.hpp"
+#include "kernels/mpm/two_phase/two_phase_particles.hpp"
+#include "kernels/mpm/two_phase/two_phase_time_step.hpp"
+
+namespace lsi::mpm::two_phase {
+
+struct TwoPhaseSettings {
+  double courant = 0.5;
+  double max_time_step = std::numeric_limits<double>::infinity();   // s
+  double min_time_step = 1e-12;                                     // s; below: collapse
+  double gravity[2] = {0.0, -9.81};                                 // body force, m/s^2
+  // The g in the definition of the hydraulic conductivity, k = kappa rho_L g / mu (m/s): a unit
+  // convention, not the body force (a test without gravity still has a finite drag).
+  double darcy_gravity = 9.81;
+  Drag drag = Drag::Explicit;         // explicit (the paper; permeability limit on dt) or
+                                      // semi-implicit per node (no permeability limit)
+  bool atomic_scatter = false;        // P2G with atomics instead of duplicated ScatterViews
+  // Mirror-image wall correction of P2G (two_phase_p2g.hpp): removes the +15 % boundary layer of
+  // stress and pore pressure next to walls the material rests on. Off by default (the
+  // single-phase solver has no such correction); on in the column tests.
+  bool wall_correction = false;
+  double energy_growth_limit = 0.5;   // relative growth of the total energy deemed unstable
+};
+
+template <class ExecSpace>
+class TwoPhaseSolver {
+ public:
+  using Mem = typename ExecSpace::memory_space;
+
+  // materials: skeleton materials (Material::density = grain density rho_S); walls act on the
+  // solid, liquid_walls on the liquid (an impermeable boundary is a liquid wall).
+  TwoPhaseSolver(TwoPhaseGrid<Mem> grid, TwoPhaseParticles<Mem> particles,
+                 const std::vector<Material>& materials, Liquid liquid, Boundaries walls,
+                 Boundaries liquid_walls, TwoPhaseSettings settings)
+      : grid_(grid), particles_(particles), liquid_(liquid), walls_(walls),
+        liquid_walls_(liquid_walls), settings_(settings), user_max_dt_(settings.max_time_step) {
+    if (settings_.wall_correction) {
+      for (const Boundaries* b : {&walls_, &liquid_walls_})
+        for (const Wall* w : {&b->left, &b->right, &b->bottom, &b->top}) {
+          const int d = (w == &b->left || w == &b->right) ? 0 : 1;
+          const double i = (w->position - grid_.solid.origin[d]) / grid_.dx();
+          if (w->active && std::abs(i - std::round(i)) > 1e-6)
+            throw std::invalid_argument("two-phase wall correction: walls must lie on grid lines");
+        }
+    }
+    if (settings_.atomic_scatter) atomic_scatter_ = TwoPhaseScatter<ExecSpace, true>(grid_);
+    else duplicated_scatter_ = TwoPhaseScatter<ExecSpace, false>(grid_);
+    Kokkos::View<PreparedMaterial*, Mem> table("two_phase_materials", materials.size());
+    auto host = Kokkos::create_mirror_view(table);
+    for (size_t i = 0; i < materials.size(); ++i) {
+      host(i) = PreparedMaterial(materials[i]);
+      plastic_ = plastic_ || materials[i].model == Material::Model::MohrCoulomb;
+    }
+    Kokkos::deep_copy(table, host);
+    materials_ = table;
+    const auto s = particles_.solid;
+    const auto vl = particles_.liquid_velocity;
+    double vmax = 0.0;
+    Kokkos::parallel_reduce(
+        "lsi::mpm::two_phase::initial_speed", Kokkos::RangePolicy<ExecSpace>(0, particles_.count),
+        KOKKOS_LAMBDA(const int q, double& vm) {
+          const double a = s.velocity(q, 0) * s.velocity(q, 0) + s.velocity(q, 1) * s.velocity(q, 1);
+          const double b = vl(q, 0) * vl(q, 0) + vl(q, 1) * vl(q, 1);
+          const double v = math::sqrt(math::max(a, b));
+          if (v > vm) vm = v;
+        },
+        Kokkos::Max<double>(vmax));
+    max_speed_ = vmax;
+    initial_ = energy();
+    max_mechanical_ = initial_.kinetic() + initial_.elastic + initial_.liquid;
+  }
+  // The same walls for both phases (no penetration of either: impermeable walls).
+  TwoPhaseSolver(TwoPhaseGrid<Mem> grid, TwoPhaseParticles<Mem> particles,
+                 const std::vector<Material>& materials, Liquid liquid, Boundaries walls,
+                 TwoPhaseSettings settings)
+      : TwoPhaseSolver(grid, particles, materials, liquid, walls, walls, settings) {}
+
+  // Advances one step. Returns Running, or the reason the run must stop.
+  Status step() {
+    limits_ = two_phase_time_step_limits<ExecSpace>(particles_, materials_, liquid_,
+                                                    settings_.darcy_gravity);
+    dt_ = two_phase_time_step(grid_.dx(), limits_, max_speed_, settings_.drag == Drag::Explicit,
+                              settings_.courant, settings_.max_time_step);
+    if (!(dt_ >= settings_.min_time_step)) return status_ = Status::TimeStepCollapse;
+    const Boundaries* cw = settings_.wall_correction ? &walls_ : nullptr;
+    const Boundaries* cl = settings_.wall_correction ? &liquid_walls_ : nullptr;
+    if (settings_.atomic_scatter)
+      two_phase_p2g(particles_, grid_, atomic_scatter_, settings_.gravity, liquid_.density,
+                    settings_.darcy_gravity, cw, cl);
+    else
+      two_phase_p2g(particles_, grid_, duplicated_scatter_, settings_.gravity, liquid_.density,
+                    settings_.darcy_gravity, cw, cl);
+    const GridUpdateReport gu = two_phase_grid_update<ExecSpace>(
+        grid_, walls_, liquid_walls_, dt_, settings_.gravity, settings_.drag);
+    boundary_ += gu.wall_dissipation;
+    drag_ += gu.drag_dissipation;
+    seepage_work_ += gu.seepage_gravity_work;
+    wall_force_[0] = gu.wall_force[0];
+    wall_force_[1] = gu.wall_force[1];
+    const TwoPhaseG2PReport r = two_phase_g2p<ExecSpace>(particles_, grid_, dt_, cw, cl);
+    load_work_ += r.load_work;
+    if (plastic_) stress_update<ExecSpace, true>(particles_.solid, materials_, dt_);
+    else stress_update<ExecSpace, false>(particles_.solid, materials_, dt_);
+    pore_pressure_update<ExecSpace>(particles_, liquid_.bulk_modulus, dt_);
+    time_ += dt_;
+    ++steps_;
+    max_speed_ = r.health.max_speed;
+    if (r.health.non_finite > 0) return status_ = Status::NonFinite;
+    if (r.health.outside > 0) return status_ = Status::LeftGrid;
+    return status_ = Status::Running;
+  }
+
+  // Runs to end_time, calling on_output at t = 0 and every output_interval (and at the end);
+  // the energy growth is checked at each output (as Solver::run).
+  Status run(double end_time, double output_interval,
+             const std::function<void(const TwoPhaseSolver&)>& on_output = {}) {
+    if (on_output) on_output(*this);
+    double next_output = time_ + output_interval;
+    struct Restore {
+      TwoPhaseSettings& s;
+      double v;
+      ~Restore() { s.max_time_step = v; }
+    } restore{settings_, user_max_dt_};
+    const double close_enough = std::max(1e-12 * end_time, settings_.min_time_step);
+    while (end_time - time_ > close_enough) {
+      settings_.max_time_step = std::min(user_max_dt_, end_time - time_);
+      const Status s = step();
+      if (s != Status::Running) return s;
+      if (time_ >= next_output * (1 - 1e-12) || end_time - time_ <= close_enough) {
+        next_output += output_interval;
+        if (energy_grew()) return status_ = Status::EnergyGrowth;
+        if (on_output) on_output(*this);
+      }
+    }
+    return status_ = Status::Finished;
+  }
+
+  TwoPhaseEnergyReport energy() const {
+    TwoPhaseEnergyReport e = two_phase_particle_energies<ExecSpace>(
+        particles_, materials_, liquid_.bulk_modulus, settings_.gravity);
+    e.time = time_;
+    e.boundary = boundary_;
+    e.drag = drag_;
+    e.seepage_potential = -seepage_work_;
+    e.load_potential = -load_work_;
+    return e;
+  }
+  // (total(t) - total(0)) relative to the largest kinetic + stored energy seen plus the
+  // dissipated work and the change of the potentials (as Solver::energy_residual).
+  double energy_residual(const TwoPhaseEnergyReport& e) const {
+    const double scale = max_mechanical_ + std::abs(e.plastic) + std::abs(e.boundary) +
+                         std::abs(e.drag) + std::abs(e.potential - initial_.potential) +
+                         std::abs(e.seepage_potential) + std::abs(e.load_potential) + 1e-300;
+    return (e.total() - initial_.total()) / scale;
+  }
+
+  double time() const { return time_; }
+  double time_step() const { return dt_; }
+  long steps() const { return steps_; }
+  Status status() const { return status_; }
+  const TimeStepLimits& time_step_limits() const { return limits_; }   // of the last step
+  const double* wall_force() const { return wall_force_; }   // N/m on the walls (eq. 26), last step
+  const TwoPhaseParticles<Mem>& particles() const { return particles_; }
+  const TwoPhaseGrid<Mem>& grid() const { return grid_; }
+  const TwoPhaseSettings& settings() const { return settings_; }
+  const Liquid& liquid() const { return liquid_; }
+  bool has_plasticity() const { return plastic_; }
+
+ private:
+  bool energy_grew() {
+    const TwoPhaseEnergyReport e = energy();
+    max_mechanical_ = std::max(max_mechanical_, e.kinetic() + e.elastic + e.liquid);
+    return !(energy_residual(e) <= settings_.energy_growth_limit);
+  }
+
+  TwoPhaseGrid<Mem> grid_;
+  TwoPhaseParticles<Mem> particles_;
+  Kokkos::View<const PreparedMaterial*, Mem> materials_;
+  Liquid liquid_;
+  Boundaries walls_, liquid_walls_;
+  TwoPhaseSettings settings_;
+  TwoPhaseScatter<ExecSpace, true> atomic_scatter_;
+  TwoPhaseScatter<ExecSpace, false> duplicated_scatter_;
+  double user_max_dt_;
+  TimeStepLimits limits_;
+  double max_speed_ = 0.0, dt_ = 0.0, time_ = 0.0;
+  double boundary_ = 0.0, drag_ = 0.0, seepage_work_ = 0.0, load_work_ = 0.0;
+  double wall_force_[2] = {0.0, 0.0};
+  long steps_ = 0;
+  bool plastic_ = false;
+  Status status_ = Status::Running;
+  TwoPhaseEnergyReport initial_;
+  double max_mechanical_ = 0.0;
+};
+
+}  // namespace lsi::mpm::two_phase
