@@ -7,6 +7,9 @@
 #include "kernels/common/constants.hpp"
 
 namespace lsi {
+namespace {
+using CaseTwoPhase = MpmCase::TwoPhase;
+}  // namespace
 
 std::vector<std::array<double, 2>> landslide_polygon(const SceneLandslide& l, double front_x,
                                                      double base_y) {
@@ -67,7 +70,30 @@ MpmCase impact_case(const Scene& scene) {
 
   mpm::Material m;
   m.model = mpm::Material::Model::MohrCoulomb;
-  m.density = l.density_kg_m3;
+  m.density = l.density_kg_m3;   // dry: the mixture's density; saturated: the grains' (below)
+  if (c.settings.saturated) {
+    // Saturated mixture rho_m = (1 - n) rho_S + n rho_L with water (rho_L = 1000 kg/m^3).
+    CaseTwoPhase tp;
+    tp.liquid.density = 1000.0;
+    tp.liquid.bulk_modulus = 1e6 * l.material.liquid_bulk_modulus_mpa;
+    tp.porosity = l.material.porosity;
+    tp.conductivity = l.material.hydraulic_conductivity_m_s;
+    tp.drag = c.settings.semi_implicit_drag ? mpm::two_phase::Drag::SemiImplicit
+                                            : mpm::two_phase::Drag::Explicit;
+    const double n = tp.porosity;
+    if (!(n > 0.0 && n < 1.0))
+      throw InputError("landslide.material.porosity = " + json_fields::format_value(n) +
+                       ": must be in (0, 1) for a saturated MPM landslide");
+    const double rho_s = (l.density_kg_m3 - n * tp.liquid.density) / (1.0 - n);
+    if (!(rho_s > tp.liquid.density))
+      throw InputError("landslide.density_kg_m3 = " + json_fields::format_value(l.density_kg_m3) +
+                       ": must exceed " + json_fields::format_value(tp.liquid.density) +
+                       " kg/m^3 (water) for a saturated MPM landslide (grain density " +
+                       json_fields::format_value(rho_s) + " kg/m^3 from porosity " +
+                       json_fields::format_value(n) + ")");
+    m.density = rho_s;
+    c.two_phase = tp;
+  }
   m.young_modulus = 1e6 * l.material.young_modulus_mpa;
   m.poisson_ratio = l.material.poisson_ratio;
   m.friction_angle = l.material.friction_angle_deg * kPi / 180.0;

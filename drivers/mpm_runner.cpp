@@ -5,10 +5,16 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
+#include <limits>
 
+#include "drivers/progress.hpp"
 #include "kernels/mpm/overtopping.hpp"
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
+#include "kernels/mpm/two_phase/face_pore_pressure.hpp"
+#include "kernels/mpm/two_phase/two_phase_builder.hpp"
+#include "kernels/mpm/two_phase/two_phase_solver.hpp"
 
 namespace lsi {
 namespace {
@@ -77,18 +83,188 @@ void summarize_impact(MethodResult& r, const mpm::Barrier& barrier) {
   r.extra["overtopped_volume_m2"] = over.back();
 }
 
+using Exec = Kokkos::DefaultExecutionSpace;
+using Mem = Exec::memory_space;
+using DrySolver = mpm::Solver<Exec>;
+using SaturatedSolver = mpm::two_phase::TwoPhaseSolver<Exec>;
+
+using AddSeries = std::function<void(const char*, const char*, const char*, double)>;
+
+// The energy histories of each kind of solver.
+double add_energies(const DrySolver& sv, const AddSeries& add) {
+  const mpm::EnergyReport e = sv.energy();
+  add("kinetic_energy", "J/m", "kinetic energy of all material points", e.kinetic);
+  add("elastic_energy", "J/m", "elastic strain energy", e.elastic);
+  add("potential_energy", "J/m", "gravitational potential energy -m g.x", e.potential);
+  add("plastic_dissipation", "J/m", "work dissipated by plastic flow (accumulated)", e.plastic);
+  add("boundary_dissipation", "J/m", "work taken by the walls and the barrier (accumulated)",
+      e.boundary);
+  add("energy_residual", "1",
+      "(total energy - initial total) / (largest kinetic + elastic + dissipated + "
+      "|potential change|)",
+      sv.energy_residual(e));
+  return e.kinetic;
+}
+
+double add_energies(const SaturatedSolver& sv, const AddSeries& add) {
+  const mpm::two_phase::TwoPhaseEnergyReport e = sv.energy();
+  add("kinetic_energy", "J/m", "kinetic energy of both phases of all material points", e.kinetic());
+  add("kinetic_energy_liquid", "J/m", "kinetic energy of the pore liquid", e.kinetic_liquid);
+  add("elastic_energy", "J/m", "elastic strain energy of the skeleton (effective stress)", e.elastic);
+  add("liquid_energy", "J/m", "energy stored in the compressed pore liquid", e.liquid);
+  add("potential_energy", "J/m", "gravitational potential energy -m g.x", e.potential);
+  add("plastic_dissipation", "J/m", "work dissipated by plastic flow (accumulated)", e.plastic);
+  add("drag_dissipation", "J/m", "work dissipated by the Darcy drag (accumulated)", e.drag);
+  add("boundary_dissipation", "J/m", "work taken by the walls and the barrier (accumulated)",
+      e.boundary);
+  add("energy_residual", "1",
+      "(total energy - initial total) / (largest kinetic + stored + dissipated + |potential "
+      "change|)",
+      sv.energy_residual(e));
+  return e.kinetic();
+}
+
+const mpm::Particles<Mem>& solid_points(const DrySolver& sv) { return sv.particles(); }
+const mpm::Particles<Mem>& solid_points(const SaturatedSolver& sv) { return sv.particles().solid; }
+
+MpmSnapshot snapshot_of(const DrySolver& sv) { return take_snapshot(sv.particles(), sv.time()); }
+MpmSnapshot snapshot_of(const SaturatedSolver& sv) {
+  MpmSnapshot s = take_snapshot(sv.particles().solid, sv.time());
+  const auto p = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), sv.particles().pore_pressure);
+  s.pore_pressure.assign(p.data(), p.data() + p.extent(0));
+  return s;
+}
+
+// Impact outputs particular to a solver: the largest pore pressure on the face (saturated).
+void add_face_outputs(const DrySolver&, const MpmCase&, const AddSeries&) {}
+void add_face_outputs(const SaturatedSolver& sv, const MpmCase& c, const AddSeries& add) {
+  add("face_pore_pressure_max", "Pa",
+      "largest pore pressure of the points within one cell in front of the upstream face",
+      mpm::two_phase::face_pore_pressure<Exec>(sv.particles(), c.barrier->shape,
+                                               sv.barrier().motion.displacement,
+                                               c.settings.cell_size_m));
+}
+
+// Runs `solver` for the case: histories every output interval, impact outputs when the case
+// has a barrier, snapshots, progress on a terminal, and the summary.
+template <class SolverT>
+void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& out) {
+  MethodResult& r = out.result;
+  r.method = "mpm";
+  const AddSeries add = [&](const char* name, const char* units, const char* what, double v) {
+    auto& sr = r.series[name];
+    sr.units = units;
+    sr.description = what;
+    sr.values.push_back(v);
+  };
+  const double snap_dt = c.settings.snapshot_interval_s;
+  long next_snap = 0;   // index of the next snapshot time, next_snap * snap_dt
+  // Output times overshoot their targets by a step; this only absorbs the solver's rounding.
+  const double snap_tol = 1e-9 * std::min(snap_dt, c.settings.output_interval_s);
+  const double min_dt = solver.settings().min_time_step;
+  Progress progress("mpm " + c.name, c.settings.end_time_s);
+  const auto t0 = std::chrono::steady_clock::now();
+  double io_seconds = 0.0, last_output = 0.0;
+  bool barrier_left = false;
+  // Impact outputs: the contact forces as averages over each output interval (impulse /
+  // interval: the force of one step rings with the contact of single node columns).
+  auto impact_outputs = [&](double t, double kinetic) {
+    double imp[3][2];
+    solver.take_barrier_impulse(imp);
+    const double span = t - last_output;
+    const double inv = span > 0.0 ? 1.0 / span : 0.0;
+    const auto& face = c.barrier->shape.face[mpm::BarrierShape::Upstream];
+    const double fx = (imp[0][0] + imp[1][0] + imp[2][0]) * inv;
+    const double fy = (imp[0][1] + imp[1][1] + imp[2][1]) * inv;
+    const double fn = -(imp[0][0] * face.normal[0] + imp[0][1] * face.normal[1]) * inv;
+    r.force.push_back(fn);
+    r.force_horizontal.push_back(fx);
+    r.force_vertical.push_back(-fy);
+    r.landslide_kinetic_energy.push_back(kinetic);
+    const auto& motion = solver.barrier().motion;
+    r.barrier_velocity.push_back(motion.velocity);
+    r.barrier_displacement.push_back(motion.displacement);
+    const mpm::OvertoppingReport o = mpm::overtopping<Exec>(
+        solid_points(solver), c.barrier->shape.crest_upstream_x() + motion.displacement);
+    add("overtopped_volume", "m^2", "volume of material downstream of the upstream crest corner",
+        o.overtopped);
+    add("barrier_friction_work", "J/m", "work dissipated by the barrier's base friction",
+        motion.friction_work);
+    add("barrier_kinetic_energy", "J/m", "kinetic energy of the barrier",
+        0.5 * motion.mass * motion.velocity * motion.velocity);
+    add_face_outputs(solver, c, add);
+    last_output = t;
+  };
+  const mpm::Status status = solver.run(
+      c.settings.end_time_s, c.settings.output_interval_s,
+      [&](const SolverT& sv) {
+        const auto a = std::chrono::steady_clock::now();
+        r.time.push_back(sv.time());
+        const double kinetic = add_energies(sv, add);
+        add("time_step", "s", "time step of the last step", sv.time_step());
+        add("wall_force_x", "N/m", "reaction of the walls on the material, x", -sv.wall_force()[0]);
+        add("wall_force_y", "N/m", "reaction of the walls on the material, y", -sv.wall_force()[1]);
+        if (c.barrier) impact_outputs(sv.time(), kinetic);
+        const double t = sv.time();
+        // The solver's own test for its last output (Solver::run).
+        const bool at_end =
+            c.settings.end_time_s - t <= std::max(1e-12 * c.settings.end_time_s, min_dt);
+        if (snap_dt > 0 &&
+            (t + snap_tol >= next_snap * snap_dt || (at_end && out.snapshots.back().time < t))) {
+          out.snapshots.push_back(snapshot_of(sv));
+          while (next_snap * snap_dt <= t + snap_tol) ++next_snap;
+        }
+        progress.update(t, sv.steps());
+        io_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
+      },
+      [&](const SolverT& sv) {
+        // An impact run may end once the landslide has (almost) stopped and the barrier too.
+        if (!c.barrier || r.landslide_kinetic_energy.empty()) return false;
+        const auto& motion = sv.barrier().motion;
+        if (c.barrier->shape.toe[0] + c.barrier->shape.base_width + motion.displacement >
+            c.walls.right.position - 2.0 * c.settings.cell_size_m) {
+          barrier_left = true;   // it would push into the downstream wall
+          return true;
+        }
+        return r.landslide_kinetic_energy.back() < 1e-3 * c.landslide_initial_kinetic_energy &&
+               !motion.sliding();
+      });
+  progress.finish();
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.particles = particle_count;
+  out.finished = status == mpm::Status::Finished && !barrier_left;
+  out.status = barrier_left ? "stopped: the barrier reached the downstream end of the grid"
+                            : mpm::describe(status);
+  out.steps = solver.steps();
+  out.wall_seconds = total - io_seconds;
+  out.particle_updates_per_second =
+      out.wall_seconds > 0 ? double(particle_count) * solver.steps() / out.wall_seconds : 0.0;
+  r.peak_force = r.rise_time = r.impact_duration = r.final_displacement =
+      std::numeric_limits<double>::quiet_NaN();   // not an impact: not given
+  if (c.barrier && !r.force.empty()) summarize_impact(r, solver.barrier());
+  if (c.barrier && r.series.count("face_pore_pressure_max")) {
+    const auto& v = r.series.at("face_pore_pressure_max").values;
+    r.extra["face_pore_pressure_max_pa"] = *std::max_element(v.begin(), v.end());
+  }
+  r.extra["particles"] = particle_count;
+  r.extra["steps"] = static_cast<double>(solver.steps());
+  r.extra["end_time"] = solver.time();
+  r.extra["finished"] = out.finished ? 1.0 : 0.0;
+  r.extra["solver_seconds"] = out.wall_seconds;
+  r.extra["particle_updates_per_second"] = out.particle_updates_per_second;
+  r.extra["saturated"] = c.two_phase ? 1.0 : 0.0;
+}
+
 }  // namespace
 
 MpmOutcome run_mpm_case(const MpmCase& c) {
   ensure_kokkos();
-  using Exec = Kokkos::DefaultExecutionSpace;
-  using Mem = Exec::memory_space;
   MpmOutcome out;
-  {
-    const double lo[2] = {c.lower[0], c.lower[1]}, hi[2] = {c.upper[0], c.upper[1]};
-    mpm::Grid<Mem> grid(lo, hi, c.settings.cell_size_m);
-    auto particles = mpm::build_particles<Mem>(c.bodies, c.materials, lo, c.settings.cell_size_m);
-    out.particles = particles.count;
+  const double lo[2] = {c.lower[0], c.lower[1]}, hi[2] = {c.upper[0], c.upper[1]};
+  const double dx = c.settings.cell_size_m;
+  if (!c.two_phase) {   // dry: the single-phase path, no liquid field allocated
+    mpm::Grid<Mem> grid(lo, hi, dx);
+    auto particles = mpm::build_particles<Mem>(c.bodies, c.materials, lo, dx);
     mpm::Settings s;
     s.courant = c.settings.courant;
     s.max_time_step = c.settings.max_time_step_s;
@@ -97,112 +273,43 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
     s.transfer = c.settings.apic ? mpm::Transfer::Apic : mpm::Transfer::FlipPic;
     s.flip_ratio = c.settings.flip_ratio;
     s.atomic_scatter = c.settings.atomic_scatter;
-    mpm::Solver<Exec> solver(grid, particles, c.materials, c.walls, s);
+    DrySolver solver(grid, particles, c.materials, c.walls, s);
     if (c.barrier) solver.attach_barrier(*c.barrier);
-
-    MethodResult& r = out.result;
-    r.method = "mpm";
-    auto add = [&](const char* name, const char* units, const char* what, double v) {
-      auto& sr = r.series[name];
-      sr.units = units;
-      sr.description = what;
-      sr.values.push_back(v);
-    };
-    const double snap_dt = c.settings.snapshot_interval_s;
-    long next_snap = 0;   // index of the next snapshot time, next_snap * snap_dt
-    // Output times overshoot their targets by a step; this only absorbs the solver's rounding.
-    const double snap_tol = 1e-9 * std::min(snap_dt, c.settings.output_interval_s);
-    const auto t0 = std::chrono::steady_clock::now();
-    double io_seconds = 0.0;
-    double last_output = 0.0;
-    bool barrier_left = false;
-    // Impact outputs: the contact forces as averages over each output interval (impulse /
-    // interval: the force of one step rings with the contact of single node columns).
-    auto impact_outputs = [&](double t, const mpm::EnergyReport& e) {
-      double imp[3][2];
-      solver.take_barrier_impulse(imp);
-      const double span = t - last_output;
-      const double inv = span > 0.0 ? 1.0 / span : 0.0;
-      const auto& face = c.barrier->shape.face[mpm::BarrierShape::Upstream];
-      const double fx = (imp[0][0] + imp[1][0] + imp[2][0]) * inv;
-      const double fy = (imp[0][1] + imp[1][1] + imp[2][1]) * inv;
-      const double fn = -(imp[0][0] * face.normal[0] + imp[0][1] * face.normal[1]) * inv;
-      r.force.push_back(fn);
-      r.force_horizontal.push_back(fx);
-      r.force_vertical.push_back(-fy);
-      r.landslide_kinetic_energy.push_back(e.kinetic);
-      const auto& motion = solver.barrier().motion;
-      r.barrier_velocity.push_back(motion.velocity);
-      r.barrier_displacement.push_back(motion.displacement);
-      const mpm::OvertoppingReport o = mpm::overtopping<Exec>(
-          solver.particles(), c.barrier->shape.crest_upstream_x() + motion.displacement);
-      add("overtopped_volume", "m^2", "volume of material downstream of the upstream crest corner",
-          o.overtopped);
-      add("barrier_friction_work", "J/m", "work dissipated by the barrier's base friction",
-          motion.friction_work);
-      add("barrier_kinetic_energy", "J/m", "kinetic energy of the barrier",
-          0.5 * motion.mass * motion.velocity * motion.velocity);
-      last_output = t;
-    };
-    const mpm::Status status = solver.run(
-        c.settings.end_time_s, c.settings.output_interval_s, [&](const mpm::Solver<Exec>& sv) {
-          const auto a = std::chrono::steady_clock::now();
-          const mpm::EnergyReport e = sv.energy();
-          r.time.push_back(sv.time());
-          add("kinetic_energy", "J/m", "kinetic energy of all material points", e.kinetic);
-          add("elastic_energy", "J/m", "elastic strain energy", e.elastic);
-          add("potential_energy", "J/m", "gravitational potential energy -m g.x", e.potential);
-          add("plastic_dissipation", "J/m", "work dissipated by plastic flow (accumulated)", e.plastic);
-          add("boundary_dissipation", "J/m", "work dissipated at the walls (accumulated)", e.boundary);
-          add("energy_residual", "1",
-              "(total energy - initial total) / (largest kinetic + elastic + dissipated + "
-              "|potential change|)",
-              sv.energy_residual(e));
-          add("time_step", "s", "time step of the last step", sv.time_step());
-          add("wall_force_x", "N/m", "reaction of the walls on the material, x", -sv.wall_force()[0]);
-          add("wall_force_y", "N/m", "reaction of the walls on the material, y", -sv.wall_force()[1]);
-          if (c.barrier) impact_outputs(sv.time(), e);
-          const double t = sv.time();
-          // The solver's own test for its last output (mpm::Solver::run).
-          const bool at_end =
-              c.settings.end_time_s - t <= std::max(1e-12 * c.settings.end_time_s, s.min_time_step);
-          if (snap_dt > 0 &&
-              (t + snap_tol >= next_snap * snap_dt || (at_end && out.snapshots.back().time < t))) {
-            out.snapshots.push_back(take_snapshot(sv.particles(), t));
-            while (next_snap * snap_dt <= t + snap_tol) ++next_snap;
-          }
-          io_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
-        },
-        [&](const mpm::Solver<Exec>& sv) {
-          // An impact run may end once the landslide has (almost) stopped and the barrier too.
-          if (!c.barrier || r.landslide_kinetic_energy.empty()) return false;
-          const auto& motion = sv.barrier().motion;
-          if (c.barrier->shape.toe[0] + c.barrier->shape.base_width + motion.displacement >
-              c.walls.right.position - 2.0 * c.settings.cell_size_m) {
-            barrier_left = true;   // it would push into the downstream wall
-            return true;
-          }
-          return r.landslide_kinetic_energy.back() < 1e-3 * c.landslide_initial_kinetic_energy &&
-                 !sv.barrier().motion.sliding();
-        });
-    const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    out.finished = status == mpm::Status::Finished && !barrier_left;
-    out.status = barrier_left ? "stopped: the barrier reached the downstream end of the grid"
-                              : mpm::describe(status);
-    out.steps = solver.steps();
-    out.wall_seconds = total - io_seconds;
-    out.particle_updates_per_second =
-        out.wall_seconds > 0 ? double(particles.count) * solver.steps() / out.wall_seconds : 0.0;
-    r.peak_force = r.rise_time = r.impact_duration = r.final_displacement =
-        std::numeric_limits<double>::quiet_NaN();   // not an impact: not given
-    if (c.barrier && !r.force.empty()) summarize_impact(r, solver.barrier());
-    r.extra["particles"] = particles.count;
-    r.extra["steps"] = static_cast<double>(solver.steps());
-    r.extra["end_time"] = solver.time();
-    r.extra["finished"] = out.finished ? 1.0 : 0.0;
-    r.extra["solver_seconds"] = out.wall_seconds;
-    r.extra["particle_updates_per_second"] = out.particle_updates_per_second;
+    drive(c, solver, particles.count, out);
+    return out;
   }
+  namespace tp = mpm::two_phase;
+  tp::TwoPhaseGrid<Mem> grid(lo, hi, dx);
+  std::vector<tp::TwoPhaseBodySpec> bodies;
+  for (const auto& b : c.bodies) {
+    tp::TwoPhaseBodySpec t;
+    t.polygon = b.polygon;
+    t.material = b.material;
+    t.velocity = b.velocity;
+    t.points_per_cell_direction = b.points_per_cell_direction;
+    t.porosity = c.two_phase->porosity;
+    t.hydraulic_conductivity = c.two_phase->conductivity;
+    t.geostatic_k0 = b.geostatic_k0;
+    t.surface_y = b.surface_y;
+    t.surface_from_polygon = b.surface_from_polygon;
+    t.gravity = b.gravity;
+    bodies.push_back(t);
+  }
+  auto particles = tp::build_two_phase_particles<Mem>(bodies, c.materials, c.two_phase->liquid, lo, dx);
+  tp::TwoPhaseSettings s;
+  s.courant = c.settings.courant;
+  s.max_time_step = c.settings.max_time_step_s;
+  s.gravity[0] = c.gravity[0];
+  s.gravity[1] = c.gravity[1];
+  s.drag = c.two_phase->drag;
+  s.atomic_scatter = c.settings.atomic_scatter;
+  // The pore liquid does not penetrate the walls (impermeable) and slides along them freely.
+  mpm::Boundaries liquid_walls = c.walls;
+  for (mpm::Wall* w : {&liquid_walls.left, &liquid_walls.right, &liquid_walls.bottom, &liquid_walls.top})
+    w->friction = 0.0;
+  SaturatedSolver solver(grid, particles, c.materials, c.two_phase->liquid, c.walls, liquid_walls, s);
+  if (c.barrier) solver.attach_barrier(*c.barrier);
+  drive(c, solver, particles.count, out);
   return out;
 }
 

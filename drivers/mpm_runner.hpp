@@ -19,6 +19,7 @@ struct MpmSnapshot {
   std::vector<double> stress;              // n x 4 (xx, yy, xy, zz), Pa, tension positive
   std::vector<double> deviatoric_strain;   // n, accumulated equivalent shear strain
   std::vector<double> plastic_work;        // n, J/m dissipated (accumulated)
+  std::vector<double> pore_pressure;       // n, Pa, compression positive (saturated runs only)
 };
 
 struct MpmOutcome {

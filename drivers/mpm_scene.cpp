@@ -14,7 +14,7 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
   std::vector<std::string> keys = {"cell_size_m", "particles_per_cell", "courant", "end_time_s",
                                    "max_time_step_s", "output_interval_s", "transfer",
                                    "flip_ratio", "scatter", "snapshot_interval_s"};
-  if (impact) keys.push_back("base_friction");
+  if (impact) keys.insert(keys.end(), {"base_friction", "phases", "drag"});
   const jf::ObjectReader r(block, path, keys);
   MpmSettings s;
   s.cell_size_m = r.number("cell_size_m", jf::greater_than(0, "m"));
@@ -28,6 +28,10 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
     s.end_time_given = t.has_value();
     s.end_time_s = t.value_or(1.0);   // replaced by the impact scene's default
     s.base_friction = r.number_or("base_friction", 0.0, jf::at_least(0));
+    s.saturated = r.choice("phases", {"saturated", "dry"}, std::string("saturated")) == "saturated";
+    s.semi_implicit_drag =
+        r.choice("drag", {"semi-implicit", "explicit"}, std::string("semi-implicit")) == "semi-implicit";
+    if (!s.saturated && r.has("drag")) r.fail_at("drag", "only used with \"phases\": \"saturated\"");
   } else {
     s.end_time_s = r.number("end_time_s", jf::greater_than(0, "s"));
   }

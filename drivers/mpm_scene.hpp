@@ -13,6 +13,8 @@
 #include "kernels/mpm/boundary.hpp"
 #include "kernels/mpm/constitutive/material.hpp"
 #include "kernels/mpm/particle_builder.hpp"
+#include "kernels/mpm/two_phase/two_phase_grid_update.hpp"
+#include "kernels/mpm/two_phase/two_phase_particles.hpp"
 
 namespace lsi {
 
@@ -29,6 +31,8 @@ struct MpmSettings {
   double snapshot_interval_s = 0.0;   // particle snapshots every this many seconds; 0 = none
   // Impact scenes only (a landslide scene with `methods.mpm`):
   double base_friction = 0.0;         // Coulomb coefficient of the base under the flow (paper: 0)
+  bool saturated = true;              // "phases": "saturated" (two-phase, the paper) or "dry"
+  bool semi_implicit_drag = true;     // "drag": "semi-implicit" or "explicit" (saturated only)
   bool end_time_given = true;         // false: end_time_s is the impact scene's default
 };
 
@@ -44,6 +48,14 @@ struct MpmCase {
   nlohmann::json source;
   // Impact scenes: the rigid barrier, and the scene's landslide (for the impact outputs).
   std::optional<mpm::Barrier> barrier;
+  // Saturated (two-phase) cases: the bodies' porosity and conductivity, the liquid, the drag.
+  struct TwoPhase {
+    mpm::two_phase::Liquid liquid;
+    double porosity = 0.5;
+    double conductivity = 1e-4;   // k, m/s
+    mpm::two_phase::Drag drag = mpm::two_phase::Drag::SemiImplicit;
+  };
+  std::optional<TwoPhase> two_phase;
   double landslide_initial_kinetic_energy = 0.0;   // J/m
 };
 

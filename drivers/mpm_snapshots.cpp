@@ -134,6 +134,7 @@ void write_mpm_snapshots(long long file_id, const std::vector<MpmSnapshot>& snap
     dataset(g, "stress", s.stress, n, 4, "Pa", "xx yy xy zz");
     dataset(g, "deviatoric_strain", s.deviatoric_strain, n, 0, "1");
     dataset(g, "plastic_work", s.plastic_work, n, 0, "J/m");
+    if (s.pore_pressure.size() == n) dataset(g, "pore_pressure", s.pore_pressure, n, 0, "Pa");
   }
 }
 
@@ -181,7 +182,9 @@ void write_mpm_snapshots_xdmf(const std::string& h5_path, const std::vector<MpmS
         << "          </DataItem>\n"
         << "        </Attribute>\n";
     }
-    for (const char* scalar : {"deviatoric_strain", "plastic_work"})
+    std::vector<const char*> scalars = {"deviatoric_strain", "plastic_work"};
+    if (!snapshots[k].pore_pressure.empty()) scalars.push_back("pore_pressure");
+    for (const char* scalar : scalars)
       x << "        <Attribute Name=\"" << scalar << "\" AttributeType=\"Scalar\" Center=\"Node\">\n"
         << "          " << item(n, scalar) << "\n"
         << "        </Attribute>\n";

@@ -33,6 +33,7 @@ struct TwoPhaseBodySpec {
   // Initial state at rest (see above); both off when geostatic_k0 < 0.
   double geostatic_k0 = -1.0;
   double surface_y = 0.0;                         // m, top surface (and water table)
+  bool surface_from_polygon = false;              // true: the polygon's top above each point
   double gravity = 9.81;                          // m/s^2, magnitude
   double excess_pore_pressure = 0.0;              // Pa, uniform, added to p
   double surface_load = 0.0;                      // Pa, on the top row of points (surface_y)
@@ -72,7 +73,8 @@ TwoPhaseParticles<MemorySpace> build_two_phase_particles(const std::vector<TwoPh
             Point P{{x, y}, {body.velocity[0], body.velocity[1]}, (1.0 - n) * mat.density * V,
                     n * rho_L * V, V, n, body.hydraulic_conductivity, body.excess_pore_pressure,
                     {0, 0, 0, 0}, {0, 0}, body.material};
-            const double depth = body.surface_y - y;
+            const double depth =
+                (body.surface_from_polygon ? polygon_top(body.polygon, x) : body.surface_y) - y;
             if (body.geostatic_k0 >= 0.0 && depth > 0.0) {
               P.p += rho_L * body.gravity * depth;
               const double syy = -(rho_m - rho_L) * body.gravity * depth;

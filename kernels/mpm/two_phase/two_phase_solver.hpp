@@ -4,6 +4,7 @@
 //   -> P2G of both phases + drag (two_phase_p2g.hpp)
 //   -> grid update: liquid first, solid from the mixture; explicit or semi-implicit drag; walls
 //      for both phases (two_phase_grid_update.hpp)
+//   [-> barrier contact of both phases (the liquid without friction) -> barrier motion]
 //   -> G2P of both phases, points move with the solid, health (two_phase_g2p.hpp)
 //   -> effective stress: the single-phase stress update on the skeleton (stress_update.hpp:
 //      Jaumann + linear elastic / Mohr-Coulomb, volume)
@@ -125,6 +126,7 @@ class TwoPhaseSolver {
     seepage_work_ += gu.seepage_gravity_work;
     wall_force_[0] = gu.wall_force[0];
     wall_force_[1] = gu.wall_force[1];
+    if (has_barrier_) barrier_step();
     const TwoPhaseG2PReport r = two_phase_g2p<ExecSpace>(particles_, grid_, dt_, cw, cl);
     load_work_ += r.load_work;
     if (plastic_) stress_update<ExecSpace, true>(particles_.solid, materials_, dt_);
@@ -141,7 +143,8 @@ class TwoPhaseSolver {
   // Runs to end_time, calling on_output at t = 0 and every output_interval (and at the end);
   // the energy growth is checked at each output (as Solver::run).
   Status run(double end_time, double output_interval,
-             const std::function<void(const TwoPhaseSolver&)>& on_output = {}) {
+             const std::function<void(const TwoPhaseSolver&)>& on_output = {},
+             const std::function<bool(const TwoPhaseSolver&)>& done = {}) {
     if (on_output) on_output(*this);
     double next_output = time_ + output_interval;
     struct Restore {
@@ -158,6 +161,7 @@ class TwoPhaseSolver {
         next_output += output_interval;
         if (energy_grew()) return status_ = Status::EnergyGrowth;
         if (on_output) on_output(*this);
+        if (done && done(*this)) break;
       }
     }
     return status_ = Status::Finished;
@@ -182,6 +186,24 @@ class TwoPhaseSolver {
     return (e.total() - initial_.total()) / scale;
   }
 
+  // Adds a rigid barrier (before the first step); as Solver::attach_barrier.
+  void attach_barrier(const Barrier& b) {
+    barrier_ = b;
+    has_barrier_ = true;
+  }
+  bool has_barrier() const { return has_barrier_; }
+  const Barrier& barrier() const { return barrier_; }
+  // Contact forces on the barrier during the last step, per face (N/m), both phases.
+  const BarrierContactReport& barrier_contact_report() const { return contact_; }
+  // Contact impulse on the barrier per face (N s/m, x and y) since the last call; resets it.
+  void take_barrier_impulse(double impulse[3][2]) {
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 2; ++d) {
+        impulse[k][d] = contact_impulse_[k][d];
+        contact_impulse_[k][d] = 0.0;
+      }
+  }
+
   double time() const { return time_; }
   double time_step() const { return dt_; }
   long steps() const { return steps_; }
@@ -195,6 +217,26 @@ class TwoPhaseSolver {
   bool has_plasticity() const { return plastic_; }
 
  private:
+  // Contact of both phases with the barrier: the solid with the face friction, the liquid
+  // without (no shear stress in the pore liquid); the barrier moves under their sum.
+  void barrier_step() {
+    const auto& m = barrier_.motion;
+    const BarrierContactReport s = barrier_contact<ExecSpace>(
+        grid_.solid, barrier_.shape, m.displacement, m.velocity, barrier_.face_friction, dt_);
+    const BarrierContactReport l = barrier_contact<ExecSpace>(
+        grid_.liquid, barrier_.shape, m.displacement, m.velocity, 0.0, dt_);
+    contact_ = s;
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 2; ++d) {
+        contact_.force[k][d] += l.force[k][d];
+        contact_impulse_[k][d] += contact_.force[k][d] * dt_;
+      }
+    contact_.work += l.work;
+    contact_.nodes += l.nodes;
+    boundary_ += contact_.work;
+    if (!barrier_.fixed) barrier_.motion.advance(contact_.total(0), contact_.total(1), dt_);
+  }
+
   bool energy_grew() {
     const TwoPhaseEnergyReport e = energy();
     max_mechanical_ = std::max(max_mechanical_, e.kinetic() + e.elastic + e.liquid);
@@ -216,6 +258,10 @@ class TwoPhaseSolver {
   double wall_force_[2] = {0.0, 0.0};
   long steps_ = 0;
   bool plastic_ = false;
+  bool has_barrier_ = false;
+  Barrier barrier_;
+  BarrierContactReport contact_;
+  double contact_impulse_[3][2] = {{0, 0}, {0, 0}, {0, 0}};
   Status status_ = Status::Running;
   TwoPhaseEnergyReport initial_;
   double max_mechanical_ = 0.0;
