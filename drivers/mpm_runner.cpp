@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "drivers/progress.hpp"
+#include "kernels/mpm/momentum.hpp"
 #include "kernels/mpm/overtopping.hpp"
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
@@ -135,6 +136,23 @@ MpmSnapshot snapshot_of(const SaturatedSolver& sv) {
   return s;
 }
 
+// Momentum of the material (both phases when saturated), kg m/s per m.
+void material_momentum(const DrySolver& sv, double p[2]) { mpm::momentum<Exec>(sv.particles(), p); }
+void material_momentum(const SaturatedSolver& sv, double p[2]) {
+  mpm::momentum<Exec>(sv.particles().solid, p);
+  const auto& tp = sv.particles();
+  double lx = 0.0, ly = 0.0;
+  Kokkos::parallel_reduce(
+      "lsi::mpm::two_phase::liquid_momentum", Kokkos::RangePolicy<Exec>(0, tp.count),
+      KOKKOS_LAMBDA(const int q, double& x, double& y) {
+        x += tp.liquid_mass(q) * tp.liquid_velocity(q, 0);
+        y += tp.liquid_mass(q) * tp.liquid_velocity(q, 1);
+      },
+      lx, ly);
+  p[0] += lx;
+  p[1] += ly;
+}
+
 // Impact outputs particular to a solver: the largest pore pressure on the face (saturated).
 void add_face_outputs(const DrySolver&, const MpmCase&, const AddSeries&) {}
 void add_face_outputs(const SaturatedSolver& sv, const MpmCase& c, const AddSeries& add) {
@@ -193,6 +211,9 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
     add("barrier_kinetic_energy", "J/m", "kinetic energy of the barrier",
         0.5 * motion.mass * motion.velocity * motion.velocity);
     add_face_outputs(solver, c, add);
+    double p[2];
+    material_momentum(solver, p);
+    add("momentum_x", "kg m/s per m", "horizontal momentum of the material (both phases)", p[0]);
     last_output = t;
   };
   const mpm::Status status = solver.run(

@@ -242,6 +242,9 @@ TEST(Cli, MpmSceneErrorsNameTheField) {
   };
   const Bad cases[] = {
       {mpm_block_scene(0.5, R"(, "flip_ratio": 0.5)"), "methods.mpm.flip_ratio = 0.5: only used with"},
+      {mpm_block_scene(0.5, R"(, "transfer": "pic", "flip_ratio": 0.5)"),
+       "methods.mpm.flip_ratio = 0.5: only used with"},
+      {mpm_block_scene(0.5, R"(, "transfer": "apick")"), "methods.mpm.transfer"},
       {mpm_block_scene(0.5, R"(, "cell_sise_m": 1)"), "methods.mpm.cell_sise_m: unknown key"},
       {mpm_block_scene(-1), "methods.mpm.courant = -1"},
   };
@@ -362,6 +365,109 @@ TEST(Cli, MpmBadSnapshotIntervalNamesTheField) {
     EXPECT_EQ(r.code, 2) << bad << ": " << r.out;
     EXPECT_NE(r.out.find("methods.mpm.snapshot_interval_s"), std::string::npos) << r.out;
   }
+}
+
+// A small landslide scene with an MPM block: a 1 m x 3 m rectangle at 4 m/s against a fixed
+// vertical barrier, on a smooth base.
+std::string impact_scene(const std::string& mpm) {
+  return R"({"name": "small",
+ "landslide": {"thickness_m": 1.0, "velocity_m_s": 4, "density_kg_m3": 1800,
+   "shape": {"kind": "rectangle", "length_m": 3.0},
+   "material": {"porosity": 0.5, "friction_angle_deg": 20, "young_modulus_mpa": 2,
+     "poisson_ratio": 0.25, "hydraulic_conductivity_m_s": 1e-4, "liquid_bulk_modulus_mpa": 30}},
+ "barrier": {"height_m": 2, "base_width_m": 1.5, "top_width_m": 1.0, "face_angle_deg": 90,
+   "density_kg_m3": 2400, "base_friction": 0.5, "face_friction": 0.3, "fixed": true},
+ "methods": {"empirical": {}, "analytical": {}, "mpm": )" + mpm + "}}";
+}
+
+// Checks the MPM impact histories of a result file: every history on the time axis, and the
+// impulse the barrier received (the time integral of the horizontal force, which is stored as
+// the mean over each output interval) equal to the material's loss of momentum as long as
+// nothing else pushes it horizontally (the smooth base cannot; the upstream wall can, once the
+// rebounding flow reaches it): to 1e-9 relative, round-off of the accumulated sums.
+void check_impact_histories(const lsi::MethodResult& m, double initial_momentum) {
+  ASSERT_GT(m.time.size(), 20u);
+  for (const auto* h : {&m.force, &m.force_horizontal, &m.force_vertical,
+                        &m.landslide_kinetic_energy, &m.barrier_velocity, &m.barrier_displacement})
+    EXPECT_EQ(h->size(), m.time.size());
+  const auto& p = m.series.at("momentum_x").values;
+  const auto& wall = m.series.at("wall_force_x").values;
+  EXPECT_NEAR(p[0], initial_momentum, 1e-9 * initial_momentum);
+  double impulse = 0.0;
+  size_t checked = 0;
+  for (size_t i = 1; i < m.time.size() && wall[i] == 0.0; ++i, ++checked) {
+    impulse += m.force_horizontal[i] * (m.time[i] - m.time[i - 1]);
+    EXPECT_NEAR(impulse, p[0] - p[i], 1e-9 * initial_momentum) << "t = " << m.time[i];
+  }
+  EXPECT_GT(checked, 20u);
+  EXPECT_GT(impulse, 0.5 * initial_momentum);   // the barrier did stop the flow
+}
+
+TEST(Cli, MpmImpactRunsBesideTheClosedFormsAndConservesMomentum) {
+  const fs::path scene = write_file("impact_dry.json",
+                                    impact_scene(R"({"cell_size_m": 0.125, "phases": "dry"})"));
+  const fs::path out = temp_dir() / "impact_dry.h5";
+  const Outcome r = run("run " + scene.string() + " --out " + out.string() + " --format json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(r.out.find("steps/s"), std::string::npos) << "no progress line when not a terminal";
+  const auto j = nlohmann::json::parse(r.out.substr(r.out.find('{')));
+  for (const char* m : {"empirical", "analytical", "mpm"}) ASSERT_TRUE(j.contains(m)) << m;
+  EXPECT_EQ(j["mpm"]["saturated"], 0.0);
+  EXPECT_EQ(j["mpm"]["final_displacement"], 0.0);   // a fixed barrier never moves
+  // The blunt front hits the vertical face like an elastic bar (wave theory rho c v0 h =
+  // 1800 x 36.5 x 4 x 1 = 263 kN/m, the P-wave speed of E = 2 MPa, nu = 0.25); averaged over an
+  // output interval (7 ms, a fifth of the wave's transit) it is lower: 200-280 kN/m.
+  EXPECT_GT(j["mpm"]["peak_force"].get<double>(), 2.0e5);
+  EXPECT_LT(j["mpm"]["peak_force"].get<double>(), 2.8e5);
+  const auto stored = lsi::read_results(out.string());
+  ASSERT_EQ(stored.results.size(), 3u);
+  check_impact_histories(stored.results[2], 1800.0 * 3.0 * 4.0);
+}
+
+TEST(Cli, MpmSaturatedImpactReportsPorePressureOnTheFace) {
+  const fs::path scene = write_file(
+      "impact_sat.json", impact_scene(R"({"cell_size_m": 0.125, "end_time_s": 0.6})"));
+  const fs::path out = temp_dir() / "impact_sat.h5";
+  const Outcome r = run("run " + scene.string() + " --methods mpm --out " + out.string() +
+                        " --format json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out.substr(r.out.find('{')));
+  ASSERT_FALSE(j.contains("empirical"));   // --methods mpm: only the MPM
+  EXPECT_EQ(j["mpm"]["saturated"], 1.0);
+  // At least the hydrostatic pressure at the base of the 1 m flow, 9.81 kPa: the impact raises
+  // it (the undrained mixture is stiff).
+  EXPECT_GT(j["mpm"]["face_pore_pressure_max_pa"].get<double>(), 9810.0);
+  const auto stored = lsi::read_results(out.string());
+  ASSERT_EQ(stored.results.size(), 1u);
+  // Both phases' momentum: the grains (rho_S = 2600 kg/m^3 from rho_m = 1800, n = 0.5) and the
+  // water carry the mixture's M v0 together.
+  check_impact_histories(stored.results[0], 1800.0 * 3.0 * 4.0);
+}
+
+TEST(Cli, MpmImpactErrorsNameTheField) {
+  struct Bad {
+    std::string mpm, expect;
+  };
+  const Bad cases[] = {
+      {R"({"cell_size_m": 0.5})", "methods.mpm.cell_size_m = 0.5: must be <= landslide.thickness_m / 4"},
+      {R"({"cell_size_m": 0.1, "phases": "wet"})", "methods.mpm.phases"},
+      {R"({"cell_size_m": 0.1, "phases": "dry", "drag": "explicit"})",
+       "methods.mpm.drag = \"explicit\": only used with"},
+      {R"({"cell_size_m": 0.1, "base_friction": -1})", "methods.mpm.base_friction = -1"},
+      {R"({"cell_size_m": 0.1, "end_time_s": 0})", "methods.mpm.end_time_s = 0"},
+  };
+  int k = 0;
+  for (const auto& c : cases) {
+    const fs::path p = write_file("impact_bad" + std::to_string(k++) + ".json", impact_scene(c.mpm));
+    const Outcome r = run("run " + p.string() + " --methods mpm");
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_NE(r.out.find(c.expect), std::string::npos) << r.out;
+  }
+  // --methods mpm on a scene without methods.mpm.
+  const Outcome r = run("run " + reference("L1-B1") + " --methods mpm");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("--methods mpm: the scene has no methods.mpm block"), std::string::npos)
+      << r.out;
 }
 
 TEST(Cli, CompareWritesOneFilePerSceneAndPrintsTheTable) {
