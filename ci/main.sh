@@ -11,9 +11,7 @@ out="$root/results/reference"
 mkdir -p "$out"
 scenes=("$root"/scenes/reference/L?-B?.json)
 "$build/drivers/lsi" compare "${scenes[@]}" --out-dir "$out" --max-displacement 0.5 \
-  | tee "$out/comparison.txt"
-"$build/drivers/lsi" compare "${scenes[@]}" --max-displacement 0.5 --format json \
-  > "$out/comparison.json"
+  --summary-json "$out/comparison.json" | tee "$out/comparison.txt"
 MPLCONFIGDIR="$out/.mplconfig" /usr/bin/python3 "$root/drivers/lsi_plot.py" "$out"/L?-B?.h5 \
   --out-dir "$out/plots" >/dev/null
 rm -rf "$out/.mplconfig"

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -63,7 +64,8 @@ lsi::Scene load(const std::string& path) {
 // what it computed; `mpm_status` then holds the reason (empty when finished or not run).
 std::vector<lsi::MethodResult> run_scene(const std::string& path, const lsi::Scene& scene,
                                          const std::vector<std::string>& only,
-                                         std::string& mpm_status) {
+                                         std::string& mpm_status,
+                                         std::vector<lsi::MpmSnapshot>* snapshots = nullptr) {
   const bool named_mpm = std::find(only.begin(), only.end(), "mpm") != only.end();
   std::vector<std::string> closed;
   for (const auto& m : only)
@@ -77,9 +79,10 @@ std::vector<lsi::MethodResult> run_scene(const std::string& path, const lsi::Sce
     throw lsi::InputError(path + ": --methods mpm: the scene has no methods.mpm block "
                           "(cell_size_m, ...; docs/scene_schema.md)");
   const lsi::MpmCase c = with_path(path, [&] { return lsi::impact_case(scene); });
-  const lsi::MpmOutcome o = lsi::run_mpm_case(c);
+  lsi::MpmOutcome o = lsi::run_mpm_case(c);
   results.push_back(o.result);
   if (!o.finished) mpm_status = o.status;
+  if (snapshots) *snapshots = std::move(o.snapshots);
   return results;
 }
 
@@ -175,6 +178,9 @@ int main(int argc, char** argv) {
   compare->add_option("--max-displacement", max_displacement,
                       "Tolerable final displacement for the mass column (m)");
   compare->add_option("--format", format, "table or json");
+  std::string summary_json_path;
+  compare->add_option("--summary-json", summary_json_path,
+                      "Also write the comparison as JSON to this file (written atomically)");
 
   try {
     app.parse(argc, argv);
@@ -197,8 +203,18 @@ int main(int argc, char** argv) {
       if (lsi::is_mpm_case(doc)) return run_mpm_case(scene_path, doc, out_path, format);
       const lsi::Scene scene = with_path(scene_path, [&] { return lsi::parse_scene(doc); });
       std::string mpm_status;
-      const auto results = run_scene(scene_path, scene, only, mpm_status);
-      if (!out_path.empty()) lsi::write_results(out_path, scene.source, results);
+      std::vector<lsi::MpmSnapshot> snapshots;
+      const auto results = run_scene(scene_path, scene, only, mpm_status, &snapshots);
+      if (!out_path.empty()) {
+        if (snapshots.empty()) {
+          lsi::write_results(out_path, scene.source, results);
+        } else {   // as for verification scenes: the XDMF index after its HDF5 file
+          lsi::write_results(out_path, scene.source, results, [&](long long file_id) {
+            lsi::write_mpm_snapshots(file_id, snapshots);
+          });
+          lsi::write_mpm_snapshots_xdmf(out_path, snapshots);
+        }
+      }
       if (format == "json") std::cout << lsi::summary_json(results).dump(2) << "\n";
       else std::cout << lsi::summary_table(scene, results);
       if (!mpm_status.empty()) {
@@ -230,6 +246,15 @@ int main(int argc, char** argv) {
       }
       if (format == "json") std::cout << lsi::comparison_json(rows, max_displacement).dump(2) << "\n";
       else std::cout << lsi::comparison_table(rows, max_displacement);
+      if (!summary_json_path.empty()) {
+        const std::string tmp = summary_json_path + ".tmp." + std::to_string(getpid());
+        {
+          std::ofstream f(tmp);
+          f << lsi::comparison_json(rows, max_displacement).dump(2) << "\n";
+          if (!f) throw std::runtime_error("cannot write '" + summary_json_path + "'");
+        }
+        std::filesystem::rename(tmp, summary_json_path);
+      }
       if (unstable) return 3;
     }
   } catch (const lsi::InputError& e) {

@@ -112,25 +112,32 @@ const MassDesign* find(const std::vector<MassDesign>& ds, const std::string& m) 
 }  // namespace
 
 std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_displacement_m) {
-  // Columns: E = empirical, A = analytical (later M = MPM).
+  // Columns: E = empirical, A = analytical, M = MPM (when any row ran it).
+  bool mpm = false;
+  for (const auto& row : rows) mpm = mpm || find(row.results, "mpm");
+  std::vector<const char*> methods = {"empirical", "analytical"};
+  if (mpm) methods.push_back("mpm");
+  const size_t w = 9;
+  const std::string heads = mpm ? "E        A        M" : "E        A";
+  const size_t group = w * methods.size() + 2;
   std::ostringstream o;
-  o << "Comparison of the design methods (E: empirical, A: analytical); forces normal to the "
-       "face\n";
-  o << pad("case", 8) << pad("peak force [kN/m]", 20) << pad("impact period [s]", 20)
-    << pad("final displ. [m]", 22) << "mass for " << fmt(max_displacement_m) << " m [t/m]\n";
-  o << pad("", 8) << pad("E        A", 20) << pad("E        A", 20) << pad("E          A", 22)
-    << "E        A\n";
+  o << "Comparison of the design methods (E: empirical, A: analytical"
+    << (mpm ? ", M: MPM" : "") << "); forces normal to the face\n";
+  o << pad("case", 8) << pad("peak force [kN/m]", group) << pad("impact period [s]", group)
+    << pad("final displ. [m]", group) << "mass for " << fmt(max_displacement_m) << " m [t/m]\n";
+  o << pad("", 8) << pad(heads, group) << pad(heads, group) << pad(heads, group) << "E        A\n";
   for (const auto& row : rows) {
-    const MethodResult* e = find(row.results, "empirical");
-    const MethodResult* a = find(row.results, "analytical");
-    auto col = [&](const MethodResult* r, double MethodResult::*f, const char* format, double s,
-                   size_t w) { return pad(r ? fmt(r->*f / s, format) : "-", w); };
-    o << pad(row.scene, 8) << col(e, &MethodResult::peak_force, "%.1f", 1e3, 9)
-      << col(a, &MethodResult::peak_force, "%.1f", 1e3, 11)
-      << col(e, &MethodResult::impact_duration, "%.2f", 1, 9)
-      << col(a, &MethodResult::impact_duration, "%.2f", 1, 11)
-      << col(e, &MethodResult::final_displacement, "%.3f", 1, 11)
-      << col(a, &MethodResult::final_displacement, "%.3f", 1, 11);
+    auto cols = [&](double MethodResult::*f, const char* format, double scale) {
+      std::string out;
+      for (const char* m : methods) {
+        const MethodResult* r = find(row.results, m);
+        out += pad(r ? fmt(r->*f / scale, format) : "-", w);
+      }
+      return pad(out, group);
+    };
+    o << pad(row.scene, 8) << cols(&MethodResult::peak_force, "%.1f", 1e3)
+      << cols(&MethodResult::impact_duration, "%.2f", 1)
+      << cols(&MethodResult::final_displacement, "%.3f", 1);
     for (const char* m : {"empirical", "analytical"}) {
       const MassDesign* d = find(row.designs, m);
       o << pad(!d ? "-" : d->status == "found" ? fmt(d->mass_kg_per_m / 1e3, "%.1f")
@@ -140,7 +147,18 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_
     o << "\n";
   }
   o << "E displacement: rigid-block sliding under the empirical (fixed-barrier) pulse; A: the "
-       "two-body model. \"any\": no mass exceeds the tolerance (docs/models.md).\n";
+       "two-body model; M: the MPM (docs/mpm.md). \"any\": no mass exceeds the tolerance "
+       "(docs/models.md).\n";
+  if (mpm) {
+    o << "MPM run time per case [s]:";
+    for (const auto& row : rows) {
+      const MethodResult* r = find(row.results, "mpm");
+      double seconds = std::nan("");
+      if (r && r->extra.count("solver_seconds")) seconds = r->extra.at("solver_seconds");
+      o << " " << row.scene << " " << fmt(seconds, "%.3g");
+    }
+    o << "\n";
+  }
   return o.str();
 }
 
