@@ -1,0 +1,66 @@
+#!/usr/bin/python3
+"""Resolution study of the MPM impact (issue 4): runs reference scenes at several cell sizes
+(cells through the landslide's thickness) and tabulates peak force, impact duration, final
+displacement, steps and solver time, so that the default resolution of scenes/reference/ can be
+chosen and justified (docs/mpm.md, "Reference study resolution").
+
+usage: ci/mpm_resolution.py [--cells 4 8 16] [--phases saturated] [--drag semi-implicit]
+                            [--out results/mpm_resolution] SCENE.json ...
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("scenes", nargs="+")
+    ap.add_argument("--cells", nargs="+", type=int, default=[4, 8, 16])
+    ap.add_argument("--phases", default="saturated")
+    ap.add_argument("--drag", default="semi-implicit")
+    ap.add_argument("--lsi", default=os.path.join(root, "build", "drivers", "lsi"))
+    ap.add_argument("--out", default=os.path.join(root, "results", "mpm_resolution"))
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    rows = []
+    for path in a.scenes:
+        scene = json.load(open(path))
+        h = scene["landslide"]["thickness_m"]
+        for n in a.cells:
+            s = json.loads(json.dumps(scene))
+            mpm = dict(s["methods"].get("mpm", {}))
+            mpm["cell_size_m"] = h / n
+            mpm["phases"] = a.phases
+            if a.phases == "saturated":
+                mpm["drag"] = a.drag
+            else:
+                mpm.pop("drag", None)
+            s["methods"] = {"mpm": mpm}
+            s["name"] = "%s-n%d" % (scene["name"], n)
+            f = os.path.join(a.out, s["name"] + ".json")
+            json.dump(s, open(f, "w"), indent=1)
+            r = subprocess.run([a.lsi, "run", f, "--format", "json", "--out",
+                                os.path.join(a.out, s["name"] + ".h5")],
+                               capture_output=True, text=True)
+            if r.returncode != 0:
+                print(r.stdout, r.stderr, file=sys.stderr)
+                sys.exit(r.returncode)
+            m = json.loads(r.stdout)["mpm"]
+            rows.append((scene["name"], n, h / n, m))
+            print("%-6s %3d cells/h  dx %.4f m: peak %.1f kN/m, duration %.2f s, displacement "
+                  "%s m, %d points, %d steps, %.1f s" % (
+                      scene["name"], n, h / n, m["peak_force"] / 1e3, m["impact_duration"],
+                      "%.3f" % m["final_displacement"] if m.get("final_displacement") is not None
+                      else "never stops", m["particles"], m["steps"], m["solver_seconds"]),
+                  flush=True)
+    with open(os.path.join(a.out, "resolution.json"), "w") as f:
+        json.dump([{"scene": s, "cells_per_thickness": n, "cell_size_m": dx, "mpm": m}
+                   for s, n, dx, m in rows], f, indent=1)
+
+
+if __name__ == "__main__":
+    main()
