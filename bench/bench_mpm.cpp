@@ -15,21 +15,26 @@
 // points), so every repetition does the same physical work.
 //
 // Variants: the execution space (Serial, and the default host space: OpenMP when compiled in), the
-// P2G scatter (ScatterView duplicated per thread, or atomic; Serial needs neither and always uses
-// a plain view, so it is run once), and one benchmark per kernel called directly (p2g, grid_update,
-// g2p, stress_update without and with the Mohr-Coulomb return) on a column advanced 5 steps. The
-// kernels are timed on warm caches, one at a time: at 200 k points their sum is ~40 % below a
-// whole OpenMP step, whose kernels evict each other's data.
+// P2G scatter (one node-interleaved buffer per thread, "duplicated", or one buffer with atomic
+// additions; Serial needs neither and always uses one plain buffer, so it is run once), and one
+// benchmark per kernel called directly on a column advanced 5 steps: p2g (scatter + gather),
+// grid_update, g2p alone, stress_update alone (without and with the Mohr-Coulomb return), and
+// g2p_stress_* (G2P with the stress update fused in, what Solver::step() runs). fork_join is one
+// empty parallel region: the fixed cost of each kernel launch (20-30 us on 2 threads with
+// OMP_WAIT_POLICY=passive on the development machine). The kernels are timed on warm caches, one
+// at a time. Note that the stress_update_* and g2p_stress_* kernel benchmarks apply the same
+// velocity gradient hundreds of times: the stress drifts onto the yield surface, so their
+// plastic share is higher than in a real step.
 //
-// Run (medians of 3 repetitions; the threads of the OpenMP space from OMP_NUM_THREADS, 1 and 2):
-//   OMP_NUM_THREADS=1 OMP_PROC_BIND=false build/bench/bench_mpm --benchmark_repetitions=3
-//       --benchmark_report_aggregates_only=true
-//   OMP_NUM_THREADS=2 OMP_PROC_BIND=false build/bench/bench_mpm --benchmark_repetitions=3
-//       --benchmark_report_aggregates_only=true
+// Run (the threads of the OpenMP space from OMP_NUM_THREADS, 1 and 2; docs/performance.md has the
+// numbers and how they were taken):
+//   OMP_NUM_THREADS=2 OMP_PROC_BIND=false OMP_WAIT_POLICY=passive build/bench/bench_mpm
+//       --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // (--benchmark_filter=step/ for the whole steps only; --benchmark_out=mpm.json
 //  --benchmark_out_format=json to keep the numbers.) On a machine shared with other work, run one
-// benchmark at a time (--benchmark_filter='^NAME$') when the cores are idle, and keep the default
-// OpenMP wait policy: a competing process makes 2-thread runs several times slower.
+// benchmark at a time (--benchmark_filter='^NAME') when the cores are idle, and compare two
+// builds by alternating single repetitions of each: the speed of the shared machine drifts by
+// +-30 % over minutes.
 #include <benchmark/benchmark.h>
 
 #include <Kokkos_Core.hpp>
@@ -113,7 +118,10 @@ void bm_step(benchmark::State& state, int n, bool plastic, bool atomic) {
   common_counters(state, c.particles.count, c.grid.size(), Exec().concurrency());
 }
 
-enum class Kernel { P2G, P2GAtomic, GridUpdate, G2P, StressElastic, StressPlastic };
+enum class Kernel {
+  P2G, P2GAtomic, GridUpdate, G2P, G2PStressElastic, G2PStressPlastic, StressElastic, StressPlastic,
+  ForkJoin
+};
 
 template <class Exec>
 void bm_kernel(benchmark::State& state, int n, Kernel k) {
@@ -127,8 +135,8 @@ void bm_kernel(benchmark::State& state, int n, Kernel k) {
   host(0) = PreparedMaterial(c.material);
   Kokkos::deep_copy(table, host);
   const Kokkos::View<const PreparedMaterial*, Mem> materials = table;
-  GridScatter<Exec, false> duplicated(c.grid);   // allocated once, as in the solver
-  GridScatter<Exec, true> atomic(c.grid);
+  P2GScatter<Exec, false> duplicated(c.grid);   // allocated once, as in the solver
+  P2GScatter<Exec, true> atomic(c.grid);
   const auto& p = c.particles;
   const auto& g = c.grid;
   double wall_force[2] = {0, 0};
@@ -140,8 +148,20 @@ void bm_kernel(benchmark::State& state, int n, Kernel k) {
         benchmark::DoNotOptimize(grid_update<Exec>(g, c.walls, dt, wall_force));
         break;
       case Kernel::G2P: benchmark::DoNotOptimize(g2p<Exec>(p, g, dt, c.settings.transfer, c.settings.flip_ratio)); break;
+      case Kernel::G2PStressElastic:
+        benchmark::DoNotOptimize(g2p_stress_update<Exec, false>(
+            p, g, materials, dt, c.settings.transfer, c.settings.flip_ratio));
+        break;
+      case Kernel::G2PStressPlastic:
+        benchmark::DoNotOptimize(g2p_stress_update<Exec, true>(
+            p, g, materials, dt, c.settings.transfer, c.settings.flip_ratio));
+        break;
       case Kernel::StressElastic: stress_update<Exec, false>(p, materials, dt); break;
       case Kernel::StressPlastic: stress_update<Exec, true>(p, materials, dt); break;
+      case Kernel::ForkJoin:   // one empty parallel region: the cost of each kernel launch
+        Kokkos::parallel_for("fork_join", Kokkos::RangePolicy<Exec>(0, Exec().concurrency()),
+                             KOKKOS_LAMBDA(const int) {});
+        break;
     }
     Exec().fence();
   }
@@ -182,7 +202,10 @@ void register_space(bool with_atomic) {
                               {Kernel::GridUpdate, "grid_update"},
                               {Kernel::G2P, "g2p"},
                               {Kernel::StressElastic, "stress_update_elastic"},
-                              {Kernel::StressPlastic, "stress_update_plastic"}};
+                              {Kernel::StressPlastic, "stress_update_plastic"},
+                              {Kernel::G2PStressElastic, "g2p_stress_elastic"},
+                              {Kernel::G2PStressPlastic, "g2p_stress_plastic"}};
+    if (n == 50) kernels.push_back({Kernel::ForkJoin, "fork_join"});
     if (with_atomic) kernels.insert(kernels.begin() + 1, {Kernel::P2GAtomic, "p2g_atomic"});
     for (const auto& k : kernels) {
       const std::string name = "kernel/" + ex + "/" + k.name + size;

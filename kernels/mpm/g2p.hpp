@@ -2,6 +2,8 @@
 // C = 4/dx^2 sum w v_i (x_i - x_p)^T; or a FLIP/PIC blend, plain PIC at flip_ratio 0), velocity gradient L = sum v_i grad(w)^T,
 // and position x += dt sum w (v_i_old + v_i) / 2 (trapezoidal: exact for constant acceleration). In the same pass it reduces the largest particle speed (for the
 // next time step) and flags non-finite values or particles leaving the grid (health check).
+// g2p_stress_update() also runs the stress update (stress_update.hpp) of each point in the same
+// pass, with the velocity gradient still in registers: one pass over the points instead of two.
 #pragma once
 #include <Kokkos_Core.hpp>
 
@@ -9,6 +11,7 @@
 #include "kernels/mpm/grid.hpp"
 #include "kernels/mpm/particles.hpp"
 #include "kernels/mpm/shape_function.hpp"
+#include "kernels/mpm/stress_update.hpp"
 
 namespace lsi::mpm {
 
@@ -20,9 +23,13 @@ struct G2PReport {
   int outside = 0;          // number of particles too close to the grid edge (or beyond)
 };
 
-template <class ExecSpace, bool Flip, class MemorySpace>
+// What G2P does after the transfer: nothing, or the stress update (elastic, or with plasticity).
+enum class G2PStress { None, Elastic, Plastic };
+
+template <class ExecSpace, bool Flip, G2PStress Stress, class MemorySpace>
 G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, double dt,
-                   double flip_ratio) {
+                   double flip_ratio,
+                   const Kokkos::View<const PreparedMaterial*, MemorySpace>& materials = {}) {
   const double ox = g.origin[0], oy = g.origin[1], dx = g.dx, inv_dx = 1.0 / g.dx;
   const double apic = Flip ? 0.0 : 4.0 * inv_dx * inv_dx;
   const double xmax = (g.nx - 2) * dx, ymax = (g.ny - 2) * dx;   // keep 1 cell of padding
@@ -30,7 +37,8 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
   double vmax = 0.0;
   int bad = 0, out = 0;
   Kokkos::parallel_reduce(
-      "lsi::mpm::g2p", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      Stress == G2PStress::None ? "lsi::mpm::g2p" : "lsi::mpm::g2p_stress_update",
+      Kokkos::RangePolicy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q, double& vm, int& nonfinite, int& outside) {
         const double xp = p.position(q, 0) - ox, yp = p.position(q, 1) - oy;
         const Stencil1D sx = quadratic_bspline(xp, inv_dx), sy = quadratic_bspline(yp, inv_dx);
@@ -76,6 +84,9 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
             p.velocity_gradient(q, r, c) = L[r][c];
           }
         }
+        if constexpr (Stress != G2PStress::None)
+          update_point_stress<Stress == G2PStress::Plastic>(p, q, materials(p.material(q)),
+                                                            L[0][0], L[0][1], L[1][0], L[1][1], dt);
         const double s2 = p.velocity(q, 0) * p.velocity(q, 0) + p.velocity(q, 1) * p.velocity(q, 1);
         if (!(s2 < 1e300) || !(p.position(q, 0) == p.position(q, 0)) ||
             !(p.position(q, 1) == p.position(q, 1))) {
@@ -94,8 +105,21 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
 template <class ExecSpace, class MemorySpace>
 G2PReport g2p(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, double dt,
               Transfer transfer, double flip_ratio) {
-  return transfer == Transfer::FlipPic ? g2p_impl<ExecSpace, true>(p, g, dt, flip_ratio)
-                                       : g2p_impl<ExecSpace, false>(p, g, dt, 0.0);
+  return transfer == Transfer::FlipPic
+             ? g2p_impl<ExecSpace, true, G2PStress::None>(p, g, dt, flip_ratio)
+             : g2p_impl<ExecSpace, false, G2PStress::None>(p, g, dt, 0.0);
+}
+
+// G2P and the stress update of each point in one pass: the same results as g2p() followed by
+// stress_update<ExecSpace, WithPlasticity>().
+template <class ExecSpace, bool WithPlasticity, class MemorySpace>
+G2PReport g2p_stress_update(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g,
+                            const Kokkos::View<const PreparedMaterial*, MemorySpace>& materials,
+                            double dt, Transfer transfer, double flip_ratio) {
+  constexpr G2PStress S = WithPlasticity ? G2PStress::Plastic : G2PStress::Elastic;
+  return transfer == Transfer::FlipPic
+             ? g2p_impl<ExecSpace, true, S>(p, g, dt, flip_ratio, materials)
+             : g2p_impl<ExecSpace, false, S>(p, g, dt, 0.0, materials);
 }
 
 }  // namespace lsi::mpm

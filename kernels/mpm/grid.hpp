@@ -5,6 +5,18 @@
 
 namespace lsi::mpm {
 
+// A rectangle of nodes, i0..i1 x j0..j1 inclusive (empty when i1 < i0 or j1 < j0).
+struct NodeBox {
+  int i0 = 0, i1 = -1, j0 = 0, j1 = -1;
+  bool empty() const { return i1 < i0 || j1 < j0; }
+  NodeBox merged(const NodeBox& o) const {
+    if (empty()) return o;
+    if (o.empty()) return *this;
+    return {i0 < o.i0 ? i0 : o.i0, i1 > o.i1 ? i1 : o.i1, j0 < o.j0 ? j0 : o.j0,
+            j1 > o.j1 ? j1 : o.j1};
+  }
+};
+
 template <class MemorySpace>
 struct Grid {
   double origin[2] = {0.0, 0.0};
@@ -15,6 +27,12 @@ struct Grid {
   Kokkos::View<double* [2], MemorySpace> force;       // N/m
   Kokkos::View<double* [2], MemorySpace> velocity;    // m/s, after the update
   Kokkos::View<double* [2], MemorySpace> velocity_old;  // m/s, before the update (FLIP)
+  // Bookkeeping that lets the kernels skip the empty part of the grid (host memory, shared by
+  // the copies of this Grid): [0..3] the nodes that may hold mass (P2G sets it), [4..7] the nodes
+  // whose fields may be nonzero (P2G widens it, the grid update shrinks it back to [0..3]).
+  // Outside [4..7] every field is zero. Both are the whole grid until the first P2G; code that
+  // writes the nodal fields by other means must call mark_all_active().
+  Kokkos::View<int[8], Kokkos::HostSpace> active;
 
   Grid() = default;
   Grid(const double lower[2], const double upper[2], double cell_size) : dx(cell_size) {
@@ -28,9 +46,34 @@ struct Grid {
     force = decltype(force)("grid_force", n);
     velocity = decltype(velocity)("grid_velocity", n);
     velocity_old = decltype(velocity_old)("grid_velocity_old", n);
+    active = decltype(active)("grid_active");
+    mark_all_active();
   }
   int size() const { return nx * ny; }
   double upper(int d) const { return origin[d] + (d == 0 ? nx - 1 : ny - 1) * dx; }
+
+  NodeBox whole() const { return {0, nx - 1, 0, ny - 1}; }
+  NodeBox mass_box() const { return get(0); }
+  NodeBox dirty_box() const { return get(4); }
+  void set_mass_box(const NodeBox& b) const { put(0, b); }
+  void set_dirty_box(const NodeBox& b) const { put(4, b); }
+  void mark_all_active() const {
+    put(0, whole());
+    put(4, whole());
+  }
+
+ private:
+  NodeBox get(int k) const {
+    if (active.data() == nullptr) return whole();
+    return {active(k), active(k + 1), active(k + 2), active(k + 3)};
+  }
+  void put(int k, const NodeBox& b) const {
+    if (active.data() == nullptr) return;
+    active(k) = b.i0;
+    active(k + 1) = b.i1;
+    active(k + 2) = b.j0;
+    active(k + 3) = b.j1;
+  }
 };
 
 }  // namespace lsi::mpm

@@ -17,32 +17,47 @@ double grid_update(const Grid<MemorySpace>& g, const Boundaries& walls, double d
                    double wall_force[2]) {
   const double ox = g.origin[0], oy = g.origin[1], dx = g.dx, tol = 1e-9 * g.dx;
   const int nx = g.nx;
+  // Only the nodes whose fields may be nonzero (Grid::active): outside them nothing moves.
+  const NodeBox region = g.dirty_box();
   double dissipated = 0.0, fx = 0.0, fy = 0.0;
+  if (region.empty()) return 0.0;
+  const int i0 = region.i0, i1 = region.i1;
+  const auto mass = g.mass;
+  const auto momentum = g.momentum;
+  const auto force = g.force;
+  const auto velocity = g.velocity;
+  const auto velocity_old = g.velocity_old;
   Kokkos::parallel_reduce(
-      "lsi::mpm::grid_update", Kokkos::RangePolicy<ExecSpace>(0, g.size()),
-      KOKKOS_LAMBDA(const int n, double& lost, double& rx, double& ry) {
-        const double m = g.mass(n);
-        if (!(m > 0.0)) {
-          g.velocity(n, 0) = g.velocity(n, 1) = 0.0;
-          g.velocity_old(n, 0) = g.velocity_old(n, 1) = 0.0;
-          return;
+      "lsi::mpm::grid_update", Kokkos::RangePolicy<ExecSpace>(region.j0, region.j1 + 1),
+      KOKKOS_LAMBDA(const int j, double& lost, double& rx, double& ry) {
+        for (int i = i0; i <= i1; ++i) {   // one row of the region: contiguous nodes
+          const int n = i + nx * j;
+          const double m = mass(n);
+          if (!(m > 0.0)) {
+            velocity(n, 0) = velocity(n, 1) = 0.0;
+            velocity_old(n, 0) = velocity_old(n, 1) = 0.0;
+            continue;
+          }
+          double v[2], vo[2];
+          for (int d = 0; d < 2; ++d) {
+            vo[d] = momentum(n, d) / m;
+            v[d] = vo[d] + dt * force(n, d) / m;
+          }
+          const double before[2] = {v[0], v[1]};
+          if (apply_walls(walls, ox + i * dx, oy + j * dx, v, tol)) {
+            for (int d = 0; d < 2; ++d) lost -= m * (v[d] - before[d]) * 0.5 * (vo[d] + v[d]);
+            rx += -m * (v[0] - before[0]) / dt;
+            ry += -m * (v[1] - before[1]) / dt;
+          }
+          velocity_old(n, 0) = vo[0];
+          velocity_old(n, 1) = vo[1];
+          velocity(n, 0) = v[0];
+          velocity(n, 1) = v[1];
         }
-        double v[2];
-        for (int d = 0; d < 2; ++d) {
-          g.velocity_old(n, d) = g.momentum(n, d) / m;
-          v[d] = g.velocity_old(n, d) + dt * g.force(n, d) / m;
-        }
-        const double before[2] = {v[0], v[1]};
-        if (apply_walls(walls, ox + (n % nx) * dx, oy + (n / nx) * dx, v, tol)) {
-          for (int d = 0; d < 2; ++d)
-            lost -= m * (v[d] - before[d]) * 0.5 * (g.velocity_old(n, d) + v[d]);
-          rx += -m * (v[0] - before[0]) / dt;
-          ry += -m * (v[1] - before[1]) / dt;
-        }
-        g.velocity(n, 0) = v[0];
-        g.velocity(n, 1) = v[1];
       },
       dissipated, fx, fy);
+  // Every node outside the mass rectangle is now zero.
+  g.set_dirty_box(g.mass_box());
   wall_force[0] += fx;
   wall_force[1] += fy;
   return dissipated;

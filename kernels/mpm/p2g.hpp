@@ -1,10 +1,25 @@
 // Particle to grid: mass, APIC momentum m (v_p + C_p (x_i - x_p)), and force
-// -V_p sigma_p grad(w_ip) + w_ip m_p g, scattered without data races by a Kokkos ScatterView:
-// either one copy of the grid per thread summed afterwards (duplicated) or atomic additions into
-// one grid, chosen by `Atomic` (bench/ measures which is faster). Serial needs neither.
+// -V_p sigma_p grad(w_ip) + w_ip m_p g.
+//
+// Without data races, in two passes over memory (two parallel regions):
+//  1. scatter: the points add their 3 x 3 node contributions into a node-interleaved buffer
+//     (mass, momentum x, y, force x, y: 40 contiguous bytes per node instead of three arrays).
+//     Duplicated (the default on host spaces): one buffer per thread; the points are cut into as
+//     many contiguous chunks as there are copies, and each chunk records the rectangle of nodes it
+//     touched. Atomic: one buffer and atomic additions (the choice on devices; `Atomic` asks for
+//     it on the host too). Serial: one buffer, plain additions.
+//  2. gather: for the nodes in the touched rectangle (and those touched the step before, which
+//     must become zero), the buffers are summed into the grid's fields and zeroed on the way, so
+//     the next step needs no reset. The grid records the rectangles (Grid::active) so that the
+//     grid update skips the empty nodes.
+// bench/bench_mpm.cpp measures the variants (docs/performance.md).
+//
+// GridScatter (Kokkos ScatterViews per field, the earlier single-phase scheme) is kept for the
+// two-phase P2G (two_phase/two_phase_p2g.hpp).
 #pragma once
 #include <Kokkos_Core.hpp>
 #include <Kokkos_ScatterView.hpp>
+#include <climits>
 #include <type_traits>
 
 #include "kernels/mpm/grid.hpp"
@@ -13,8 +28,9 @@
 
 namespace lsi::mpm {
 
-// The scatter targets of P2G, allocated once per solver and reset every step (allocating the
-// per-thread copies every step costs as much as the scatter itself on small grids).
+// The scatter targets of the two-phase P2G: Kokkos ScatterViews, allocated once per solver and
+// reset every step (allocating the per-thread copies every step costs as much as the scatter
+// itself on small grids).
 template <class ExecSpace, bool Atomic>
 struct GridScatter {
   using Exec = ExecSpace;
@@ -41,71 +57,194 @@ struct GridScatter {
       : mass(g.mass), momentum(g.momentum), force(g.force) {}
 };
 
+namespace detail {
+// Per node: mass, momentum x, y, force x, y. (Padding the record to 8 doubles, one cache line,
+// with whole-record additions measured slower: GCC 12 keeps them scalar.)
+constexpr int kP2GFields = 5;
+}
+
+// The single-phase P2G's buffers, allocated once per solver (zero between calls).
+template <class ExecSpace, bool Atomic>
+struct P2GScatter {
+  using Exec = ExecSpace;
+  using Mem = typename ExecSpace::memory_space;
+#ifdef KOKKOS_ENABLE_SERIAL
+  static constexpr bool serial = std::is_same_v<ExecSpace, Kokkos::Serial>;
+#else
+  static constexpr bool serial = false;
+#endif
+  // One buffer per thread only where the threads share the host's memory; devices use atomics.
+  static constexpr bool duplicated =
+      !Atomic && !serial && Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
+  static constexpr bool atomic = !serial && !duplicated;
+  static constexpr int kFields = detail::kP2GFields;
+
+  int copies_count = 0;
+  Kokkos::View<double**, Kokkos::LayoutRight, Mem> copies;   // [copy][node * kFields + field]
+  Kokkos::View<int* [4], Kokkos::LayoutRight, Mem> boxes;    // nodes each copy touched (i0 i1 j0 j1)
+
+  P2GScatter() = default;
+  explicit P2GScatter(const Grid<Mem>& g) {
+    copies_count = duplicated ? ExecSpace().concurrency() : 1;
+    copies = decltype(copies)("p2g_copies", copies_count, static_cast<size_t>(kFields) * g.size());
+    boxes = decltype(boxes)("p2g_boxes", copies_count);
+  }
+};
+
+namespace detail {
+
+template <bool Atomic>
+KOKKOS_FORCEINLINE_FUNCTION void scatter_add(double* a, double v) {
+  if constexpr (Atomic) Kokkos::atomic_add(a, v);
+  else *a += v;
+}
+
+// The 3 x 3 node contributions of point q into the interleaved buffer `buf`; returns the first
+// node of the stencil in (bi, bj) (for the touched-node rectangle).
+template <bool Atomic, class MemorySpace>
+KOKKOS_FORCEINLINE_FUNCTION void p2g_point(const Particles<MemorySpace>& p, const int q,
+                                           double* buf, const double ox, const double oy,
+                                           const double dx, const double inv_dx, const int nx,
+                                           const double gx, const double gy, int& bi, int& bj) {
+  constexpr int F = kP2GFields;
+  const double xp = p.position(q, 0) - ox, yp = p.position(q, 1) - oy;
+  const Stencil1D sx = quadratic_bspline(xp, inv_dx), sy = quadratic_bspline(yp, inv_dx);
+  const double m = p.mass(q), V = p.volume(q);
+  const double mv[2] = {m * p.velocity(q, 0), m * p.velocity(q, 1)};
+  const double mC[2][2] = {{m * p.affine(q, 0, 0), m * p.affine(q, 0, 1)},
+                           {m * p.affine(q, 1, 0), m * p.affine(q, 1, 1)}};
+  const double Vs[3] = {V * p.stress(q, 0), V * p.stress(q, 1), V * p.stress(q, 2)};
+  // Separable weights w = wx(a) wy(b). Per node i:
+  //   mass     w m
+  //   momentum w (m v + m C (x_i - x_p))             = wx P[r] + wx dxa Q[r]
+  //   force   -V sigma grad(w) + w m g               = dwx F1[r] + wx F0[r]
+  // with the row factors P, Q, F0, F1 below.
+  double wx[3], wxd[3], dwx[3];
+  for (int a = 0; a < 3; ++a) {
+    wx[a] = sx.w[a];
+    wxd[a] = sx.w[a] * ((sx.base + a) * dx - xp);
+    dwx[a] = sx.dw[a];
+  }
+  for (int b = 0; b < 3; ++b) {
+    const double wy = sy.w[b], dwy = sy.dw[b], dyb = (sy.base + b) * dx - yp;
+    const double P[2] = {wy * (mv[0] + mC[0][1] * dyb), wy * (mv[1] + mC[1][1] * dyb)};
+    const double Q[2] = {wy * mC[0][0], wy * mC[1][0]};
+    const double F1[2] = {-Vs[0] * wy, -Vs[2] * wy};
+    const double F0[2] = {-Vs[2] * dwy + wy * m * gx, -Vs[1] * dwy + wy * m * gy};
+    double* row = buf + F * (sx.base + nx * (sy.base + b));
+    for (int a = 0; a < 3; ++a) {
+      double* node = row + F * a;
+      scatter_add<Atomic>(node + 0, wx[a] * wy * m);
+      scatter_add<Atomic>(node + 1, wx[a] * P[0] + wxd[a] * Q[0]);
+      scatter_add<Atomic>(node + 2, wx[a] * P[1] + wxd[a] * Q[1]);
+      scatter_add<Atomic>(node + 3, dwx[a] * F1[0] + wx[a] * F0[0]);
+      scatter_add<Atomic>(node + 4, dwx[a] * F1[1] + wx[a] * F0[1]);
+    }
+  }
+  bi = sx.base;
+  bj = sy.base;
+}
+
+}  // namespace detail
+
 template <class ExecSpace, bool Atomic, class MemorySpace>
 void p2g(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g,
-         GridScatter<ExecSpace, Atomic>& scatter, const double gravity[2]) {
-  namespace KE = Kokkos::Experimental;
-  if constexpr (GridScatter<ExecSpace, Atomic>::duplicated) {
-    Kokkos::deep_copy(g.mass, 0.0);   // the copies are summed into the grid
-    Kokkos::deep_copy(g.momentum, 0.0);
-    Kokkos::deep_copy(g.force, 0.0);
-  }
-  scatter.mass.reset();               // not duplicated: this zeroes the grid itself
-  scatter.momentum.reset();
-  scatter.force.reset();
-  auto& mass = scatter.mass;
-  auto& momentum = scatter.momentum;
-  auto& force = scatter.force;
+         P2GScatter<ExecSpace, Atomic>& scatter, const double gravity[2]) {
+  using S = P2GScatter<ExecSpace, Atomic>;
+  constexpr int F = S::kFields;
   const double ox = g.origin[0], oy = g.origin[1], dx = g.dx, inv_dx = 1.0 / g.dx;
-  const int nx = g.nx;
+  const int nx = g.nx, n_points = p.count, nc = scatter.copies_count;
   const double gx = gravity[0], gy = gravity[1];
-  Kokkos::parallel_for(
-      "lsi::mpm::p2g", Kokkos::RangePolicy<ExecSpace>(0, p.count),
-      KOKKOS_LAMBDA(const int q) {
-        auto m_acc = mass.access();
-        auto p_acc = momentum.access();
-        auto f_acc = force.access();
-        const double xp = p.position(q, 0) - ox, yp = p.position(q, 1) - oy;
-        const Stencil1D sx = quadratic_bspline(xp, inv_dx), sy = quadratic_bspline(yp, inv_dx);
-        const double m = p.mass(q), V = p.volume(q);
-        const double mv[2] = {m * p.velocity(q, 0), m * p.velocity(q, 1)};
-        const double mC[2][2] = {{m * p.affine(q, 0, 0), m * p.affine(q, 0, 1)},
-                                 {m * p.affine(q, 1, 0), m * p.affine(q, 1, 1)}};
-        const double Vs[3] = {V * p.stress(q, 0), V * p.stress(q, 1), V * p.stress(q, 2)};
-        // Separable weights w = wx(a) wy(b). Per node i:
-        //   mass     w m
-        //   momentum w (m v + m C (x_i - x_p))             = wx P[r] + wx dxa Q[r]
-        //   force   -V sigma grad(w) + w m g               = dwx F1[r] + wx F0[r]
-        // with the row factors P, Q, F0, F1 below.
-        double wx[3], wxd[3], dwx[3];
-        for (int a = 0; a < 3; ++a) {
-          wx[a] = sx.w[a];
-          wxd[a] = sx.w[a] * ((sx.base + a) * dx - xp);
-          dwx[a] = sx.dw[a];
-        }
-        for (int b = 0; b < 3; ++b) {
-          const double wy = sy.w[b], dwy = sy.dw[b], dyb = (sy.base + b) * dx - yp;
-          const double P[2] = {wy * (mv[0] + mC[0][1] * dyb), wy * (mv[1] + mC[1][1] * dyb)};
-          const double Q[2] = {wy * mC[0][0], wy * mC[1][0]};
-          const double F1[2] = {-Vs[0] * wy, -Vs[2] * wy};
-          const double F0[2] = {-Vs[2] * dwy + wy * m * gx, -Vs[1] * dwy + wy * m * gy};
-          const int row = sx.base + nx * (sy.base + b);
-          for (int a = 0; a < 3; ++a) {
-            const int node = row + a;
-            m_acc(node) += wx[a] * wy * m;
-            p_acc(node, 0) += wx[a] * P[0] + wxd[a] * Q[0];
-            p_acc(node, 1) += wx[a] * P[1] + wxd[a] * Q[1];
-            f_acc(node, 0) += dwx[a] * F1[0] + wx[a] * F0[0];
-            f_acc(node, 1) += dwx[a] * F1[1] + wx[a] * F0[1];
+  const auto copies = scatter.copies;
+  const auto boxes = scatter.boxes;
+
+  // 1. Scatter; the rectangle of nodes touched (stencil bases + 0..2).
+  NodeBox touched;
+  if constexpr (S::atomic) {
+    int i0 = INT_MAX, i1 = INT_MIN, j0 = INT_MAX, j1 = INT_MIN;
+    Kokkos::parallel_reduce(
+        "lsi::mpm::p2g_scatter", Kokkos::RangePolicy<ExecSpace>(0, n_points),
+        KOKKOS_LAMBDA(const int q, int& a0, int& a1, int& b0, int& b1) {
+          int bi, bj;
+          detail::p2g_point<true>(p, q, &copies(0, 0), ox, oy, dx, inv_dx, nx, gx, gy, bi, bj);
+          if (bi < a0) a0 = bi;
+          if (bi + 2 > a1) a1 = bi + 2;
+          if (bj < b0) b0 = bj;
+          if (bj + 2 > b1) b1 = bj + 2;
+        },
+        Kokkos::Min<int>(i0), Kokkos::Max<int>(i1), Kokkos::Min<int>(j0), Kokkos::Max<int>(j1));
+    if (n_points > 0) touched = {i0, i1, j0, j1};
+  } else {
+    // One contiguous chunk of points per copy: a copy is never written by two threads at once.
+    Kokkos::parallel_for(
+        "lsi::mpm::p2g_scatter", Kokkos::RangePolicy<ExecSpace>(0, nc),
+        KOKKOS_LAMBDA(const int c) {
+          const int begin = static_cast<int>(static_cast<long>(n_points) * c / nc);
+          const int end = static_cast<int>(static_cast<long>(n_points) * (c + 1) / nc);
+          double* buf = &copies(c, 0);
+          int a0 = INT_MAX, a1 = INT_MIN, b0 = INT_MAX, b1 = INT_MIN;
+          for (int q = begin; q < end; ++q) {
+            int bi, bj;
+            detail::p2g_point<false>(p, q, buf, ox, oy, dx, inv_dx, nx, gx, gy, bi, bj);
+            a0 = bi < a0 ? bi : a0;
+            a1 = bi + 2 > a1 ? bi + 2 : a1;
+            b0 = bj < b0 ? bj : b0;
+            b1 = bj + 2 > b1 ? bj + 2 : b1;
           }
-        }
-      });
-  auto gm = g.mass;
-  auto gp = g.momentum;
-  auto gf = g.force;
-  KE::contribute(gm, mass);
-  KE::contribute(gp, momentum);
-  KE::contribute(gf, force);
+          boxes(c, 0) = a0;
+          boxes(c, 1) = a1;
+          boxes(c, 2) = b0;
+          boxes(c, 3) = b1;
+        });
+    Kokkos::fence();
+    auto host = Kokkos::create_mirror_view(boxes);   // the same memory on host spaces
+    Kokkos::deep_copy(host, boxes);
+    for (int c = 0; c < nc; ++c) {
+      const NodeBox b{host(c, 0), host(c, 1), host(c, 2), host(c, 3)};
+      if (!b.empty()) touched = touched.merged(b);
+    }
+  }
+  // Never outside the grid (points beyond its edge are the health check's business).
+  const NodeBox whole = g.whole();
+  if (!touched.empty()) {
+    touched = {touched.i0 < 0 ? 0 : touched.i0, touched.i1 > whole.i1 ? whole.i1 : touched.i1,
+               touched.j0 < 0 ? 0 : touched.j0, touched.j1 > whole.j1 ? whole.j1 : touched.j1};
+  }
+
+  // 2. Gather into the grid and zero the copies: over the touched nodes and the nodes that may
+  // still hold last step's values.
+  const NodeBox region = touched.merged(g.dirty_box());
+  if (!region.empty()) {
+    const auto mass = g.mass;
+    const auto momentum = g.momentum;
+    const auto force = g.force;
+    const int i0 = region.i0, i1 = region.i1;
+    Kokkos::parallel_for(
+        "lsi::mpm::p2g_gather", Kokkos::RangePolicy<ExecSpace>(region.j0, region.j1 + 1),
+        KOKKOS_LAMBDA(const int j) {
+          for (int i = i0; i <= i1; ++i) {
+            const int n = i + nx * j;
+            double acc[F] = {0.0, 0.0, 0.0, 0.0, 0.0};
+            for (int c = 0; c < nc; ++c) {
+              if (nc > 1 && (i < boxes(c, 0) || i > boxes(c, 1) || j < boxes(c, 2) ||
+                             j > boxes(c, 3)))
+                continue;   // this copy touched no node here: it holds zeros
+              double* b = &copies(c, static_cast<size_t>(F) * n);
+              for (int k = 0; k < F; ++k) {
+                acc[k] += b[k];
+                b[k] = 0.0;
+              }
+            }
+            mass(n) = acc[0];
+            momentum(n, 0) = acc[1];
+            momentum(n, 1) = acc[2];
+            force(n, 0) = acc[3];
+            force(n, 1) = acc[4];
+          }
+        });
+  }
+  g.set_mass_box(touched);
+  g.set_dirty_box(region);
 }
 
 }  // namespace lsi::mpm

@@ -59,8 +59,8 @@ class Solver {
          Boundaries walls, Settings settings)
       : grid_(grid), particles_(particles), walls_(walls), settings_(settings),
         user_max_dt_(settings.max_time_step) {
-    if (settings_.atomic_scatter) atomic_scatter_ = GridScatter<ExecSpace, true>(grid_);
-    else duplicated_scatter_ = GridScatter<ExecSpace, false>(grid_);
+    if (settings_.atomic_scatter) atomic_scatter_ = P2GScatter<ExecSpace, true>(grid_);
+    else duplicated_scatter_ = P2GScatter<ExecSpace, false>(grid_);
     Kokkos::View<PreparedMaterial*, Mem> table("materials", materials.size());
     auto host = Kokkos::create_mirror_view(table);
     wave_speed_ = 0.0;
@@ -103,9 +103,12 @@ class Solver {
         for (int d = 0; d < 2; ++d) contact_impulse_[k][d] += contact_.force[k][d] * dt_;
       if (!barrier_.fixed) barrier_.motion.advance(contact_.total(0), contact_.total(1), dt_);
     }
-    const G2PReport r = g2p<ExecSpace>(particles_, grid_, dt_, settings_.transfer, settings_.flip_ratio);
-    if (plastic_) stress_update<ExecSpace, true>(particles_, materials_, dt_);
-    else stress_update<ExecSpace, false>(particles_, materials_, dt_);
+    // G2P and the stress update in one pass over the points (g2p.hpp).
+    const G2PReport r =
+        plastic_ ? g2p_stress_update<ExecSpace, true>(particles_, grid_, materials_, dt_,
+                                                      settings_.transfer, settings_.flip_ratio)
+                 : g2p_stress_update<ExecSpace, false>(particles_, grid_, materials_, dt_,
+                                                       settings_.transfer, settings_.flip_ratio);
     time_ += dt_;
     ++steps_;
     max_speed_ = r.max_speed;
@@ -197,8 +200,8 @@ class Solver {
   Kokkos::View<const PreparedMaterial*, Mem> materials_;
   Boundaries walls_;
   Settings settings_;
-  GridScatter<ExecSpace, true> atomic_scatter_;
-  GridScatter<ExecSpace, false> duplicated_scatter_;
+  P2GScatter<ExecSpace, true> atomic_scatter_;
+  P2GScatter<ExecSpace, false> duplicated_scatter_;
   double user_max_dt_;
   double wave_speed_ = 0.0, max_speed_ = 0.0, dt_ = 0.0, time_ = 0.0, boundary_ = 0.0;
   double wall_force_[2] = {0.0, 0.0};
