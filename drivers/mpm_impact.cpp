@@ -65,8 +65,12 @@ MpmCase impact_case(const Scene& scene) {
   c.upper = {snap_up(x_right), snap_up(y_top)};
   c.gravity = {0.0, -g};
   c.walls.bottom = {true, 0.0, c.settings.base_friction, false};
+  // Upstream: a smooth wall far behind the tail. Downstream and above: no-slip walls that catch
+  // what overtops or splashes (a smooth wall would send a fast overtopping flow up the wall and
+  // out of the grid); they are far from the barrier and do not touch what acts on it.
   c.walls.left = {true, c.lower[0] + 2.0 * dx, 0.0, false};
-  c.walls.right = {true, c.upper[0] - 2.0 * dx, 0.0, false};
+  c.walls.right = {true, c.upper[0] - 4.0 * dx, -1.0, false};
+  c.walls.top = {true, c.upper[1] - 4.0 * dx, -1.0, false};
 
   mpm::Material m;
   m.model = mpm::Material::Model::MohrCoulomb;

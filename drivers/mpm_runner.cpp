@@ -116,6 +116,8 @@ double add_energies(const SaturatedSolver& sv, const AddSeries& add) {
   add("potential_energy", "J/m", "gravitational potential energy -m g.x", e.potential);
   add("plastic_dissipation", "J/m", "work dissipated by plastic flow (accumulated)", e.plastic);
   add("drag_dissipation", "J/m", "work dissipated by the Darcy drag (accumulated)", e.drag);
+  add("viscous_dissipation", "J/m",
+      "work dissipated by the artificial bulk viscosity of the mixture (accumulated)", e.viscous);
   add("boundary_dissipation", "J/m", "work taken by the walls and the barrier (accumulated)",
       e.boundary);
   add("energy_residual", "1",
@@ -294,6 +296,7 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
     s.transfer = c.settings.apic ? mpm::Transfer::Apic : mpm::Transfer::FlipPic;
     s.flip_ratio = c.settings.flip_ratio;
     s.atomic_scatter = c.settings.atomic_scatter;
+    s.small_mass_fraction = c.settings.small_mass_fraction;
     DrySolver solver(grid, particles, c.materials, c.walls, s);
     if (c.barrier) solver.attach_barrier(*c.barrier);
     drive(c, solver, particles.count, out);

@@ -13,7 +13,8 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
                                bool impact) {
   std::vector<std::string> keys = {"cell_size_m", "particles_per_cell", "courant", "end_time_s",
                                    "max_time_step_s", "output_interval_s", "transfer",
-                                   "flip_ratio", "scatter", "snapshot_interval_s"};
+                                   "flip_ratio", "scatter", "snapshot_interval_s",
+                                   "small_mass_fraction"};
   if (impact) keys.insert(keys.end(), {"base_friction", "phases", "drag"});
   const jf::ObjectReader r(block, path, keys);
   MpmSettings s;
@@ -49,6 +50,7 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
   if (transfer != "flip" && r.has("flip_ratio")) {
     r.fail_at("flip_ratio", "only used with \"transfer\": \"flip\"");
   }
+  s.small_mass_fraction = r.number_or("small_mass_fraction", 0.0, jf::interval('[', 0, 0.1, ']'));
   s.atomic_scatter = r.choice("scatter", {"duplicated", "atomic"}, std::string("duplicated")) == "atomic";
   s.snapshot_interval_s = r.optional_number("snapshot_interval_s", jf::greater_than(0, "s")).value_or(0.0);
   return s;

@@ -28,6 +28,7 @@ struct MpmSettings {
   bool apic = true;                   // "transfer": "apic", or "flip" / "pic" (a FLIP/PIC blend)
   double flip_ratio = 0.99;           // "flip": flip_ratio in [0, 1]; "pic": 0
   bool atomic_scatter = false;        // "scatter": "duplicated" or "atomic"
+  double small_mass_fraction = 0.0;   // dry solver: nodes below this x lightest point: no force
   double snapshot_interval_s = 0.0;   // particle snapshots every this many seconds; 0 = none
   // Impact scenes only (a landslide scene with `methods.mpm`):
   double base_friction = 0.0;         // Coulomb coefficient of the base under the flow (paper: 0)

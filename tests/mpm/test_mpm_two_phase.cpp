@@ -30,6 +30,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
+#include <algorithm>
 
 #include "kernels/mpm/two_phase/two_phase_builder.hpp"
 #include "kernels/mpm/two_phase/two_phase_solver.hpp"
@@ -318,6 +319,75 @@ TYPED_TEST(MpmTwoPhase, HydrostaticColumnStays) {
   EXPECT_LT(err_base, 0.02);
   // The effective stress stays geostatic: 2 %, as test_mpm_geostatic.cpp.
   EXPECT_LT(err_eff, 0.02);
+}
+
+// Saturated block (4 m x 2 m, 16 x 8 cells, E = 2 MPa, nu = 0.25, n = 0.5, rho_S = 2600, K_L =
+// 30 MPa, k = 1e-4 m/s: the impact scenes' mixture) moving at v0 = 5 m/s into a smooth rigid
+// wall, no gravity, with the optional stabilisations of pore_pressure_update.hpp on (bulk
+// viscosity c1 = 0.5, c2 = 2, cell projection of p, free-surface drainage at fill 0.7): the wall
+// impulse equals the momentum change of both phases, no point runs away, the stabilisations
+// dissipate (>= 0); the energy residual is reported (not closed, see below).
+TYPED_TEST(MpmTwoPhase, StabilisedBlockHitsWall) {
+  using Exec = TypeParam;
+  using Mem = typename Exec::memory_space;
+  const double dx = 0.25, v0 = 5.0;
+  const double lo[2] = {0, 0}, hi[2] = {8, 4};
+  TwoPhaseGrid<Mem> grid(lo, hi, dx);
+  Material m;
+  m.model = Material::Model::LinearElastic;
+  m.density = 2600;
+  m.young_modulus = 2e6;
+  m.poisson_ratio = 0.25;
+  Liquid water;
+  water.bulk_modulus = 3e7;
+  TwoPhaseBodySpec body;
+  body.polygon = {{{1.0, 1.0}}, {{5.0, 1.0}}, {{5.0, 3.0}}, {{1.0, 3.0}}};
+  body.porosity = 0.5;
+  body.hydraulic_conductivity = 1e-4;
+  body.velocity = {v0, 0.0};
+  auto pts = build_two_phase_particles<Mem>({body}, {m}, water, lo, dx);
+  Boundaries walls;
+  walls.right = {true, 5.5, 0.0};
+  TwoPhaseSettings s;
+  s.gravity[1] = 0.0;
+  s.drag = Drag::SemiImplicit;
+  s.bulk_viscosity_linear = 0.5;
+  s.bulk_viscosity_quadratic = 2.0;
+  s.cell_pore_pressure = true;
+  s.free_surface_fill = 0.7;
+  TwoPhaseSolver<Exec> solver(grid, pts, {m}, water, walls, s);
+  auto momentum = [&]() {
+    auto ms = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), pts.solid.mass);
+    auto vs = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), pts.solid.velocity);
+    auto ml = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), pts.liquid_mass);
+    auto vl = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), pts.liquid_velocity);
+    double px = 0;
+    for (int q = 0; q < pts.count; ++q) px += ms(q) * vs(q, 0) + ml(q) * vl(q, 0);
+    return px;
+  };
+  const double p0 = momentum();
+  double impulse = 0, vmax = 0;
+  while (solver.time() < 0.4) {
+    ASSERT_EQ(solver.step(), Status::Running) << "t = " << solver.time();
+    impulse += solver.wall_force()[0] * solver.time_step();
+    auto vs = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), pts.solid.velocity);
+    if (solver.time() > 0.05)
+      for (int q = 0; q < pts.count; ++q) vmax = std::max(vmax, std::hypot(vs(q, 0), vs(q, 1)));
+  }
+  const double p1 = momentum();
+  const TwoPhaseEnergyReport e = solver.energy();
+  std::printf("[measured] stabilised block on a wall: %ld steps, momentum %.6g -> %.6g, wall "
+              "impulse %.6g (balance %.2e), max speed after 0.05 s %.3f v0, viscous + drainage "
+              "dissipation %.4g J/m of %.4g, energy residual %+.3f %%\n",
+              solver.steps(), p0, p1, impulse, (p0 - p1 - impulse) / p0, vmax / v0, e.viscous,
+              0.5 * (2600 * 0.5 + 1000 * 0.5) * 8 * v0 * v0, 100 * solver.energy_residual(e));
+  EXPECT_NEAR(p0 - p1, impulse, 1e-9 * std::fabs(p0));   // eq. 26 is the momentum change
+  EXPECT_GT(p0 - p1, 0.5 * p0);                          // the wall did stop the block
+  EXPECT_LT(vmax, 1.5 * v0);
+  EXPECT_GE(e.viscous, 0.0);
+  // Measured -10.1 %: energy lost without being accounted for (the stabilisations' accounting
+  // is incomplete, docs/two_phase.md "Impacts"); the bound only guards against a growth.
+  EXPECT_LT(std::fabs(solver.energy_residual(e)), 0.15);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // Pore pressure and porosity update (after G2P and the effective-stress update), per point:
-//   dp = -(K_L / n) [ (1 - n) tr(eps_dot_S) + n div(v_L) ] dt     (p compression positive)
+//   D  = (1 - n) tr(eps_dot_S) + n div(v_L)        the mixture's volumetric strain rate
+//   dp = -(K_L / n) D dt                            (p compression positive)
 // the storage equation of a linearly compressible liquid in a skeleton of incompressible grains
 // (liquid mass balance with the solid mass balance substituted), with tr(eps_dot_S) = L_xx + L_yy
 // of the solid and div(v_L) of the liquid from the grid velocities of the step (USL).
@@ -8,28 +9,173 @@
 // stress_update.hpp)
 //   n_new = 1 - (1 - n) / J.
 // n of the START of the step is used in dp. Solid and liquid masses of the point are constant.
+//
+// Optional stabilisations of saturated impacts (docs/two_phase.md, "Impacts"; all off by default):
+// * Artificial bulk viscosity (von Neumann-Richtmyer linear + quadratic, Landshoff form, as in
+//   explicit impact codes), active in compression only:
+//     q = rho_m l (-D) (c1 c + c2 l (-D))   for D < 0,   q = 0 otherwise,
+//   rho_m = (m_S + m_L) / V, c the saturated wave speed of the point (two_phase_time_step.hpp),
+//   l the cell size. q is a pressure of the point used in P2G with p (p + q in the mixture and
+//   in the liquid force) and is NOT accumulated into p. Its work, -q D V dt >= 0 (the q of the
+//   start of the step against the D of the step), is returned as dissipation. The time step
+//   accounts for it (two_phase_time_step.hpp).
+// * Free-surface drainage (free_surface_fill > 0): points whose neighbourhood is not full get
+//   p = q = 0 (below).
+// * Cell projection of p (project_pore_pressure, called by the solver after this update).
 #pragma once
 #include <Kokkos_Core.hpp>
 
+#include "kernels/common/math.hpp"
+#include "kernels/mpm/constitutive/material.hpp"
+#include "kernels/mpm/shape_function.hpp"
+#include "kernels/mpm/two_phase/two_phase_grid.hpp"
 #include "kernels/mpm/two_phase/two_phase_particles.hpp"
+#include "kernels/mpm/two_phase/two_phase_time_step.hpp"
 
 namespace lsi::mpm::two_phase {
 
+// Coefficients of the artificial bulk viscosity (dimensionless; 0, 0: off).
+struct BulkViscosity {
+  double linear = 0.0;      // c1
+  double quadratic = 0.0;   // c2
+  bool on() const { return linear > 0.0 || quadratic > 0.0; }
+};
+
+KOKKOS_INLINE_FUNCTION double bulk_viscous_pressure(double rho_m, double c, double l, double D,
+                                                    double c1, double c2) {
+  if (!(D < 0.0)) return 0.0;
+  return rho_m * l * (-D) * (c1 * c + c2 * l * (-D));
+}
+
+// Nodal volume sum_q w_iq V_q into grid.smooth_weight.
 template <class ExecSpace, class MemorySpace>
-void pore_pressure_update(const TwoPhaseParticles<MemorySpace>& p, double liquid_bulk_modulus,
-                          double dt) {
+void nodal_volume(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g) {
   const auto s = p.solid;
+  const auto vol = g.smooth_weight;
+  Kokkos::deep_copy(vol, 0.0);
+  const double ox = g.solid.origin[0], oy = g.solid.origin[1], inv_dx = 1.0 / g.solid.dx;
+  const int nx = g.solid.nx;
+  Kokkos::parallel_for(
+      "lsi::mpm::two_phase::nodal_volume", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      KOKKOS_LAMBDA(const int q) {
+        const Stencil1D sx = quadratic_bspline(s.position(q, 0) - ox, inv_dx),
+                        sy = quadratic_bspline(s.position(q, 1) - oy, inv_dx);
+        const double V = s.volume(q);
+        for (int b = 0; b < 3; ++b)
+          for (int a = 0; a < 3; ++a)
+            Kokkos::atomic_add(&vol(sx.base + a + nx * (sy.base + b)), sx.w[a] * sy.w[b] * V);
+      });
+}
+
+// Cell projection of the pore pressure (`cell_pressure`): p_p <- sum_{q in c} n_q V_q p_q /
+// sum_{q in c} n_q V_q over the points q of the point's cell c (the cell of its position). A
+// projection (P^2 = P) that is symmetric in the n V weighted product, so with p already uniform in
+// the cell it changes nothing and the forces of P2G stay the transpose of the storage equation
+// (energy consistent); points crossing cells are mixed, which can only lower the stored liquid
+// energy sum n V p^2 / (2 K_L) (Jensen): the drop is returned (J/m). Removes the checkerboard
+// (Q1P0-like pressure per cell). Uses grid.smooth_value / smooth_weight per cell (cell index =
+// index of its lower-left node).
+template <class ExecSpace, class MemorySpace>
+double project_pore_pressure(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g,
+                             double liquid_bulk_modulus) {
+  const auto s = p.solid;
+  const auto num = g.smooth_value, den = g.smooth_weight;
+  Kokkos::deep_copy(num, 0.0);
+  Kokkos::deep_copy(den, 0.0);
+  const double ox = g.solid.origin[0], oy = g.solid.origin[1], inv_dx = 1.0 / g.solid.dx;
+  const int nx = g.solid.nx;
   const double K_L = liquid_bulk_modulus;
   Kokkos::parallel_for(
-      "lsi::mpm::two_phase::pore_pressure_update", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      "lsi::mpm::two_phase::cell_pressure_sum", Kokkos::RangePolicy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q) {
+        const int c = static_cast<int>((s.position(q, 0) - ox) * inv_dx) +
+                      nx * static_cast<int>((s.position(q, 1) - oy) * inv_dx);
+        const double w = p.porosity(q) * s.volume(q);
+        Kokkos::atomic_add(&num(c), w * p.pore_pressure(q));
+        Kokkos::atomic_add(&den(c), w);
+      });
+  double drop = 0.0;
+  Kokkos::parallel_reduce(
+      "lsi::mpm::two_phase::cell_pressure_set", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      KOKKOS_LAMBDA(const int q, double& d) {
+        const int c = static_cast<int>((s.position(q, 0) - ox) * inv_dx) +
+                      nx * static_cast<int>((s.position(q, 1) - oy) * inv_dx);
+        const double w = p.porosity(q) * s.volume(q);
+        const double p0 = p.pore_pressure(q), p1 = num(c) / den(c);
+        d += w * (p0 * p0 - p1 * p1) / (2.0 * K_L);
+        p.pore_pressure(q) = p1;
+      },
+      drop);
+  return drop;
+}
+
+// Returns the dissipation of the step, J/m: the work of the bulk viscosity and the liquid energy
+// released at free-surface points (0 with both off). g.dx() is the length l of the viscosity.
+template <class ExecSpace, class MemorySpace>
+double pore_pressure_update(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g,
+                            const Liquid& liquid, double dt,
+                            const Kokkos::View<const PreparedMaterial*, MemorySpace>& materials,
+                            BulkViscosity viscosity = {},
+                            double free_surface_fill = 0.0) {
+  const auto s = p.solid;
+  const double K_L = liquid.bulk_modulus, rho_L = liquid.density;
+  const auto D = p.volumetric_rate;
+  Kokkos::parallel_for(
+      "lsi::mpm::two_phase::volumetric_rate", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      KOKKOS_LAMBDA(const int q) {
+        const double n = p.porosity(q);
+        D(q) = (1.0 - n) * (s.velocity_gradient(q, 0, 0) + s.velocity_gradient(q, 1, 1)) +
+               n * p.liquid_divergence(q);
+      });
+  const bool surface = free_surface_fill > 0.0;
+  if (surface) nodal_volume<ExecSpace>(p, g);
+  const auto vol = g.smooth_weight;
+  const double ox = g.solid.origin[0], oy = g.solid.origin[1], inv_dx = 1.0 / g.solid.dx;
+  const double inv_cell = inv_dx * inv_dx, fill_min = free_surface_fill;
+  const int nx = g.solid.nx;
+  const bool viscous = viscosity.on();
+  const double c1 = viscosity.linear, c2 = viscosity.quadratic;
+  const double l = g.dx();
+  double dissipated = 0.0;
+  Kokkos::parallel_reduce(
+      "lsi::mpm::two_phase::pore_pressure_update", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      KOKKOS_LAMBDA(const int q, double& diss) {
         const double Lxx = s.velocity_gradient(q, 0, 0), Lxy = s.velocity_gradient(q, 0, 1),
                      Lyx = s.velocity_gradient(q, 1, 0), Lyy = s.velocity_gradient(q, 1, 1);
-        const double n = p.porosity(q);
-        p.pore_pressure(q) -= K_L / n * ((1.0 - n) * (Lxx + Lyy) + n * p.liquid_divergence(q)) * dt;
+        const double n = p.porosity(q), d = D(q);
+        p.pore_pressure(q) -= K_L / n * d * dt;
         const double J = (1.0 + Lxx * dt) * (1.0 + Lyy * dt) - Lxy * Lyx * dt * dt;
-        p.porosity(q) = 1.0 - (1.0 - n) / J;
-      });
+        const double n1 = 1.0 - (1.0 - n) / J;
+        p.porosity(q) = n1;
+        if (viscous) {
+          const double V = s.volume(q);
+          diss -= p.viscous_pressure(q) * d * V * dt;
+          const PreparedMaterial& m = materials(s.material(q));
+          const double M = m.lame_lambda + 2.0 * m.shear_modulus;
+          const double c = saturated_wave_speed(M, m.material.density, n1, rho_L, K_L);
+          const double rho_m = (s.mass(q) + p.liquid_mass(q)) / V;
+          p.viscous_pressure(q) = bulk_viscous_pressure(rho_m, c, l, d, c1, c2);
+        }
+        if (surface) {
+          // Fill of the point's neighbourhood: sum_i w_ip (sum_q w_iq V_q) / dx^2 (1 inside the
+          // material; 0.62 for the top row of 2 x 2 points per cell under a flat surface, 0.85
+          // for the second row). Below free_surface_fill the point is on the free surface:
+          // drained, p = q = 0; the liquid energy it held is counted with the viscous work.
+          const Stencil1D sx = quadratic_bspline(s.position(q, 0) - ox, inv_dx),
+                          sy = quadratic_bspline(s.position(q, 1) - oy, inv_dx);
+          double fill = 0.0;
+          for (int b = 0; b < 3; ++b)
+            for (int a = 0; a < 3; ++a) fill += sx.w[a] * sy.w[b] * vol(sx.base + a + nx * (sy.base + b));
+          if (fill * inv_cell < fill_min) {
+            const double pw = p.pore_pressure(q);
+            diss += n1 * pw * pw * s.volume(q) / (2.0 * K_L);
+            p.pore_pressure(q) = 0.0;
+            p.viscous_pressure(q) = 0.0;
+          }
+        }
+      },
+      dissipated);
+  return dissipated;
 }
 
 }  // namespace lsi::mpm::two_phase

@@ -16,12 +16,13 @@ struct TwoPhaseEnergyReport {
   double time = 0.0;
   double kinetic_solid = 0.0, kinetic_liquid = 0.0, elastic = 0.0, liquid = 0.0, potential = 0.0;
   double plastic = 0.0, boundary = 0.0, drag = 0.0;
+  double viscous = 0.0;   // accumulated work of the artificial bulk viscosity (>= 0)
   // minus the accumulated work of gravity on the relative flow and of the surface loads: they
   // enter the total like potential energies.
   double seepage_potential = 0.0, load_potential = 0.0;
   double kinetic() const { return kinetic_solid + kinetic_liquid; }
   double total() const {
-    return kinetic() + elastic + liquid + potential + plastic + boundary + drag +
+    return kinetic() + elastic + liquid + potential + plastic + boundary + drag + viscous +
            seepage_potential + load_potential;
   }
 };

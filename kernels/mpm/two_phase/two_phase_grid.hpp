@@ -17,11 +17,15 @@ template <class MemorySpace>
 struct TwoPhaseGrid {
   Grid<MemorySpace> solid, liquid;
   Kokkos::View<double*, MemorySpace> drag;
+  // Scratch of pore_pressure_update.hpp (nodal volume, cell sums of the pressure projection).
+  Kokkos::View<double*, MemorySpace> smooth_value, smooth_weight;
 
   TwoPhaseGrid() = default;
   TwoPhaseGrid(const double lower[2], const double upper[2], double cell_size)
       : solid(lower, upper, cell_size), liquid(lower, upper, cell_size) {
     drag = decltype(drag)("grid_drag", solid.size());
+    smooth_value = decltype(smooth_value)("grid_smooth_value", solid.size());
+    smooth_weight = decltype(smooth_weight)("grid_smooth_weight", solid.size());
   }
   int size() const { return solid.size(); }
   double dx() const { return solid.dx; }

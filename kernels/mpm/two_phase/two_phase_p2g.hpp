@@ -6,6 +6,8 @@
 //   liquid  force   +V n p grad(w) + w m_L g     (weak form of -n grad p; the free surface
 //                                                 term drops out: natural drained p = 0)
 //   drag    Q       w V n^2 rho_L g_D / k        (g_D: the g in the definition of k)
+// where p stands for p + q, q >= 0 the artificial bulk viscosity of the point
+// (pore_pressure_update.hpp; zero when it is off).
 //
 // Optional wall correction (TwoPhaseSettings::wall_correction). A wall acts on the nodes on or
 // beyond it, but the quadratic B-spline of the first free node above a wall is still 1/8 on the
@@ -101,7 +103,8 @@ void two_phase_p2g(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<M
         const double xp = s.position(q, 0) - ox, yp = s.position(q, 1) - oy;
         const Stencil1D sx = quadratic_bspline(xp, inv_dx), sy = quadratic_bspline(yp, inv_dx);
         const double mS = s.mass(q), mL = p.liquid_mass(q), V = s.volume(q);
-        const double n = p.porosity(q), pw = p.pore_pressure(q);
+        // p + q: the artificial bulk viscosity acts like a pore pressure (pore_pressure_update.hpp)
+        const double n = p.porosity(q), pw = p.pore_pressure(q) + p.viscous_pressure(q);
         const double vS[2] = {s.velocity(q, 0), s.velocity(q, 1)};
         const double vL[2] = {p.liquid_velocity(q, 0), p.liquid_velocity(q, 1)};
         // total stress times volume (tension positive)

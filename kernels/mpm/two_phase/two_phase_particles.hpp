@@ -26,6 +26,12 @@ struct TwoPhaseParticles {
   Kokkos::View<double*, MemorySpace> conductivity;            // hydraulic conductivity k, m/s
   Kokkos::View<double* [2], MemorySpace> traction;            // N/m, surface load on the point
                                                               // (applied to the mixture)
+  // Artificial bulk viscosity (pore_pressure_update.hpp): the mixture's volumetric strain rate
+  // D = (1 - n) tr(L_S) + n div(v_L) of the last step, 1/s, and
+  // the viscous pressure q(D) >= 0 (Pa, compression positive) it gives. q acts in P2G beside p
+  // (p + q in both the mixture and the liquid force) but is never added to p.
+  Kokkos::View<double*, MemorySpace> volumetric_rate;         // 1/s
+  Kokkos::View<double*, MemorySpace> viscous_pressure;        // Pa
 
   TwoPhaseParticles() = default;
   explicit TwoPhaseParticles(int n) : count(n), solid(n) {
@@ -37,6 +43,8 @@ struct TwoPhaseParticles {
     pore_pressure = decltype(pore_pressure)("p_pore_pressure", n);
     conductivity = decltype(conductivity)("p_conductivity", n);
     traction = decltype(traction)("p_traction", n);
+    volumetric_rate = decltype(volumetric_rate)("p_volumetric_rate", n);
+    viscous_pressure = decltype(viscous_pressure)("p_viscous_pressure", n);
   }
 };
 

@@ -49,6 +49,12 @@ struct TwoPhaseSettings {
   // single-phase solver has no such correction); on in the column tests.
   bool wall_correction = false;
   double energy_growth_limit = 0.5;   // relative growth of the total energy deemed unstable
+  // Optional stabilisations for saturated impacts (pore_pressure_update.hpp; docs/two_phase.md,
+  // "Impacts": measured, none of them keeps the L3-B3 impact finite, so all are off by default).
+  double bulk_viscosity_linear = 0.0;      // c1 of q = rho_m l |D| (c1 c + c2 l |D|), D < 0 only
+  double bulk_viscosity_quadratic = 0.0;   // c2
+  double free_surface_fill = 0.0;          // points whose neighbourhood fill is below: p = q = 0
+  bool cell_pore_pressure = false;         // p projected to its cell's mean every step
 };
 
 template <class ExecSpace>
@@ -106,8 +112,9 @@ class TwoPhaseSolver {
 
   // Advances one step. Returns Running, or the reason the run must stop.
   Status step() {
-    limits_ = two_phase_time_step_limits<ExecSpace>(particles_, materials_, liquid_,
-                                                    settings_.darcy_gravity);
+    limits_ = two_phase_time_step_limits<ExecSpace>(
+        particles_, materials_, liquid_, settings_.darcy_gravity, settings_.bulk_viscosity_linear,
+        settings_.bulk_viscosity_quadratic, grid_.dx());
     dt_ = two_phase_time_step(grid_.dx(), limits_, max_speed_, settings_.drag == Drag::Explicit,
                               settings_.courant, settings_.max_time_step);
     if (!(dt_ >= settings_.min_time_step)) return status_ = Status::TimeStepCollapse;
@@ -131,7 +138,12 @@ class TwoPhaseSolver {
     load_work_ += r.load_work;
     if (plastic_) stress_update<ExecSpace, true>(particles_.solid, materials_, dt_);
     else stress_update<ExecSpace, false>(particles_.solid, materials_, dt_);
-    pore_pressure_update<ExecSpace>(particles_, liquid_.bulk_modulus, dt_);
+    viscous_ += pore_pressure_update<ExecSpace>(
+        particles_, grid_, liquid_, dt_, materials_,
+        BulkViscosity{settings_.bulk_viscosity_linear, settings_.bulk_viscosity_quadratic},
+        settings_.free_surface_fill);
+    if (settings_.cell_pore_pressure)
+      viscous_ += project_pore_pressure<ExecSpace>(particles_, grid_, liquid_.bulk_modulus);
     time_ += dt_;
     ++steps_;
     max_speed_ = r.health.max_speed;
@@ -173,6 +185,7 @@ class TwoPhaseSolver {
     e.time = time_;
     e.boundary = boundary_;
     e.drag = drag_;
+    e.viscous = viscous_;
     e.seepage_potential = -seepage_work_;
     e.load_potential = -load_work_;
     return e;
@@ -181,7 +194,7 @@ class TwoPhaseSolver {
   // dissipated work and the change of the potentials (as Solver::energy_residual).
   double energy_residual(const TwoPhaseEnergyReport& e) const {
     const double scale = max_mechanical_ + std::abs(e.plastic) + std::abs(e.boundary) +
-                         std::abs(e.drag) + std::abs(e.potential - initial_.potential) +
+                         std::abs(e.drag) + std::abs(e.viscous) + std::abs(e.potential - initial_.potential) +
                          std::abs(e.seepage_potential) + std::abs(e.load_potential) + 1e-300;
     return (e.total() - initial_.total()) / scale;
   }
@@ -254,7 +267,7 @@ class TwoPhaseSolver {
   double user_max_dt_;
   TimeStepLimits limits_;
   double max_speed_ = 0.0, dt_ = 0.0, time_ = 0.0;
-  double boundary_ = 0.0, drag_ = 0.0, seepage_work_ = 0.0, load_work_ = 0.0;
+  double boundary_ = 0.0, drag_ = 0.0, seepage_work_ = 0.0, load_work_ = 0.0, viscous_ = 0.0;
   double wall_force_[2] = {0.0, 0.0};
   long steps_ = 0;
   bool plastic_ = false;

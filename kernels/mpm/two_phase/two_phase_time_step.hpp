@@ -50,7 +50,8 @@ KOKKOS_INLINE_FUNCTION double permeability_time_step(double k, double rho_S, dou
 }
 
 struct TimeStepLimits {
-  double wave_speed = 0.0;                 // m/s, largest over the points
+  double wave_speed = 0.0;                 // m/s, largest over the points (with the bulk
+                                           // viscosity's share, see below)
   double permeability_dt = 1e300;          // s, smallest over the points (explicit drag only)
 };
 
@@ -58,9 +59,11 @@ template <class ExecSpace, class MemorySpace>
 TimeStepLimits two_phase_time_step_limits(
     const TwoPhaseParticles<MemorySpace>& p,
     const Kokkos::View<const PreparedMaterial*, MemorySpace>& materials, const Liquid& liquid,
-    double darcy_gravity) {
+    double darcy_gravity, double viscosity_linear = 0.0, double viscosity_quadratic = 0.0,
+    double cell_size = 0.0) {
   const auto s = p.solid;
   const double rho_L = liquid.density, K_L = liquid.bulk_modulus, g = darcy_gravity;
+  const double c1 = viscosity_linear, c2 = viscosity_quadratic, l = cell_size;
   TimeStepLimits lim;
   Kokkos::parallel_reduce(
       "lsi::mpm::two_phase::time_step_limits", Kokkos::RangePolicy<ExecSpace>(0, p.count),
@@ -68,7 +71,15 @@ TimeStepLimits two_phase_time_step_limits(
         const PreparedMaterial& m = materials(s.material(q));
         const double M = m.lame_lambda + 2.0 * m.shear_modulus, rho_S = m.material.density;
         const double n = p.porosity(q);
-        const double cq = saturated_wave_speed(M, rho_S, n, rho_L, K_L);
+        double cq = saturated_wave_speed(M, rho_S, n, rho_L, K_L);
+        // Artificial bulk viscosity (pore_pressure_update.hpp) of a compressing point: as
+        // explicit impact codes, the speed c becomes sqrt(c^2 + Qv^2) + Qv with the viscous
+        // speed Qv = c1 c + c2 l |D| (von Neumann-Richtmyer / Landshoff).
+        const double D = p.volumetric_rate(q);
+        if (D < 0.0 && (c1 > 0.0 || c2 > 0.0)) {
+          const double Qv = c1 * cq - c2 * l * D;
+          cq = math::sqrt(cq * cq + Qv * Qv) + Qv;
+        }
         const double tq = permeability_time_step(p.conductivity(q), rho_S, n, rho_L, g);
         if (cq > c) c = cq;
         if (tq < dtk) dtk = tq;
