@@ -255,8 +255,11 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
   progress.finish();
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.particles = particle_count;
-  out.finished = status == mpm::Status::Finished && !barrier_left;
-  out.status = barrier_left ? "stopped: the barrier reached the downstream end of the grid"
+  // A barrier pushed to the downstream end of the modelled domain is a physical outcome (far too
+  // light a barrier), not an instability: the run ends there and the barrier counts as never
+  // stopping (final displacement +infinity; the distance reached is displacement_at_end).
+  out.finished = status == mpm::Status::Finished;
+  out.status = barrier_left ? "finished: the barrier slid to the downstream end of the domain"
                             : mpm::describe(status);
   out.steps = solver.steps();
   out.wall_seconds = total - io_seconds;
@@ -265,6 +268,10 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
   r.peak_force = r.rise_time = r.impact_duration = r.final_displacement =
       std::numeric_limits<double>::quiet_NaN();   // not an impact: not given
   if (c.barrier && !r.force.empty()) summarize_impact(r, solver.barrier());
+  if (barrier_left) {
+    r.final_displacement = std::numeric_limits<double>::infinity();
+    r.extra["barrier_left_domain"] = 1.0;
+  }
   if (c.barrier && r.series.count("face_pore_pressure_max")) {
     const auto& v = r.series.at("face_pore_pressure_max").values;
     r.extra["face_pore_pressure_max_pa"] = *std::max_element(v.begin(), v.end());

@@ -50,7 +50,10 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
   if (transfer != "flip" && r.has("flip_ratio")) {
     r.fail_at("flip_ratio", "only used with \"transfer\": \"flip\"");
   }
-  s.small_mass_fraction = r.number_or("small_mass_fraction", 0.0, jf::interval('[', 0, 0.1, ']'));
+  // Impact scenes (violent, splashing flows) default to the small-mass threshold; verification
+  // scenes to exact momentum conservation.
+  s.small_mass_fraction =
+      r.number_or("small_mass_fraction", impact ? 1e-3 : 0.0, jf::interval('[', 0, 0.1, ']'));
   s.atomic_scatter = r.choice("scatter", {"duplicated", "atomic"}, std::string("duplicated")) == "atomic";
   s.snapshot_interval_s = r.optional_number("snapshot_interval_s", jf::greater_than(0, "s")).value_or(0.0);
   return s;
