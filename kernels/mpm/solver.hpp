@@ -11,8 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "kernels/mpm/barrier.hpp"
-#include "kernels/mpm/barrier_contact.hpp"
+#include "kernels/mpm/barrier_coupling.hpp"
 #include "kernels/mpm/boundary.hpp"
 #include "kernels/mpm/energy.hpp"
 #include "kernels/mpm/g2p.hpp"
@@ -108,13 +107,12 @@ class Solver {
     wall_force_[0] = wall_force_[1] = 0.0;
     boundary_ += grid_update<ExecSpace>(grid_, walls_, dt_, wall_force_, small_mass_,
                                         settings_.gravity);
-    if (has_barrier_) {
-      contact_ = barrier_contact<ExecSpace>(grid_, barrier_.shape, barrier_.motion.displacement,
-                                            barrier_.motion.velocity, barrier_.face_friction, dt_);
-      boundary_ += contact_.work;
-      for (int k = 0; k < 3; ++k)
-        for (int d = 0; d < 2; ++d) contact_impulse_[k][d] += contact_.force[k][d] * dt_;
-      if (!barrier_.fixed) barrier_.motion.advance(contact_.total(0), contact_.total(1), dt_);
+    if (barrier_.active()) {
+      const Barrier& b = barrier_.barrier();
+      boundary_ += barrier_.apply(
+          barrier_contact<ExecSpace>(grid_, b.shape, b.motion.displacement, b.motion.velocity,
+                                     b.face_friction, dt_),
+          dt_);
     }
     // G2P and the stress update in one pass over the points (g2p.hpp).
     const G2PReport r =
@@ -173,23 +171,12 @@ class Solver {
     return (e.total() - initial_.total()) / scale;
   }
 
-  // Adds a rigid barrier (before the first step).
-  void attach_barrier(const Barrier& b) {
-    barrier_ = b;
-    has_barrier_ = true;
-  }
-  bool has_barrier() const { return has_barrier_; }
-  const Barrier& barrier() const { return barrier_; }
-  // Contact forces on the barrier during the last step, per face (N/m).
-  const BarrierContactReport& barrier_contact_report() const { return contact_; }
-  // Contact impulse on the barrier per face (N s/m, x and y) since the last call; resets it.
-  void take_barrier_impulse(double impulse[3][2]) {
-    for (int k = 0; k < 3; ++k)
-      for (int d = 0; d < 2; ++d) {
-        impulse[k][d] = contact_impulse_[k][d];
-        contact_impulse_[k][d] = 0.0;
-      }
-  }
+  // The rigid barrier (barrier_coupling.hpp): attach before the first step.
+  void attach_barrier(const Barrier& b) { barrier_.attach(b); }
+  bool has_barrier() const { return barrier_.active(); }
+  const Barrier& barrier() const { return barrier_.barrier(); }
+  const BarrierContactReport& barrier_contact_report() const { return barrier_.contact(); }
+  void take_barrier_impulse(double impulse[3][2]) { barrier_.take_impulse(impulse); }
 
   double time() const { return time_; }
   double time_step() const { return dt_; }
@@ -220,11 +207,9 @@ class Solver {
   double wall_force_[2] = {0.0, 0.0};
   long steps_ = 0;
   bool plastic_ = false;
-  bool has_barrier_ = false;
+
   double small_mass_ = 0.0;
-  Barrier barrier_;
-  BarrierContactReport contact_;
-  double contact_impulse_[3][2] = {{0, 0}, {0, 0}, {0, 0}};
+  BarrierCoupling barrier_;
   Status status_ = Status::Running;
   EnergyReport initial_;
   double max_mechanical_ = 0.0;

@@ -133,7 +133,7 @@ class TwoPhaseSolver {
     seepage_work_ += gu.seepage_gravity_work;
     wall_force_[0] = gu.wall_force[0];
     wall_force_[1] = gu.wall_force[1];
-    if (has_barrier_) barrier_step();
+    if (barrier_.active()) barrier_step();
     const TwoPhaseG2PReport r = two_phase_g2p<ExecSpace>(particles_, grid_, dt_, cw, cl);
     load_work_ += r.load_work;
     if (plastic_) stress_update<ExecSpace, true>(particles_.solid, materials_, dt_);
@@ -199,23 +199,12 @@ class TwoPhaseSolver {
     return (e.total() - initial_.total()) / scale;
   }
 
-  // Adds a rigid barrier (before the first step); as Solver::attach_barrier.
-  void attach_barrier(const Barrier& b) {
-    barrier_ = b;
-    has_barrier_ = true;
-  }
-  bool has_barrier() const { return has_barrier_; }
-  const Barrier& barrier() const { return barrier_; }
-  // Contact forces on the barrier during the last step, per face (N/m), both phases.
-  const BarrierContactReport& barrier_contact_report() const { return contact_; }
-  // Contact impulse on the barrier per face (N s/m, x and y) since the last call; resets it.
-  void take_barrier_impulse(double impulse[3][2]) {
-    for (int k = 0; k < 3; ++k)
-      for (int d = 0; d < 2; ++d) {
-        impulse[k][d] = contact_impulse_[k][d];
-        contact_impulse_[k][d] = 0.0;
-      }
-  }
+  // The rigid barrier (barrier_coupling.hpp): attach before the first step.
+  void attach_barrier(const Barrier& b) { barrier_.attach(b); }
+  bool has_barrier() const { return barrier_.active(); }
+  const Barrier& barrier() const { return barrier_.barrier(); }
+  const BarrierContactReport& barrier_contact_report() const { return barrier_.contact(); }
+  void take_barrier_impulse(double impulse[3][2]) { barrier_.take_impulse(impulse); }
 
   double time() const { return time_; }
   double time_step() const { return dt_; }
@@ -233,21 +222,17 @@ class TwoPhaseSolver {
   // Contact of both phases with the barrier: the solid with the face friction, the liquid
   // without (no shear stress in the pore liquid); the barrier moves under their sum.
   void barrier_step() {
-    const auto& m = barrier_.motion;
-    const BarrierContactReport s = barrier_contact<ExecSpace>(
-        grid_.solid, barrier_.shape, m.displacement, m.velocity, barrier_.face_friction, dt_);
+    const Barrier& b = barrier_.barrier();
+    const auto& m = b.motion;
+    BarrierContactReport both = barrier_contact<ExecSpace>(
+        grid_.solid, b.shape, m.displacement, m.velocity, b.face_friction, dt_);
     const BarrierContactReport l = barrier_contact<ExecSpace>(
-        grid_.liquid, barrier_.shape, m.displacement, m.velocity, 0.0, dt_);
-    contact_ = s;
+        grid_.liquid, b.shape, m.displacement, m.velocity, 0.0, dt_);
     for (int k = 0; k < 3; ++k)
-      for (int d = 0; d < 2; ++d) {
-        contact_.force[k][d] += l.force[k][d];
-        contact_impulse_[k][d] += contact_.force[k][d] * dt_;
-      }
-    contact_.work += l.work;
-    contact_.nodes += l.nodes;
-    boundary_ += contact_.work;
-    if (!barrier_.fixed) barrier_.motion.advance(contact_.total(0), contact_.total(1), dt_);
+      for (int d = 0; d < 2; ++d) both.force[k][d] += l.force[k][d];
+    both.work += l.work;
+    both.nodes += l.nodes;
+    boundary_ += barrier_.apply(both, dt_);
   }
 
   bool energy_grew() {
@@ -271,10 +256,8 @@ class TwoPhaseSolver {
   double wall_force_[2] = {0.0, 0.0};
   long steps_ = 0;
   bool plastic_ = false;
-  bool has_barrier_ = false;
-  Barrier barrier_;
-  BarrierContactReport contact_;
-  double contact_impulse_[3][2] = {{0, 0}, {0, 0}, {0, 0}};
+
+  BarrierCoupling barrier_;
   Status status_ = Status::Running;
   TwoPhaseEnergyReport initial_;
   double max_mechanical_ = 0.0;
