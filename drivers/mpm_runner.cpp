@@ -82,6 +82,7 @@ void summarize_impact(MethodResult& r, const mpm::Barrier& barrier) {
   r.extra["displacement_at_end"] = barrier.motion.displacement;
   const auto& over = r.series.at("overtopped_volume").values;
   r.extra["overtopped_volume_m2"] = over.back();
+  r.extra["retained_volume_m2"] = r.series.at("retained_volume").values.back();
 }
 
 using Exec = Kokkos::DefaultExecutionSpace;
@@ -208,6 +209,8 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
         solid_points(solver), c.barrier->shape.crest_upstream_x() + motion.displacement);
     add("overtopped_volume", "m^2", "volume of material downstream of the upstream crest corner",
         o.overtopped);
+    add("retained_volume", "m^2", "volume of material upstream of the upstream crest corner",
+        o.total - o.overtopped);
     add("barrier_friction_work", "J/m", "work dissipated by the barrier's base friction",
         motion.friction_work);
     add("barrier_kinetic_energy", "J/m", "kinetic energy of the barrier",

@@ -404,6 +404,11 @@ void check_impact_histories(const lsi::MethodResult& m, double initial_momentum)
   }
   EXPECT_GT(checked, 20u);
   EXPECT_GT(impulse, 0.5 * initial_momentum);   // the barrier did stop the flow
+  // Overtopped + retained = the landslide's area as placed (3 m^2) at every output, to
+  // round-off.
+  const auto& over = m.series.at("overtopped_volume").values;
+  const auto& kept = m.series.at("retained_volume").values;
+  for (size_t i = 0; i < over.size(); ++i) EXPECT_NEAR(over[i] + kept[i], 3.0, 1e-9);
 }
 
 TEST(Cli, MpmImpactRunsBesideTheClosedFormsAndConservesMomentum) {
@@ -420,6 +425,9 @@ TEST(Cli, MpmImpactRunsBesideTheClosedFormsAndConservesMomentum) {
   for (const char* m : {"empirical", "analytical", "mpm"}) ASSERT_TRUE(j.contains(m)) << m;
   EXPECT_EQ(j["mpm"]["saturated"], 0.0);
   EXPECT_EQ(j["mpm"]["final_displacement"], 0.0);   // a fixed barrier never moves
+  // Nothing overtops a 2 m barrier hit by a dry 1 m flow at 4 m/s (run-up v0^2 / 2g = 0.8 m).
+  EXPECT_EQ(j["mpm"]["overtopped_volume_m2"], 0.0);
+  EXPECT_DOUBLE_EQ(j["mpm"]["retained_volume_m2"].get<double>(), 3.0);
   // The blunt front hits the vertical face like an elastic bar (wave theory rho c v0 h =
   // 1800 x 36.5 x 4 x 1 = 263 kN/m, the P-wave speed of E = 2 MPa, nu = 0.25); averaged over an
   // output interval (7 ms, a fifth of the wave's transit) it is lower: 200-280 kN/m.
