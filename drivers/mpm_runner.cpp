@@ -143,17 +143,7 @@ MpmSnapshot snapshot_of(const SaturatedSolver& sv) {
 void material_momentum(const DrySolver& sv, double p[2]) { mpm::momentum<Exec>(sv.particles(), p); }
 void material_momentum(const SaturatedSolver& sv, double p[2]) {
   mpm::momentum<Exec>(sv.particles().solid, p);
-  const auto& tp = sv.particles();
-  double lx = 0.0, ly = 0.0;
-  Kokkos::parallel_reduce(
-      "lsi::mpm::two_phase::liquid_momentum", Kokkos::RangePolicy<Exec>(0, tp.count),
-      KOKKOS_LAMBDA(const int q, double& x, double& y) {
-        x += tp.liquid_mass(q) * tp.liquid_velocity(q, 0);
-        y += tp.liquid_mass(q) * tp.liquid_velocity(q, 1);
-      },
-      lx, ly);
-  p[0] += lx;
-  p[1] += ly;
+  mpm::add_momentum<Exec>(sv.particles().liquid_mass, sv.particles().liquid_velocity, p);
 }
 
 // Impact outputs particular to a solver: the largest pore pressure on the face (saturated).

@@ -48,6 +48,32 @@ inline double polygon_top(const std::vector<std::array<double, 2>>& poly, double
   return top;
 }
 
+// Calls f(x, y, V) for every fill point of the polygon: n x n points per cell of the grid
+// (origin, cell_size) at (k + 1/2) / n of the cell, V = (cell_size / n)^2 each.
+template <class F>
+void for_each_fill_point(const std::vector<std::array<double, 2>>& polygon, int n,
+                         const double grid_origin[2], double cell_size, F&& f) {
+  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+  for (const auto& v : polygon)
+    for (int d = 0; d < 2; ++d) {
+      lo[d] = std::min(lo[d], v[d]);
+      hi[d] = std::max(hi[d], v[d]);
+    }
+  const double h = cell_size / n, V = h * h;
+  const int i0 = static_cast<int>(std::floor((lo[0] - grid_origin[0]) / cell_size));
+  const int i1 = static_cast<int>(std::ceil((hi[0] - grid_origin[0]) / cell_size));
+  const int j0 = static_cast<int>(std::floor((lo[1] - grid_origin[1]) / cell_size));
+  const int j1 = static_cast<int>(std::ceil((hi[1] - grid_origin[1]) / cell_size));
+  for (int j = j0; j < j1; ++j)
+    for (int i = i0; i < i1; ++i)
+      for (int b = 0; b < n; ++b)
+        for (int a = 0; a < n; ++a) {
+          const double x = grid_origin[0] + i * cell_size + (a + 0.5) * h;
+          const double y = grid_origin[1] + j * cell_size + (b + 0.5) * h;
+          if (inside_polygon(polygon, x, y)) f(x, y, V);
+        }
+}
+
 template <class MemorySpace>
 Particles<MemorySpace> build_particles(const std::vector<BodySpec>& bodies,
                                        const std::vector<Material>& materials,
@@ -55,34 +81,20 @@ Particles<MemorySpace> build_particles(const std::vector<BodySpec>& bodies,
   struct Point { double x, y, vx, vy, m, V, s[4]; int mat; };
   std::vector<Point> pts;
   for (const auto& body : bodies) {
-    double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
-    for (const auto& v : body.polygon)
-      for (int d = 0; d < 2; ++d) { lo[d] = std::min(lo[d], v[d]); hi[d] = std::max(hi[d], v[d]); }
-    const int n = body.points_per_cell_direction;
-    const double h = cell_size / n, V = h * h;
     const Material& mat = materials.at(body.material);
-    const int i0 = static_cast<int>(std::floor((lo[0] - grid_origin[0]) / cell_size));
-    const int i1 = static_cast<int>(std::ceil((hi[0] - grid_origin[0]) / cell_size));
-    const int j0 = static_cast<int>(std::floor((lo[1] - grid_origin[1]) / cell_size));
-    const int j1 = static_cast<int>(std::ceil((hi[1] - grid_origin[1]) / cell_size));
-    for (int j = j0; j < j1; ++j)
-      for (int i = i0; i < i1; ++i)
-        for (int b = 0; b < n; ++b)
-          for (int a = 0; a < n; ++a) {
-            const double x = grid_origin[0] + i * cell_size + (a + 0.5) * h;
-            const double y = grid_origin[1] + j * cell_size + (b + 0.5) * h;
-            if (!inside_polygon(body.polygon, x, y)) continue;
-            Point p{x, y, body.velocity[0], body.velocity[1], mat.density * V, V, {0, 0, 0, 0},
-                    body.material};
-            if (body.geostatic_k0 >= 0.0) {
-              const double top = body.surface_from_polygon ? polygon_top(body.polygon, x)
-                                                           : body.surface_y;
-              const double syy = -mat.density * body.gravity * (top - y);
-              p.s[1] = syy;
-              p.s[0] = p.s[3] = body.geostatic_k0 * syy;
-            }
-            pts.push_back(p);
-          }
+    for_each_fill_point(body.polygon, body.points_per_cell_direction, grid_origin, cell_size,
+                        [&](double x, double y, double V) {
+      Point p{x, y, body.velocity[0], body.velocity[1], mat.density * V, V, {0, 0, 0, 0},
+              body.material};
+      if (body.geostatic_k0 >= 0.0) {
+        const double top = body.surface_from_polygon ? polygon_top(body.polygon, x)
+                                                     : body.surface_y;
+        const double syy = -mat.density * body.gravity * (top - y);
+        p.s[1] = syy;
+        p.s[0] = p.s[3] = body.geostatic_k0 * syy;
+      }
+      pts.push_back(p);
+    });
   }
   Particles<MemorySpace> p(static_cast<int>(pts.size()));
   auto x = Kokkos::create_mirror_view(p.position);

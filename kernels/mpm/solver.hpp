@@ -20,23 +20,12 @@
 #include "kernels/mpm/p2g.hpp"
 #include "kernels/mpm/particles.hpp"
 #include "kernels/mpm/stress_update.hpp"
+#include "kernels/mpm/run_loop.hpp"
+#include "kernels/mpm/status.hpp"
 #include "kernels/mpm/time_step.hpp"
 
 namespace lsi::mpm {
 
-enum class Status { Running, Finished, NonFinite, LeftGrid, TimeStepCollapse, EnergyGrowth };
-
-inline const char* describe(Status s) {
-  switch (s) {
-    case Status::Running: return "running";
-    case Status::Finished: return "finished";
-    case Status::NonFinite: return "unstable: non-finite velocity or position";
-    case Status::LeftGrid: return "unstable: a material point left the grid";
-    case Status::TimeStepCollapse: return "unstable: the time step collapsed";
-    case Status::EnergyGrowth: return "unstable: the total energy grew";
-  }
-  return "?";
-}
 
 struct Settings {
   double courant = 0.5;
@@ -128,33 +117,15 @@ class Solver {
     return status_ = Status::Running;
   }
 
-  // Runs to end_time, calling on_output at t = 0 and every output_interval (and at the end).
-  // Energy growth is checked at each output. If given, `done` is asked after each output whether
-  // the run may end early (e.g. everything is at rest): then the status is Finished.
+  // Runs to end_time with outputs (run_loop.hpp): on_output at t = 0, every output_interval and
+  // at the end, energy growth checked there, `done` may end the run early (Finished).
   Status run(double end_time, double output_interval,
              const std::function<void(const Solver&)>& on_output = {},
              const std::function<bool(const Solver&)>& done = {}) {
-    if (on_output) on_output(*this);
-    double next_output = time_ + output_interval;
-    struct Restore {   // the last step is clamped to end_time; the user's maximum comes back after
-      Settings& s;
-      double v;
-      ~Restore() { s.max_time_step = v; }
-    } restore{settings_, user_max_dt_};
-    // A leftover shorter than the collapse threshold is not a step worth taking.
-    const double close_enough = std::max(1e-12 * end_time, settings_.min_time_step);
-    while (end_time - time_ > close_enough) {
-      settings_.max_time_step = std::min(user_max_dt_, end_time - time_);
-      const Status s = step();
-      if (s != Status::Running) return s;
-      if (time_ >= next_output * (1 - 1e-12) || end_time - time_ <= close_enough) {
-        next_output += output_interval;
-        if (energy_grew()) return status_ = Status::EnergyGrowth;
-        if (on_output) on_output(*this);
-        if (done && done(*this)) break;
-      }
-    }
-    return status_ = Status::Finished;
+    return status_ = run_loop(
+        *this, end_time, output_interval, settings_.max_time_step, user_max_dt_,
+        settings_.min_time_step, [this] { return step(); }, [this] { return energy_grew(); },
+        on_output, done);
   }
 
   EnergyReport energy() const {

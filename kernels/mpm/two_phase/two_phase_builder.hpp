@@ -51,39 +51,26 @@ TwoPhaseParticles<MemorySpace> build_two_phase_particles(const std::vector<TwoPh
   };
   std::vector<Point> pts;
   for (const auto& body : bodies) {
-    double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
-    for (const auto& v : body.polygon)
-      for (int d = 0; d < 2; ++d) { lo[d] = std::min(lo[d], v[d]); hi[d] = std::max(hi[d], v[d]); }
     const int np = body.points_per_cell_direction;
-    const double h = cell_size / np, V = h * h;
+    const double h = cell_size / np;
     const Material& mat = materials.at(body.material);
     const double n = body.porosity, rho_L = liquid.density;
     const double rho_m = (1.0 - n) * mat.density + n * rho_L;
-    const int i0 = static_cast<int>(std::floor((lo[0] - grid_origin[0]) / cell_size));
-    const int i1 = static_cast<int>(std::ceil((hi[0] - grid_origin[0]) / cell_size));
-    const int j0 = static_cast<int>(std::floor((lo[1] - grid_origin[1]) / cell_size));
-    const int j1 = static_cast<int>(std::ceil((hi[1] - grid_origin[1]) / cell_size));
-    for (int j = j0; j < j1; ++j)
-      for (int i = i0; i < i1; ++i)
-        for (int b = 0; b < np; ++b)
-          for (int a = 0; a < np; ++a) {
-            const double x = grid_origin[0] + i * cell_size + (a + 0.5) * h;
-            const double y = grid_origin[1] + j * cell_size + (b + 0.5) * h;
-            if (!inside_polygon(body.polygon, x, y)) continue;
-            Point P{{x, y}, {body.velocity[0], body.velocity[1]}, (1.0 - n) * mat.density * V,
-                    n * rho_L * V, V, n, body.hydraulic_conductivity, body.excess_pore_pressure,
-                    {0, 0, 0, 0}, {0, 0}, body.material};
-            const double depth =
-                (body.surface_from_polygon ? polygon_top(body.polygon, x) : body.surface_y) - y;
-            if (body.geostatic_k0 >= 0.0 && depth > 0.0) {
-              P.p += rho_L * body.gravity * depth;
-              const double syy = -(rho_m - rho_L) * body.gravity * depth;
-              P.s[1] = syy;
-              P.s[0] = P.s[3] = body.geostatic_k0 * syy;
-            }
-            if (body.surface_load != 0.0 && depth > 0.0 && depth < h) P.t[1] = -body.surface_load * h;
-            pts.push_back(P);
-          }
+    for_each_fill_point(body.polygon, np, grid_origin, cell_size, [&](double x, double y, double V) {
+      Point P{{x, y}, {body.velocity[0], body.velocity[1]}, (1.0 - n) * mat.density * V,
+              n * rho_L * V, V, n, body.hydraulic_conductivity, body.excess_pore_pressure,
+              {0, 0, 0, 0}, {0, 0}, body.material};
+      const double depth =
+          (body.surface_from_polygon ? polygon_top(body.polygon, x) : body.surface_y) - y;
+      if (body.geostatic_k0 >= 0.0 && depth > 0.0) {
+        P.p += rho_L * body.gravity * depth;
+        const double syy = -(rho_m - rho_L) * body.gravity * depth;
+        P.s[1] = syy;
+        P.s[0] = P.s[3] = body.geostatic_k0 * syy;
+      }
+      if (body.surface_load != 0.0 && depth > 0.0 && depth < h) P.t[1] = -body.surface_load * h;
+      pts.push_back(P);
+    });
   }
   const int count = static_cast<int>(pts.size());
   TwoPhaseParticles<MemorySpace> p(count);

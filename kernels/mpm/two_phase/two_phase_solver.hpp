@@ -157,26 +157,10 @@ class TwoPhaseSolver {
   Status run(double end_time, double output_interval,
              const std::function<void(const TwoPhaseSolver&)>& on_output = {},
              const std::function<bool(const TwoPhaseSolver&)>& done = {}) {
-    if (on_output) on_output(*this);
-    double next_output = time_ + output_interval;
-    struct Restore {
-      TwoPhaseSettings& s;
-      double v;
-      ~Restore() { s.max_time_step = v; }
-    } restore{settings_, user_max_dt_};
-    const double close_enough = std::max(1e-12 * end_time, settings_.min_time_step);
-    while (end_time - time_ > close_enough) {
-      settings_.max_time_step = std::min(user_max_dt_, end_time - time_);
-      const Status s = step();
-      if (s != Status::Running) return s;
-      if (time_ >= next_output * (1 - 1e-12) || end_time - time_ <= close_enough) {
-        next_output += output_interval;
-        if (energy_grew()) return status_ = Status::EnergyGrowth;
-        if (on_output) on_output(*this);
-        if (done && done(*this)) break;
-      }
-    }
-    return status_ = Status::Finished;
+    return status_ = run_loop(
+        *this, end_time, output_interval, settings_.max_time_step, user_max_dt_,
+        settings_.min_time_step, [this] { return step(); }, [this] { return energy_grew(); },
+        on_output, done);
   }
 
   TwoPhaseEnergyReport energy() const {
