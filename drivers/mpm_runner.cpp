@@ -48,17 +48,6 @@ MpmSnapshot take_snapshot(const mpm::Particles<Mem>& p, double time) {
   return s;
 }
 
-void ensure_kokkos() {
-  if (Kokkos::is_initialized()) return;
-  // Without a binding policy Kokkos warns on every start; threads that may migrate are the safe
-  // default on a shared machine (set OMP_PROC_BIND=spread OMP_PLACES=threads for benchmarks).
-  setenv("OMP_PROC_BIND", "false", /*overwrite=*/0);
-  Kokkos::initialize();
-  std::atexit([] {
-    if (Kokkos::is_initialized()) Kokkos::finalize();
-  });
-}
-
 // Peak force (normal to the upstream face) and its time (rise time); impact duration: the last
 // time the normal force differs from its final value (mean of the last 5 % of the samples, the
 // static load of what the barrier retains) by more than 10 % of the peak; final displacement of
@@ -279,6 +268,18 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
 }
 
 }  // namespace
+
+void ensure_kokkos() {
+  if (Kokkos::is_initialized()) return;
+  // Without a binding policy Kokkos warns on every start; threads that may migrate are the safe
+  // default on a shared machine (set OMP_PROC_BIND=spread OMP_PLACES=threads for benchmarks).
+  setenv("OMP_PROC_BIND", "false", /*overwrite=*/0);
+  Kokkos::initialize();
+  std::atexit([] {
+    if (Kokkos::is_initialized()) Kokkos::finalize();
+  });
+}
+
 
 MpmOutcome run_mpm_case(const MpmCase& c) {
   ensure_kokkos();

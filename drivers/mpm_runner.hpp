@@ -38,4 +38,7 @@ struct MpmOutcome {
 
 MpmOutcome run_mpm_case(const MpmCase& c);
 
+// Starts Kokkos once (finalised at exit); what every Kokkos user in the driver calls first.
+void ensure_kokkos();
+
 }  // namespace lsi

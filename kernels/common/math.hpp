@@ -8,6 +8,7 @@ namespace lsi::math {
 #if KOKKOS_VERSION >= 30700
 using Kokkos::cos;
 using Kokkos::fabs;
+using Kokkos::floor;
 using Kokkos::isfinite;
 using Kokkos::isinf;
 using Kokkos::pow;
@@ -17,6 +18,7 @@ using Kokkos::tan;
 #else
 using Kokkos::Experimental::cos;
 using Kokkos::Experimental::fabs;
+using Kokkos::Experimental::floor;
 using Kokkos::Experimental::isfinite;
 using Kokkos::Experimental::isinf;
 using Kokkos::Experimental::pow;
@@ -28,6 +30,7 @@ using Kokkos::Experimental::tan;
 KOKKOS_INLINE_FUNCTION constexpr double pi() { return 3.14159265358979323846; }
 KOKKOS_INLINE_FUNCTION constexpr double degrees_to_radians(double deg) { return deg * pi() / 180.0; }
 KOKKOS_INLINE_FUNCTION constexpr double infinity() { return __builtin_huge_val(); }
+KOKKOS_INLINE_FUNCTION constexpr double quiet_nan() { return __builtin_nan(""); }
 KOKKOS_INLINE_FUNCTION constexpr double min(double a, double b) { return a < b ? a : b; }
 KOKKOS_INLINE_FUNCTION constexpr double max(double a, double b) { return a > b ? a : b; }
 
