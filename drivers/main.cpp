@@ -21,6 +21,7 @@
 #include "drivers/mpm_scene.hpp"
 #include "drivers/report.hpp"
 #include "drivers/scene.hpp"
+#include "drivers/subcommand.hpp"
 
 namespace {
 
@@ -182,6 +183,9 @@ int main(int argc, char** argv) {
   compare->add_option("--summary-json", summary_json_path,
                       "Also write the comparison as JSON to this file (written atomically)");
 
+  const lsi::Subcommand subcommands[] = {lsi::add_sweep_command(app), lsi::add_merge_command(app),
+                                         lsi::add_calibrate_command(app)};
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -196,6 +200,8 @@ int main(int argc, char** argv) {
   }
 
   try {
+    for (const auto& s : subcommands)
+      if (*s.command) return s.run();
     check_format(format);
     const auto only = parse_methods(methods_list);
     if (*run) {

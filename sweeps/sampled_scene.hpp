@@ -1,0 +1,185 @@
+// One sample of a sweep as the closed-form models see it: the numeric scene values in a flat,
+// device-copyable struct, their validity check (the same ranges as the scene parser,
+// drivers/scene.cpp) and the evaluation of the empirical and analytical models. Used inside the
+// batched sweep kernel (drivers/sweep_closed_form.hpp): no allocation, no strings, no I/O.
+//
+// The ranges below mirror drivers/scene.cpp; tests/sweeps/test_sweep_study.cpp checks on random
+// samples that a sample is valid here exactly when the scene parser accepts it.
+#pragma once
+#include <Kokkos_Core.hpp>
+
+#include "kernels/closed_form/barrier_sliding.hpp"
+#include "kernels/closed_form/empirical_model.hpp"
+#include "kernels/closed_form/two_body_model.hpp"
+#include "kernels/common/math.hpp"
+
+namespace lsi::sweeps {
+
+// The numeric scene keys a study may sample (JSON pointers in scene_field_pointer).
+enum SceneField : int {
+  thickness_m, velocity_m_s, density_kg_m3, body_squares, length_m,
+  porosity, friction_angle_deg, cohesion_kpa, young_modulus_mpa, poisson_ratio,
+  hydraulic_conductivity_m_s, liquid_bulk_modulus_mpa, liquid_viscosity_kpa_s,
+  height_m, base_width_m, top_width_m, face_angle_deg, barrier_density_kg_m3,
+  barrier_mass_kg_per_m, base_friction, face_friction,
+  empirical_a1, empirical_a2, empirical_tau, empirical_kappa,
+  analytical_lambda, analytical_tau,
+  scene_field_count
+};
+
+inline constexpr const char* scene_field_pointer[scene_field_count] = {
+    "/landslide/thickness_m", "/landslide/velocity_m_s", "/landslide/density_kg_m3",
+    "/landslide/shape/body_squares", "/landslide/shape/length_m",
+    "/landslide/material/porosity", "/landslide/material/friction_angle_deg",
+    "/landslide/material/cohesion_kpa", "/landslide/material/young_modulus_mpa",
+    "/landslide/material/poisson_ratio", "/landslide/material/hydraulic_conductivity_m_s",
+    "/landslide/material/liquid_bulk_modulus_mpa", "/landslide/material/liquid_viscosity_kpa_s",
+    "/barrier/height_m", "/barrier/base_width_m", "/barrier/top_width_m",
+    "/barrier/face_angle_deg", "/barrier/density_kg_m3", "/barrier/mass_kg_per_m",
+    "/barrier/base_friction", "/barrier/face_friction",
+    "/methods/empirical/a1", "/methods/empirical/a2", "/methods/empirical/tau",
+    "/methods/empirical/kappa", "/methods/analytical/lambda", "/methods/analytical/tau"};
+
+// Allowed range of each field: lo/hi with open or closed ends (infinite = unbounded); `integer`
+// for counts. top_width_m's upper bound is base_width_m and face_angle_deg must also fit the
+// face in the base (checked separately).
+struct FieldRange {
+  double lo, hi;
+  bool lo_closed, hi_closed, integer;
+};
+inline constexpr double unbounded = math::infinity();
+inline constexpr FieldRange scene_field_range[scene_field_count] = {
+    {0, unbounded, false, false, false},     // thickness_m > 0
+    {0, unbounded, false, false, false},     // velocity_m_s > 0
+    {0, unbounded, false, false, false},     // density_kg_m3 > 0
+    {0, 1000000, true, true, true},          // body_squares, integer in [0, 1e6]
+    {0, unbounded, false, false, false},     // length_m > 0
+    {0, 1, false, false, false},             // porosity in (0, 1)
+    {0, 90, true, false, false},             // friction_angle_deg in [0, 90)
+    {0, unbounded, true, false, false},      // cohesion_kpa >= 0
+    {0, unbounded, false, false, false},     // young_modulus_mpa > 0
+    {-1, 0.5, false, false, false},          // poisson_ratio in (-1, 0.5)
+    {0, unbounded, false, false, false},     // hydraulic_conductivity_m_s > 0
+    {0, unbounded, false, false, false},     // liquid_bulk_modulus_mpa > 0
+    {0, unbounded, false, false, false},     // liquid_viscosity_kpa_s > 0
+    {0, unbounded, false, false, false},     // height_m > 0
+    {0, unbounded, false, false, false},     // base_width_m > 0
+    {0, unbounded, true, true, false},       // top_width_m in [0, base_width_m]
+    {0, 90, false, true, false},             // face_angle_deg in (0, 90]
+    {0, unbounded, false, false, false},     // barrier density_kg_m3 > 0
+    {0, unbounded, false, false, false},     // mass_kg_per_m > 0
+    {0, unbounded, true, false, false},      // base_friction >= 0
+    {0, unbounded, true, false, false},      // face_friction >= 0
+    {0, unbounded, false, false, false},     // a1 > 0
+    {-5, 5, true, true, false},              // a2 in [-5, 5]
+    {0, 1, false, false, false},             // empirical tau in (0, 1)
+    {0, unbounded, true, false, false},      // kappa >= 0
+    {0, 1, false, true, false},              // lambda in (0, 1]
+    {0, 1, false, false, false},             // analytical tau in (0, 1)
+};
+
+// The same tolerance as the scene parser's face run-out check H / tan(beta) <= B - b.
+inline constexpr double face_run_out_tolerance_m = 1e-9;
+
+struct SceneValues {
+  double value[scene_field_count] = {};
+  bool rectangle = false;            // landslide shape kind (else front-body-tail)
+  bool barrier_given_by_mass = false;
+  bool fixed = false;
+  bool analytical_lambda_given = false, analytical_tau_given = false;
+};
+
+KOKKOS_INLINE_FUNCTION bool in_range(double v, const FieldRange& r) {
+  if (!(v == v) || v == unbounded || v == -unbounded) return false;   // NaN, inf: never valid
+  if (r.lo_closed ? v < r.lo : v <= r.lo) return false;
+  if (r.hi_closed ? v > r.hi : v >= r.hi) return false;
+  return !r.integer || v == math::floor(v);
+}
+
+// The first invalid field of a sample, or -1 if the scene is valid. Only the fields the scene
+// uses are checked (e.g. length_m only for a rectangle).
+KOKKOS_INLINE_FUNCTION int first_invalid_field(const SceneValues& s) {
+  for (int f = 0; f < scene_field_count; ++f) {
+    if (f == body_squares && s.rectangle) continue;
+    if (f == length_m && !s.rectangle) continue;
+    if (f == barrier_density_kg_m3 && s.barrier_given_by_mass) continue;
+    if (f == barrier_mass_kg_per_m && !s.barrier_given_by_mass) continue;
+    if (f == top_width_m) {
+      const double b = s.value[top_width_m];
+      if (!(b >= 0.0 && b <= s.value[base_width_m] && math::isfinite(b))) return f;
+      continue;
+    }
+    if (!in_range(s.value[f], scene_field_range[f])) return f;
+  }
+  // The upstream face runs out H / tan(beta) horizontally; it must fit in B - b.
+  const double beta_deg = s.value[face_angle_deg];
+  if (beta_deg != 90.0) {
+    const double run_out = s.value[height_m] / math::tan(math::degrees_to_radians(beta_deg));
+    if (run_out > s.value[base_width_m] - s.value[top_width_m] + face_run_out_tolerance_m)
+      return face_angle_deg;
+  }
+  return -1;
+}
+
+// Model inputs derived from the scene values (as drivers/closed_form_methods.cpp derives them).
+struct ModelInputs {
+  double landslide_mass, equivalent_length, barrier_mass, face_angle_rad;
+};
+KOKKOS_INLINE_FUNCTION ModelInputs model_inputs(const SceneValues& s) {
+  ModelInputs m;
+  const double h = s.value[thickness_m];
+  // 45 deg front + i squares + 3h tail: L1,0 = (2 + i) h; a rectangle: its length.
+  m.equivalent_length = s.rectangle ? s.value[length_m] : (2.0 + s.value[body_squares]) * h;
+  m.landslide_mass = s.value[density_kg_m3] * m.equivalent_length * h;
+  const double area = 0.5 * (s.value[base_width_m] + s.value[top_width_m]) * s.value[height_m];
+  m.barrier_mass = s.fixed ? unbounded
+                           : (s.barrier_given_by_mass ? s.value[barrier_mass_kg_per_m]
+                                                      : s.value[barrier_density_kg_m3] * area);
+  m.face_angle_rad = math::degrees_to_radians(s.value[face_angle_deg]);
+  return m;
+}
+
+// The four scalar outputs of a closed-form method, in this order in the sweep tables.
+enum ClosedFormOutput : int { peak_force, rise_time, impact_duration, final_displacement,
+                              closed_form_output_count };
+inline constexpr const char* closed_form_output_name[closed_form_output_count] = {
+    "peak_force", "rise_time", "impact_duration", "final_displacement"};
+inline constexpr const char* closed_form_output_units[closed_form_output_count] = {
+    "N/m", "s", "s", "m"};
+
+KOKKOS_INLINE_FUNCTION void store_pulse(const ForcePulse& p, const ModelInputs& m,
+                                        const SceneValues& s, double* out) {
+  out[peak_force] = p.peak;
+  out[rise_time] = p.rise_time;
+  out[impact_duration] = p.duration;
+  out[final_displacement] =
+      final_displacement_under(p, m.barrier_mass, s.value[base_friction], m.face_angle_rad);
+}
+
+// Empirical model (Di Perna et al. 2022) of a valid sample.
+KOKKOS_INLINE_FUNCTION void evaluate_empirical(const SceneValues& s, double* out) {
+  const ModelInputs m = model_inputs(s);
+  EmpiricalCoefficients c;
+  c.a1 = s.value[empirical_a1];
+  c.a2 = s.value[empirical_a2];
+  c.tau = s.value[empirical_tau];
+  c.kappa = s.value[empirical_kappa];
+  const EmpiricalImpact imp = empirical_impact(s.value[thickness_m], s.value[velocity_m_s],
+                                               s.value[density_kg_m3], m.landslide_mass,
+                                               m.face_angle_rad, c);
+  store_pulse(imp.pulse, m, s, out);
+}
+
+// Analytical two-body model (Cuomo et al. 2022) of a valid sample; lambda and tau default to the
+// paper's values for the barrier kind unless the scene (or the study) gives them.
+KOKKOS_INLINE_FUNCTION void evaluate_analytical(const SceneValues& s, double* out) {
+  const ModelInputs m = model_inputs(s);
+  TwoBodyCoefficients c = default_two_body_coefficients(s.fixed);
+  if (s.analytical_lambda_given) c.lambda = s.value[analytical_lambda];
+  if (s.analytical_tau_given) c.tau = s.value[analytical_tau];
+  const TwoBodyImpact imp = two_body_impact(m.landslide_mass, s.value[velocity_m_s],
+                                            m.equivalent_length, m.barrier_mass, c);
+  store_pulse(imp.pulse, m, s, out);
+}
+
+}  // namespace lsi::sweeps

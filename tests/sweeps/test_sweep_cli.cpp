@@ -1,0 +1,429 @@
+// `lsi sweep` and `lsi merge` end to end: study-file errors, agreement with `lsi run`, invalid
+// samples, reproducibility across thread counts, resume after SIGKILL, shards and merge, the
+// stopping rules, grid designs, MPM samples.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fcntl.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+
+#include "drivers/closed_form_methods.hpp"
+#include "drivers/mpm_impact.hpp"
+#include "drivers/mpm_runner.hpp"
+#include "drivers/study.hpp"
+#include "drivers/sweep_table.hpp"
+
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+const fs::path source_dir = LSI_SOURCE_DIR;
+const std::string lsi_exe = LSI_EXE;
+
+struct Outcome {
+  int code;
+  std::string out;   // stdout and stderr together
+};
+
+Outcome run(const std::string& args, const std::string& env = "") {
+  const std::string cmd = env + " " + lsi_exe + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf;
+  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
+  const int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+fs::path temp_dir() {
+  const fs::path d = fs::temp_directory_path() / ("lsi_sweep_test_" + std::to_string(getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+// A study of the reference case L1-B1 (scene inlined) with `extra` keys merged in.
+fs::path write_study(const std::string& name, json extra) {
+  json s = {{"name", name},
+            {"scene", (source_dir / "scenes/reference/L1-B1.json").string()},
+            {"inputs",
+             {{{"path", "/landslide/thickness_m"}, {"distribution", "lognormal"}, {"mean", 2.0}, {"sd", 0.3}},
+              {{"path", "/landslide/velocity_m_s"}, {"distribution", "truncated-normal"}, {"mean", 6.0},
+               {"sd", 1.5}, {"min", 1.0}, {"max", 15.0}},
+              {{"path", "/landslide/shape/body_squares"}, {"distribution", "discrete"},
+               {"values", {4, 6, 8}}},
+              {{"path", "/barrier/base_friction"}, {"distribution", "uniform"}, {"min", 0.3}, {"max", 0.7}}}},
+            {"correlation", {{{"inputs", {"/landslide/thickness_m", "/landslide/velocity_m_s"}}, {"rho", 0.4}}}},
+            {"samples", 20000},
+            {"seed", 11},
+            {"chunk_samples", 4096},
+            {"methods", {"empirical", "analytical"}},
+            {"thresholds", {{{"output", "final_displacement"}, {"above", 0.5}}}}};
+  if (!extra.is_null()) s.merge_patch(extra);   // `{}` is a null json: nothing to merge
+  const fs::path p = temp_dir() / (name + ".json");
+  std::ofstream(p) << s.dump(2);
+  return p;
+}
+
+// Everything but the wall times must be identical.
+void expect_same_table(const lsi::SweepFile& a, const lsi::SweepFile& b) {
+  ASSERT_EQ(a.table.rows(), b.table.rows());
+  EXPECT_EQ(a.table.index, b.table.index);
+  EXPECT_EQ(a.table.status, b.table.status);
+  EXPECT_EQ(a.table.inputs, b.table.inputs);
+  ASSERT_EQ(a.table.outputs.size(), b.table.outputs.size());
+  for (std::size_t c = 0; c < a.table.outputs.size(); ++c)
+    for (std::size_t i = 0; i < a.table.rows(); ++i) {
+      const double x = a.table.outputs[c][i], y = b.table.outputs[c][i];
+      if (!(std::isnan(x) && std::isnan(y))) ASSERT_EQ(x, y) << a.table.output_columns[c] << " row " << i;
+    }
+  EXPECT_EQ(a.table.failure_index, b.table.failure_index);
+  EXPECT_EQ(a.table.failure_reason, b.table.failure_reason);
+  EXPECT_EQ(a.statistics, b.statistics);
+  EXPECT_EQ(a.header.fingerprint, b.header.fingerprint);
+}
+
+TEST(SweepCli, StudyErrorsNameTheFieldAndExit2) {
+  const std::pair<json, std::string> cases[] = {
+      {{{"colour", 1}}, "colour: unknown key"},
+      {{{"samples", -5}}, "samples = -5"},
+      {{{"design", "quasi"}}, "design = \"quasi\""},
+      {{{"inputs", {{{"path", "/landslide/velocity_m_s"}, {"distribution", "normal"}, {"mean", 6}, {"sd", -1}}}}},
+       "inputs[0].sd = -1: must be > 0"},
+      {{{"inputs", {{{"path", "/landslide/speed"}, {"distribution", "uniform"}, {"min", 1}, {"max", 2}}}}},
+       "inputs[0].path = \"/landslide/speed\": not a numeric scene key"},
+      {{{"inputs", {{{"path", "/methods/empirical/tau"}, {"distribution", "uniform"}, {"min", 0.1}, {"max", 0.2}}}},
+        {"methods", {"analytical"}}},
+       "only the empirical method reads it"},
+      {{{"inputs", {{{"path", "/landslide/shape/body_squares"}, {"distribution", "uniform"}, {"min", 2}, {"max", 5}}}}},
+       "must be an integer"},
+      {{{"inputs", {{{"path", "/methods/analytical/tau"}, {"distribution", "uniform"}, {"min", 0.5}, {"max", 1.5}}}}},
+       "the scene with its typical value 1 is invalid: methods.analytical.tau = 1"},
+      {{{"correlation", {{{"inputs", {"/landslide/thickness_m", "/barrier/height_m"}}, {"rho", 0.5}}}}},
+       "not one of the study's inputs"},
+      {{{"correlation", {{{"inputs", {"/landslide/thickness_m", "/landslide/velocity_m_s"}}, {"rho", 1.5}}}}},
+       "rho = 1.5"},
+      {json::parse(R"({"stop": {"interval": {"method": "analytical", "output": "peak_force",
+                                              "statistic": "mean"}}})"),
+       "relative_half_width: missing"},
+  };
+  for (const auto& [extra, expected] : cases) {
+    const fs::path study = write_study("bad", extra);
+    const Outcome r = run("sweep " + study.string() + " --out " + (temp_dir() / "bad.h5").string());
+    EXPECT_EQ(r.code, 2) << extra.dump() << "\n" << r.out;
+    EXPECT_NE(r.out.find(expected), std::string::npos) << "expected '" << expected << "' in:\n" << r.out;
+    EXPECT_EQ(r.out.find("\n", r.out.find("error")), r.out.size() - 1) << "one line:\n" << r.out;
+  }
+  const fs::path ok = write_study("shard", {});
+  const Outcome s = run("sweep " + ok.string() + " --out " + (temp_dir() / "s.h5").string() + " --shard 3/2");
+  EXPECT_EQ(s.code, 2);
+  EXPECT_NE(s.out.find("--shard 3/2: must be i/N with 0 <= i < N"), std::string::npos) << s.out;
+}
+
+TEST(SweepCli, SamplesAgreeWithLsiRunAndStatisticsCountThem) {
+  const fs::path study = write_study("agree", {{"samples", 300}});
+  const fs::path out = temp_dir() / "agree.h5";
+  const Outcome r = run("sweep " + study.string() + " --out " + out.string() + " --format json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const json j = json::parse(r.out);
+  EXPECT_TRUE(j["complete"].get<bool>());
+  EXPECT_EQ(j["samples_done"].get<int>(), 300);
+  EXPECT_FALSE(fs::exists(out.string() + ".parts")) << "a complete sweep removes its chunks";
+  const lsi::SweepFile f = lsi::read_sweep_file(out.string());
+  ASSERT_EQ(f.table.rows(), 300u);
+  const lsi::Study s = lsi::load_study(study.string());
+  // Every 30th sample through the scalar methods of `lsi run`. The kernel and the host compile
+  // the same formulas, but may contract multiply-adds differently: 1e-12 relative.
+  for (std::size_t i = 0; i < 300; i += 30) {
+    double x[4];
+    for (int d = 0; d < 4; ++d) x[d] = f.table.inputs[d][i];
+    const lsi::Scene scene = lsi::parse_scene(lsi::sample_scene_document(s, x));
+    const lsi::MethodResult e = lsi::run_empirical(scene), a = lsi::run_analytical(scene);
+    const std::pair<std::string, double> expect[] = {
+        {"empirical/peak_force", e.peak_force},           {"empirical/rise_time", e.rise_time},
+        {"empirical/impact_duration", e.impact_duration}, {"empirical/final_displacement", e.final_displacement},
+        {"analytical/peak_force", a.peak_force},          {"analytical/rise_time", a.rise_time},
+        {"analytical/impact_duration", a.impact_duration},
+        {"analytical/final_displacement", a.final_displacement}};
+    for (const auto& [column, value] : expect) {
+      const auto it = std::find(f.table.output_columns.begin(), f.table.output_columns.end(), column);
+      ASSERT_NE(it, f.table.output_columns.end()) << column;
+      const double got = f.table.outputs[it - f.table.output_columns.begin()][i];
+      EXPECT_NEAR(got, value, 1e-12 * std::fabs(value) + 1e-300) << column << " sample " << i;
+    }
+  }
+  // Statistics: the 300 ok samples; the mean of the stored column.
+  EXPECT_EQ(f.statistics["samples_ok"].get<int>(), 300);
+  const auto& col = f.table.outputs[1];   // empirical/rise_time... find by name instead
+  (void)col;
+  const auto it = std::find(f.table.output_columns.begin(), f.table.output_columns.end(), "analytical/peak_force");
+  double mean = 0;
+  for (double v : f.table.outputs[it - f.table.output_columns.begin()]) mean += v / 300.0;
+  EXPECT_NEAR(f.statistics["outputs"]["analytical/peak_force"]["mean"].get<double>(), mean, 1e-9 * mean);
+}
+
+TEST(SweepCli, InvalidSamplesAreRecordedWithTheirReasonAndLeftOutOfStatistics) {
+  // Velocity ~ N(1, 2): about 31 % of the samples are <= 0, which the scene forbids.
+  const fs::path study = write_study(
+      "invalid", {{"samples", 2000},
+                  {"correlation", nullptr},
+                  {"inputs", {{{"path", "/landslide/velocity_m_s"}, {"distribution", "normal"},
+                               {"mean", 1.0}, {"sd", 2.0}}}}});
+  const fs::path out = temp_dir() / "invalid.h5";
+  const Outcome r = run("sweep " + study.string() + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const lsi::SweepFile f = lsi::read_sweep_file(out.string());
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < f.table.rows(); ++i) {
+    const bool negative = f.table.inputs[0][i] <= 0.0;
+    EXPECT_EQ(f.table.status[i], negative ? 1 : 0) << "v = " << f.table.inputs[0][i];
+    if (negative) {
+      EXPECT_TRUE(std::isnan(f.table.outputs[0][i]));
+      ++bad;
+    }
+  }
+  // P(N(1,2) <= 0) = Phi(-0.5) = 0.3085; 2000 samples: sd 0.0103, so +-0.04 is 4 sd.
+  EXPECT_NEAR(double(bad) / 2000.0, 0.3085, 0.04);
+  ASSERT_EQ(f.table.failure_index.size(), bad);
+  EXPECT_NE(f.table.failure_reason[0].find("landslide.velocity_m_s = -"), std::string::npos)
+      << f.table.failure_reason[0];
+  EXPECT_NE(f.table.failure_reason[0].find("must be > 0"), std::string::npos);
+  EXPECT_EQ(f.statistics["samples_ok"].get<std::size_t>(), 2000 - bad);
+  EXPECT_EQ(f.statistics["samples_failed"]["invalid input"].get<std::size_t>(), bad);
+  EXPECT_EQ(f.statistics["outputs"]["analytical/peak_force"]["count"].get<std::size_t>(), 2000 - bad);
+}
+
+TEST(SweepCli, RangeCheckOfTheKernelAgreesWithTheSceneParser) {
+  // Wide distributions over every field the closed forms read, many of them outside the ranges:
+  // each sample the kernel accepts must parse, and each it rejects must not (the runner then
+  // records the parser's message; a disagreement would show as "rejected by the sweep's range
+  // check").
+  json inputs = json::array();
+  auto wide = [&](const char* path, double lo, double hi) {
+    inputs.push_back({{"path", path}, {"distribution", "uniform"}, {"min", lo}, {"max", hi}});
+  };
+  wide("/landslide/thickness_m", -0.5, 3);
+  wide("/landslide/velocity_m_s", -1, 10);
+  wide("/landslide/density_kg_m3", -100, 2000);
+  wide("/barrier/height_m", -0.5, 6);
+  wide("/barrier/base_width_m", 0.5, 3);
+  wide("/barrier/top_width_m", -0.2, 2);
+  wide("/barrier/face_angle_deg", 60, 100);
+  wide("/barrier/density_kg_m3", -100, 2500);
+  wide("/barrier/base_friction", -0.1, 1);
+  wide("/methods/empirical/a1", -0.2, 2);
+  wide("/methods/empirical/a2", -6, 6);
+  wide("/methods/empirical/tau", -0.1, 1.1);
+  wide("/methods/empirical/kappa", -0.2, 1);
+  wide("/methods/analytical/lambda", -0.1, 1.1);
+  wide("/methods/analytical/tau", -0.1, 1.1);
+  inputs.push_back({{"path", "/landslide/shape/body_squares"}, {"distribution", "discrete"},
+                    {"values", {3, -1, 0, 7.5}}});
+  const fs::path study = write_study("mirror", {{"samples", 3000}, {"correlation", nullptr}, {"inputs", inputs}});
+  const fs::path out = temp_dir() / "mirror.h5";
+  const Outcome r = run("sweep " + study.string() + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const lsi::SweepFile f = lsi::read_sweep_file(out.string());
+  const lsi::Study s = lsi::load_study(study.string());
+  std::size_t ok = 0;
+  for (std::size_t i = 0; i < f.table.rows(); ++i) {
+    std::vector<double> x;
+    for (const auto& c : f.table.inputs) x.push_back(c[i]);
+    const std::string reason = lsi::invalid_sample_reason(s, x.data());
+    EXPECT_EQ(f.table.status[i] == 0, reason.empty()) << "sample " << i << ": " << reason;
+    ok += f.table.status[i] == 0;
+  }
+  for (const auto& why : f.table.failure_reason)
+    EXPECT_EQ(why.find("rejected by the sweep's range check"), std::string::npos) << why;
+  // The check must see both kinds: with these ranges a few percent of the samples are valid.
+  EXPECT_GT(ok, 5u);
+  EXPECT_LT(ok, f.table.rows());
+}
+
+TEST(SweepCli, SameResultsOnOneAndTwoThreads) {
+  const fs::path study = write_study("threads", {});
+  const fs::path a = temp_dir() / "t1.h5", b = temp_dir() / "t2.h5";
+  const Outcome one = run("sweep " + study.string() + " --out " + a.string(), "OMP_NUM_THREADS=1");
+  ASSERT_EQ(one.code, 0) << one.out;
+  const Outcome two = run("sweep " + study.string() + " --out " + b.string(), "OMP_NUM_THREADS=2");
+  ASSERT_EQ(two.code, 0) << two.out;
+  expect_same_table(lsi::read_sweep_file(a.string()), lsi::read_sweep_file(b.string()));
+}
+
+TEST(SweepCli, ResumesAfterSigkillWithIdenticalResults) {
+  // Small chunks, so that the kill lands between chunk files (or inside one).
+  const fs::path study = write_study("kill", {{"samples", 400000}, {"chunk_samples", 2000}});
+  const fs::path full = temp_dir() / "full.h5", killed = temp_dir() / "killed.h5";
+  ASSERT_EQ(run("sweep " + study.string() + " --out " + full.string()).code, 0);
+
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(null, 2);
+    execl(lsi_exe.c_str(), lsi_exe.c_str(), "sweep", study.c_str(), "--out", killed.c_str(),
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  const fs::path parts = killed.string() + ".parts";
+  auto chunks = [&] {
+    std::size_t n = 0;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(parts, ec))
+      n += e.path().filename().string().rfind("chunk-", 0) == 0 &&
+           e.path().extension() == ".h5";
+    return n;
+  };
+  const auto t0 = std::chrono::steady_clock::now();
+  while (chunks() < 10 && std::chrono::steady_clock::now() - t0 < std::chrono::seconds(60))
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the sweep finished before it could be killed";
+  const std::size_t left = chunks();
+  EXPECT_GE(left, 10u);
+  EXPECT_LT(left, 200u);
+
+  const Outcome again = run("sweep " + study.string() + " --out " + killed.string());
+  EXPECT_EQ(again.code, 2) << again.out;
+  EXPECT_NE(again.out.find("--resume"), std::string::npos) << again.out;
+  const Outcome resumed = run("sweep " + study.string() + " --out " + killed.string() + " --resume --format json");
+  ASSERT_EQ(resumed.code, 0) << resumed.out;
+  const json j = json::parse(resumed.out);
+  EXPECT_EQ(j["samples_run"].get<std::size_t>(), 400000 - 2000 * left) << "only the missing chunks run";
+  expect_same_table(lsi::read_sweep_file(full.string()), lsi::read_sweep_file(killed.string()));
+  // Resuming a finished sweep changes nothing.
+  const Outcome done = run("sweep " + study.string() + " --out " + killed.string() + " --resume --format json");
+  ASSERT_EQ(done.code, 0) << done.out;
+  EXPECT_EQ(json::parse(done.out)["samples_run"].get<int>(), 0);
+}
+
+TEST(SweepCli, ShardsMergeIntoTheFileOfASingleRun) {
+  const fs::path study = write_study("shards", {{"design", "latin-hypercube"}});
+  const fs::path single = temp_dir() / "single.h5";
+  ASSERT_EQ(run("sweep " + study.string() + " --out " + single.string()).code, 0);
+  std::string files;
+  for (int i = 0; i < 3; ++i) {
+    const fs::path f = temp_dir() / ("shard" + std::to_string(i) + ".h5");
+    const Outcome r = run("sweep " + study.string() + " --out " + f.string() + " --shard " +
+                          std::to_string(i) + "/3");
+    ASSERT_EQ(r.code, 0) << r.out;
+    files += " " + f.string();
+  }
+  const fs::path merged = temp_dir() / "merged.h5";
+  // A missing shard is refused.
+  const Outcome partial = run("merge --out " + merged.string() + " " + (temp_dir() / "shard0.h5").string());
+  EXPECT_EQ(partial.code, 2);
+  EXPECT_NE(partial.out.find("shard 1/3 is missing"), std::string::npos) << partial.out;
+  const Outcome m = run("merge --out " + merged.string() + files);
+  ASSERT_EQ(m.code, 0) << m.out;
+  expect_same_table(lsi::read_sweep_file(single.string()), lsi::read_sweep_file(merged.string()));
+}
+
+TEST(SweepCli, IntervalRuleStopsEarlyAndWallTimeStopsResumably) {
+  // The mean peak force of the analytical model to +-2 %: its coefficient of variation is about
+  // 0.5, so about (1.96 * 0.5 / 0.02)^2 = 2400 samples are needed, far fewer than 20000.
+  const fs::path study = write_study(
+      "interval", {{"stop", {{"interval", {{"method", "analytical"}, {"output", "peak_force"},
+                                           {"statistic", "mean"}, {"relative_half_width", 0.02}}}}}});
+  const fs::path out = temp_dir() / "interval.h5";
+  const Outcome r = run("sweep " + study.string() + " --out " + out.string() + " --format json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const json j = json::parse(r.out);
+  EXPECT_TRUE(j["complete"].get<bool>());
+  EXPECT_NE(j["stopped_by"].get<std::string>().find("confidence interval"), std::string::npos);
+  const std::size_t n = j["samples_done"].get<std::size_t>();
+  EXPECT_EQ(n % 4096, 0u) << "stops at a chunk boundary";
+  EXPECT_GE(n, 4096u);
+  EXPECT_LE(n, 8192u);
+
+  // A wall-time limit far below one chunk's time: one chunk per invocation, then --resume.
+  const fs::path timed = write_study("timed", {{"samples", 10000}, {"stop", {{"wall_time_s", 1e-6}}}});
+  const fs::path t = temp_dir() / "timed.h5";
+  const Outcome first = run("sweep " + timed.string() + " --out " + t.string() + " --format json");
+  ASSERT_EQ(first.code, 0) << first.out;
+  EXPECT_FALSE(json::parse(first.out)["complete"].get<bool>());
+  EXPECT_EQ(json::parse(first.out)["samples_done"].get<int>(), 4096);
+  EXPECT_TRUE(fs::exists(t.string() + ".parts"));
+  EXPECT_FALSE(lsi::read_sweep_file(t.string()).header.complete);
+  for (int k = 0; k < 2; ++k)
+    ASSERT_EQ(run("sweep " + timed.string() + " --out " + t.string() + " --resume").code, 0);
+  const lsi::SweepFile f = lsi::read_sweep_file(t.string());
+  EXPECT_TRUE(f.header.complete);
+  EXPECT_EQ(f.table.rows(), 10000u);
+}
+
+TEST(SweepCli, GridDesignRunsTheFullFactorialFirstInputFastest) {
+  const fs::path study = write_study(
+      "grid", {{"design", "grid"},
+               {"samples", nullptr},
+               {"correlation", nullptr},
+               {"inputs", {{{"path", "/landslide/velocity_m_s"}, {"distribution", "grid"}, {"min", 4}, {"max", 8}, {"count", 3}},
+                           {{"path", "/barrier/base_friction"}, {"distribution", "discrete"}, {"values", {0.4, 0.6}}}}}});
+  const fs::path out = temp_dir() / "grid.h5";
+  ASSERT_EQ(run("sweep " + study.string() + " --out " + out.string()).code, 0);
+  const lsi::SweepFile f = lsi::read_sweep_file(out.string());
+  ASSERT_EQ(f.table.rows(), 6u);
+  const double v[6] = {4, 6, 8, 4, 6, 8}, mu[6] = {0.4, 0.4, 0.4, 0.6, 0.6, 0.6};
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_EQ(f.table.inputs[0][i], v[i]);
+    EXPECT_EQ(f.table.inputs[1][i], mu[i]);
+  }
+}
+
+TEST(SweepCli, MpmSamplesRunBesideTheClosedForms) {
+  // Two coarse MPM runs (cell h/4, 1 particle per cell: about a second each).
+  json scene;
+  std::ifstream(source_dir / "scenes/reference/L1-B1.json") >> scene;
+  scene["methods"]["mpm"] = {{"cell_size_m", 0.5}, {"phases", "dry"}, {"transfer", "pic"},
+                             {"particles_per_cell", 1}};
+  const fs::path study = write_study(
+      "mpm", {{"scene", scene},
+              {"samples", 2},
+              {"chunk_samples", 1},
+              {"correlation", nullptr},
+              {"thresholds", nullptr},
+              {"methods", {"analytical", "mpm"}},
+              {"outputs", {"peak_force", "impact_duration"}},
+              {"inputs", {{{"path", "/landslide/velocity_m_s"}, {"distribution", "uniform"}, {"min", 5}, {"max", 7}}}}});
+  const fs::path out = temp_dir() / "mpm.h5";
+  const Outcome r = run("sweep " + study.string() + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const lsi::SweepFile f = lsi::read_sweep_file(out.string());
+  ASSERT_EQ(f.table.rows(), 2u);
+  const std::vector<std::string> cols = {"analytical/peak_force", "analytical/impact_duration",
+                                         "mpm/peak_force", "mpm/impact_duration"};
+  EXPECT_EQ(f.table.output_columns, cols);
+  const lsi::Study st = lsi::load_study(study.string());
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(f.table.status[i], 0) << (f.table.failure_reason.empty() ? std::string("")
+                                                                        : f.table.failure_reason[0]);
+    EXPECT_GT(f.table.wall_time[i], 0.0f);
+    // The same sample run directly: the sweep must store what the MPM gives. Same code and
+    // thread count, so equal up to the order of floating-point sums: 1e-9 relative.
+    const double x = f.table.inputs[0][i];
+    const lsi::MpmOutcome o =
+        lsi::run_mpm_case(lsi::impact_case(lsi::parse_scene(lsi::sample_scene_document(st, &x))));
+    ASSERT_TRUE(o.finished) << o.status;
+    EXPECT_NEAR(f.table.outputs[2][i], o.result.peak_force, 1e-9 * o.result.peak_force);
+    EXPECT_NEAR(f.table.outputs[3][i], o.result.impact_duration, 1e-9 * o.result.impact_duration);
+    // The closed form beside it is the scalar model's.
+    const lsi::MethodResult a =
+        lsi::run_analytical(lsi::parse_scene(lsi::sample_scene_document(st, &x)));
+    EXPECT_NEAR(f.table.outputs[0][i], a.peak_force, 1e-12 * a.peak_force);
+  }
+}
+
+}  // namespace
