@@ -18,7 +18,7 @@ using namespace json_fields;
 const std::vector<std::string> kStudyKeys = {
     "name",    "scene",      "inputs",     "correlation", "design",      "samples",
     "seed",    "methods",    "outputs",    "thresholds",  "confidence",  "stop",
-    "chunk_samples"};
+    "chunk_samples", "mpm_at_quantiles"};
 const std::vector<std::string> kDesigns = {"monte-carlo", "latin-hypercube", "sobol", "grid"};
 const std::vector<std::string> kDistributions = {"constant", "uniform",          "normal",
                                                  "lognormal", "truncated-normal", "discrete",
@@ -423,6 +423,19 @@ Study parse_study(const json& j, const std::string& base_dir) {
     }
   }
   if (root.has("stop")) s.stop = parse_stop(root, s);
+  if (auto q = root.optional_object("mpm_at_quantiles", {"method", "output", "quantiles"})) {
+    if (!s.base.methods.mpm)
+      root.fail_at("mpm_at_quantiles", "needs a methods.mpm block in the scene (cell_size_m, ...)");
+    std::vector<std::string> closed;
+    for (const auto& m : s.methods)
+      if (m != "mpm") closed.push_back(m);
+    if (closed.empty()) root.fail_at("mpm_at_quantiles", "the study runs no closed-form method");
+    StudyQuantileMpm m;
+    m.method = q->choice("method", closed);
+    m.output = q->choice("output", s.outputs);
+    m.quantiles = number_list(*q, "quantiles", interval('(', 0, 1, ')'));
+    s.mpm_at_quantiles = m;
+  }
 
   const double default_chunk = s.runs("mpm") ? 1.0 : double(1 << 20);
   s.chunk_samples = static_cast<std::uint64_t>(

@@ -42,6 +42,12 @@ struct StudyStop {
   std::uint64_t min_samples = 1000;        // never stop on the interval before this many
 };
 
+// Study key `mpm_at_quantiles`: run the MPM on the samples at these quantiles of method/output.
+struct StudyQuantileMpm {
+  std::string method, output;
+  std::vector<double> quantiles;   // each in (0, 1)
+};
+
 struct Study {
   std::string name;
   std::string path;                        // the study file ("" if not read from a file)
@@ -59,6 +65,7 @@ struct Study {
   std::vector<StudyThreshold> thresholds;
   double confidence = 0.95;
   StudyStop stop;
+  std::optional<StudyQuantileMpm> mpm_at_quantiles;
   std::uint64_t chunk_samples = 0;         // samples per chunk (the unit of work and of resume)
   nlohmann::json source;                   // the study with its scene inlined (stored in results)
   std::string fingerprint;                 // hash of `source`: results of other studies are refused

@@ -4,6 +4,7 @@
 
 #include "drivers/study.hpp"
 #include "drivers/subcommand.hpp"
+#include "drivers/sweep_quantile_mpm.hpp"
 #include "drivers/sweep_runner.hpp"
 #include "drivers/sweep_statistics.hpp"
 
@@ -23,7 +24,11 @@ int report(const SweepOutcome& o, const std::string& out, const std::string& for
                         {"statistics", o.statistics}};
     std::cout << j.dump(2) << "\n";
   } else {
-    if (o.statistics.is_object()) std::cout << sweep_statistics_table(o.statistics);
+    if (o.statistics.is_object()) {
+      std::cout << sweep_statistics_table(o.statistics);
+      if (o.statistics.contains("mpm_at_quantiles"))
+        std::cout << mpm_at_quantiles_table(o.statistics["mpm_at_quantiles"]);
+    }
     std::cout << (o.complete ? "complete" : "incomplete") << ": " << o.samples_done
               << " samples in " << out << " (" << o.samples_run << " run now, "
               << o.wall_seconds << " s)";

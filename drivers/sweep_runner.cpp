@@ -13,6 +13,7 @@
 
 #include "drivers/mpm_impact.hpp"
 #include "drivers/mpm_runner.hpp"
+#include "drivers/sweep_quantile_mpm.hpp"
 #include "drivers/sweep_statistics.hpp"
 #include "drivers/sweep_table.hpp"
 #include "sweeps/closed_form_sweep.hpp"
@@ -369,13 +370,18 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   if (opt.shard_count == 1) outcome.statistics = sweep_statistics(study, all);
   const double statistics_s = seconds_since(ts);
   ts = Clock::now();
+  if (opt.shard_count == 1 && complete && study.mpm_at_quantiles)
+    outcome.statistics["mpm_at_quantiles"] = mpm_at_quantiles(study, all);
+  const double quantile_mpm_s = seconds_since(ts);
+  ts = Clock::now();
   write_sweep_file(opt.out, h, all, outcome.statistics.is_null() ? nullptr : &outcome.statistics);
   if (complete) fs::remove_all(parts);
   gather_s += seconds_since(ts);
   outcome.seconds = {{"evaluate", evaluate_s},
                      {"write_chunks", write_s},
                      {"gather", gather_s},
-                     {"statistics", statistics_s}};
+                     {"statistics", statistics_s},
+                     {"mpm_at_quantiles", quantile_mpm_s}};
   outcome.wall_seconds = seconds_since(t0);
   return outcome;
 }
@@ -421,6 +427,7 @@ SweepOutcome merge_sweeps(const std::vector<std::string>& files, const std::stri
   outcome.samples_done = all.rows();
   for (auto s : all.status) outcome.samples_ok += s == static_cast<std::int8_t>(SampleStatus::ok);
   outcome.statistics = sweep_statistics(study, all);
+  if (study.mpm_at_quantiles) outcome.statistics["mpm_at_quantiles"] = mpm_at_quantiles(study, all);
   write_sweep_file(out, h, all, &outcome.statistics);
   outcome.wall_seconds = seconds_since(t0);
   return outcome;

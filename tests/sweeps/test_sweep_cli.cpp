@@ -426,4 +426,41 @@ TEST(SweepCli, MpmSamplesRunBesideTheClosedForms) {
   }
 }
 
+TEST(SweepCli, MpmRunsAtQuantilesOfAClosedFormOutput) {
+  json scene;
+  std::ifstream(source_dir / "scenes/reference/L1-B1.json") >> scene;
+  scene["methods"]["mpm"] = {{"cell_size_m", 0.5}, {"phases", "dry"}, {"transfer", "pic"},
+                             {"particles_per_cell", 1}};
+  const fs::path study = write_study(
+      "quantiles", {{"scene", scene},
+                    {"samples", 1001},
+                    {"correlation", nullptr},
+                    {"thresholds", nullptr},
+                    {"outputs", {"peak_force"}},
+                    {"inputs", {{{"path", "/landslide/velocity_m_s"}, {"distribution", "uniform"}, {"min", 4}, {"max", 8}}}},
+                    {"mpm_at_quantiles", {{"method", "analytical"}, {"output", "peak_force"}, {"quantiles", {0.5}}}}});
+  const fs::path out = temp_dir() / "quantiles.h5";
+  const Outcome r = run("sweep " + study.string() + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("MPM at quantiles of analytical/peak_force"), std::string::npos) << r.out;
+  const lsi::SweepFile f = lsi::read_sweep_file(out.string());
+  const json& q = f.statistics["mpm_at_quantiles"];
+  ASSERT_EQ(q.size(), 1u);
+  // The median of 1001 values is one of them: the chosen sample's peak force is exactly it.
+  std::vector<double> peaks = f.table.outputs[1];
+  std::sort(peaks.begin(), peaks.end());
+  const std::size_t sample = q[0]["sample"].get<std::size_t>();
+  EXPECT_EQ(f.table.outputs[1][sample], peaks[500]);
+  EXPECT_EQ(q[0]["closed_form"]["analytical/peak_force"].get<double>(), peaks[500]);
+  // The MPM value is that of the sample's scene run directly (1e-9: order of sums only), and the
+  // error is (closed form - MPM) / MPM.
+  const lsi::Study st = lsi::load_study(study.string());
+  const double x = f.table.inputs[0][sample];
+  const lsi::MpmOutcome o =
+      lsi::run_mpm_case(lsi::impact_case(lsi::parse_scene(lsi::sample_scene_document(st, &x))));
+  const double m = q[0]["mpm"]["peak_force"].get<double>();
+  EXPECT_NEAR(m, o.result.peak_force, 1e-9 * m);
+  EXPECT_NEAR(q[0]["relative_error"]["analytical/peak_force"].get<double>(), (peaks[500] - m) / m, 1e-12);
+}
+
 }  // namespace
