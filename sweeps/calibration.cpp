@@ -1,5 +1,6 @@
 // Calibration of the closed-form models against MPM force histories; see calibration.hpp.
 #include "sweeps/calibration.hpp"
+#include "sweeps/statistics.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -358,67 +359,6 @@ EmpiricalFit fit_empirical(const CalibrationCase& c, const CalibrationOptions& o
 // ---------------------------------------------------------------------------------------------
 // Statistics.
 
-namespace {
-// Continued fraction of the incomplete beta function (modified Lentz), x < (a + 1)/(a + b + 2).
-double beta_continued_fraction(double a, double b, double x) {
-  const double tiny = 1e-300;
-  double c = 1.0, d = 1.0 - (a + b) * x / (a + 1.0);
-  if (std::fabs(d) < tiny) d = tiny;
-  d = 1.0 / d;
-  double h = d;
-  for (int m = 1; m <= 500; ++m) {
-    const double m2 = 2.0 * m;
-    double aa = m * (b - m) * x / ((a - 1.0 + m2) * (a + m2));
-    d = 1.0 + aa * d;
-    if (std::fabs(d) < tiny) d = tiny;
-    c = 1.0 + aa / c;
-    if (std::fabs(c) < tiny) c = tiny;
-    d = 1.0 / d;
-    h *= d * c;
-    aa = -(a + m) * (a + b + m) * x / ((a + m2) * (a + 1.0 + m2));
-    d = 1.0 + aa * d;
-    if (std::fabs(d) < tiny) d = tiny;
-    c = 1.0 + aa / c;
-    if (std::fabs(c) < tiny) c = tiny;
-    d = 1.0 / d;
-    const double del = d * c;
-    h *= del;
-    if (std::fabs(del - 1.0) < 1e-15) break;
-  }
-  return h;
-}
-
-// Regularised incomplete beta I_x(a, b).
-double incomplete_beta(double a, double b, double x) {
-  if (x <= 0.0) return 0.0;
-  if (x >= 1.0) return 1.0;
-  const double front = std::exp(std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) +
-                                a * std::log(x) + b * std::log1p(-x));
-  if (x < (a + 1.0) / (a + b + 2.0)) return front * beta_continued_fraction(a, b, x) / a;
-  return 1.0 - front * beta_continued_fraction(b, a, 1.0 - x) / b;
-}
-}  // namespace
-
-double student_t_cdf(double t, double dof) {
-  if (!(dof > 0.0)) return nan;
-  const double x = dof / (dof + t * t);
-  const double tail = 0.5 * incomplete_beta(0.5 * dof, 0.5, x);   // P(T > |t|)
-  return t >= 0.0 ? 1.0 - tail : tail;
-}
-
-double student_t_quantile(double p, double dof) {
-  if (!(p > 0.0 && p < 1.0) || !(dof > 0.0)) return nan;
-  if (p == 0.5) return 0.0;
-  if (p < 0.5) return -student_t_quantile(1.0 - p, dof);
-  double lo = 0.0, hi = 1.0;
-  while (student_t_cdf(hi, dof) < p && hi < 1e12) hi *= 2.0;
-  for (int k = 0; k < 200 && hi - lo > 1e-13 * hi; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (student_t_cdf(mid, dof) < p ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
-}
-
 GroupStatistic pooled_mean(const std::vector<double>& v, double confidence) {
   GroupStatistic s;
   s.confidence = confidence;
@@ -431,7 +371,7 @@ GroupStatistic pooled_mean(const std::vector<double>& v, double confidence) {
   double ss = 0.0;
   for (double x : v) ss += (x - s.mean) * (x - s.mean);
   s.stddev = std::sqrt(ss / (s.n - 1));
-  const double half = student_t_quantile(0.5 * (1.0 + confidence), s.n - 1) * s.stddev / std::sqrt(s.n);
+  const double half = stats::student_t_quantile(0.5 * (1.0 + confidence), s.n - 1) * s.stddev / std::sqrt(s.n);
   s.ci = {s.mean - half, s.mean + half};
   return s;
 }
@@ -469,7 +409,7 @@ PowerLawFit fit_power_law(const std::vector<double>& froude, const std::vector<d
   if (f.n <= 2) return f;
   const double s2 = res.squaredNorm() / (f.n - 2);
   const Eigen::MatrixXd cov = s2 * lu.inverse();
-  const double t = student_t_quantile(0.5 * (1.0 + confidence), f.n - 2);
+  const double t = stats::student_t_quantile(0.5 * (1.0 + confidence), f.n - 2);
   const double h0 = t * std::sqrt(cov(0, 0)), h1 = t * std::sqrt(cov(1, 1));
   f.a1_ci = {std::exp(b[0] - h0), std::exp(b[0] + h0)};
   f.a2_ci = {b[1] - h1, b[1] + h1};

@@ -149,10 +149,7 @@ struct GroupStatistic {
 };
 GroupStatistic pooled_mean(const std::vector<double>& values, double confidence = 0.95);
 
-// Quantile of Student's t distribution with `dof` degrees of freedom (p in (0, 1)).
-double student_t_quantile(double p, double dof);
-// Its CDF (regularised incomplete beta), exposed for the tests.
-double student_t_cdf(double t, double dof);
+// (Student's t quantiles: sweeps/statistics.hpp, stats::student_t_quantile.)
 
 // alpha = a1 Fr^a2 by least squares on log(alpha) = log(a1) + a2 log(Fr).
 struct PowerLawFit {

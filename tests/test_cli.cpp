@@ -18,26 +18,16 @@
 #include "drivers/closed_form_methods.hpp"
 #include "drivers/hdf5_results.hpp"
 #include "drivers/scene.hpp"
+#include "support/run_command.hpp"
 
 namespace {
 namespace fs = std::filesystem;
 const fs::path source_dir = LSI_SOURCE_DIR;
 const std::string lsi_exe = LSI_EXE;
 
-struct Outcome {
-  int code;
-  std::string out;   // stdout and stderr together
-};
+using Outcome = lsi::testing::CommandOutcome;   // out: stdout and stderr together
 
-Outcome run(const std::string& args) {
-  const std::string cmd = lsi_exe + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf;
-  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+Outcome run(const std::string& args) { return lsi::testing::run_command(lsi_exe + " " + args + " 2>&1"); }
 
 fs::path temp_dir() {
   const fs::path d = fs::temp_directory_path() / ("lsi_cli_test_" + std::to_string(getpid()));

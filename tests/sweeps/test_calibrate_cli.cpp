@@ -14,6 +14,8 @@
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
+
+#include "support/run_command.hpp"
 #include <string>
 
 namespace {
@@ -36,15 +38,10 @@ fs::path temp_dir() {
 
 Outcome run(const std::string& args) {
   const fs::path err = temp_dir() / "stderr.txt";
-  const std::string cmd = lsi_exe + " " + args + " 2>" + err.string();
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf;
-  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-  const int status = pclose(p);
+  const lsi::testing::CommandOutcome r =
+      lsi::testing::run_command(lsi_exe + " " + args + " 2>" + err.string());
   std::ifstream e(err);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out,
-          std::string(std::istreambuf_iterator<char>(e), {})};
+  return {r.code, r.out, std::string(std::istreambuf_iterator<char>(e), {})};
 }
 
 // A reference scene, renamed, with 4 cells through the thickness (h/4 = 0.5 m for L1).

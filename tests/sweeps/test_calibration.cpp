@@ -10,6 +10,7 @@
 
 #include "kernels/closed_form/two_body_model.hpp"
 #include "sweeps/calibration.hpp"
+#include "sweeps/statistics.hpp"
 #include "sweeps/levenberg_marquardt.hpp"
 
 namespace {
@@ -209,14 +210,14 @@ TEST(Calibration, EmpiricalTauAndAlphaRecoveredFromTheEmpiricalPulse) {
 
 TEST(Calibration, StudentTQuantilesMatchTables) {
   // Two-sided 95 % critical values from standard tables (6 significant digits).
-  EXPECT_NEAR(student_t_quantile(0.975, 1), 12.7062, 1e-4);
-  EXPECT_NEAR(student_t_quantile(0.975, 2), 4.30265, 1e-5);
-  EXPECT_NEAR(student_t_quantile(0.975, 4), 2.77645, 1e-5);
-  EXPECT_NEAR(student_t_quantile(0.975, 8), 2.30600, 1e-5);
-  EXPECT_NEAR(student_t_quantile(0.975, 30), 2.04227, 1e-5);
-  EXPECT_NEAR(student_t_quantile(0.975, 1e7), 1.95996, 1e-5);   // the normal limit
-  EXPECT_NEAR(student_t_quantile(0.025, 8), -2.30600, 1e-5);     // symmetry
-  EXPECT_NEAR(student_t_cdf(0.0, 3), 0.5, 1e-15);
+  EXPECT_NEAR(stats::student_t_quantile(0.975, 1), 12.7062, 1e-4);
+  EXPECT_NEAR(stats::student_t_quantile(0.975, 2), 4.30265, 1e-5);
+  EXPECT_NEAR(stats::student_t_quantile(0.975, 4), 2.77645, 1e-5);
+  EXPECT_NEAR(stats::student_t_quantile(0.975, 8), 2.30600, 1e-5);
+  EXPECT_NEAR(stats::student_t_quantile(0.975, 30), 2.04227, 1e-5);
+  EXPECT_NEAR(stats::student_t_quantile(0.975, 1e7), 1.95996, 1e-5);   // the normal limit
+  EXPECT_NEAR(stats::student_t_quantile(0.025, 8), -2.30600, 1e-5);     // symmetry
+  EXPECT_NEAR(stats::student_t_cdf(0.0, 3), 0.5, 1e-15);
 }
 
 TEST(Calibration, PooledMeanHasTheStudentTInterval) {

@@ -24,6 +24,7 @@
 #include "drivers/mpm_runner.hpp"
 #include "drivers/study.hpp"
 #include "drivers/sweep_table.hpp"
+#include "support/run_command.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -31,19 +32,10 @@ using nlohmann::json;
 const fs::path source_dir = LSI_SOURCE_DIR;
 const std::string lsi_exe = LSI_EXE;
 
-struct Outcome {
-  int code;
-  std::string out;   // stdout and stderr together
-};
+using Outcome = lsi::testing::CommandOutcome;   // out: stdout and stderr together
 
 Outcome run(const std::string& args, const std::string& env = "") {
-  const std::string cmd = env + " " + lsi_exe + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf;
-  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return lsi::testing::run_command(env + " " + lsi_exe + " " + args + " 2>&1");
 }
 
 fs::path temp_dir() {
