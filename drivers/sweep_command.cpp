@@ -4,37 +4,15 @@
 
 #include "drivers/study.hpp"
 #include "drivers/subcommand.hpp"
-#include "drivers/sweep_quantile_mpm.hpp"
 #include "drivers/sweep_runner.hpp"
-#include "drivers/sweep_statistics.hpp"
+#include "drivers/sweep_report.hpp"
 
 namespace lsi {
 namespace {
 
 int report(const SweepOutcome& o, const std::string& out, const std::string& format) {
-  if (format == "json") {
-    nlohmann::json j = {{"out", out},
-                        {"complete", o.complete},
-                        {"stopped_by", o.stopped_by},
-                        {"samples_done", o.samples_done},
-                        {"samples_ok", o.samples_ok},
-                        {"samples_run", o.samples_run},
-                        {"wall_seconds", o.wall_seconds},
-                        {"seconds", o.seconds},
-                        {"statistics", o.statistics}};
-    std::cout << j.dump(2) << "\n";
-  } else {
-    if (o.statistics.is_object()) {
-      std::cout << sweep_statistics_table(o.statistics);
-      if (o.statistics.contains("mpm_at_quantiles"))
-        std::cout << mpm_at_quantiles_table(o.statistics["mpm_at_quantiles"]);
-    }
-    std::cout << (o.complete ? "complete" : "incomplete") << ": " << o.samples_done
-              << " samples in " << out << " (" << o.samples_run << " run now, "
-              << o.wall_seconds << " s)";
-    if (!o.stopped_by.empty()) std::cout << "; stopped by " << o.stopped_by;
-    std::cout << "\n";
-  }
+  if (format == "json") std::cout << sweep_outcome_json(o, out).dump(2) << "\n";
+  else std::cout << sweep_outcome_text(o, out);
   return 0;
 }
 
