@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <numeric>
+#include <optional>
 
 #include "drivers/mpm_impact.hpp"
 #include "drivers/mpm_runner.hpp"
@@ -92,9 +94,14 @@ class ChunkEvaluator {
       if (offset < 0) continue;   // MPM columns are filled below
       for (std::uint64_t i = 0; i < count; ++i) col[i] = out(i, offset + source_[c].output);
     }
+    std::iota(t.index.begin(), t.index.end(), first);
+    const bool mpm = study_.runs("mpm");
+    bool any_invalid = false;
+    for (std::uint64_t i = 0; i < count && !any_invalid; ++i) any_invalid = bad(i) >= 0;
+    if (!any_invalid && !mpm) return t;   // the common case: nothing more per sample
     std::vector<double> x(dims);
     for (std::uint64_t i = 0; i < count; ++i) {
-      t.index[i] = first + i;
+      if (bad(i) < 0 && !mpm) continue;
       for (int d = 0; d < dims; ++d) x[d] = in(i, d);
       if (bad(i) >= 0) {
         std::string reason = invalid_sample_reason(study_, x.data());
@@ -102,7 +109,7 @@ class ChunkEvaluator {
           reason = std::string("rejected by the sweep's range check at ") +
                    sweeps::scene_field_pointer[bad(i)] + " but accepted by the scene parser";
         fail_sample(t, i, SampleStatus::invalid_input, reason);
-      } else if (study_.runs("mpm")) {
+      } else {
         run_mpm_sample(t, i, x.data());
       }
     }
@@ -291,6 +298,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   // Chunks already done (a resumed run), and the values the interval rule has seen so far.
   std::vector<double> rule_values;
   std::vector<bool> done(mine.size(), false);
+  std::vector<std::optional<SweepTable>> fresh(mine.size());   // chunks run now, kept for the gather
   for (std::size_t m = 0; m < mine.size(); ++m) {
     const std::string f = chunk_file(parts, mine[m]);
     if (!fs::exists(f)) continue;
@@ -312,7 +320,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   for (std::size_t m = 0; m < mine.size() && !rule_met && stopped_by.empty(); ++m) {
     if (done[m]) continue;
     auto ts = Clock::now();
-    const SweepTable t = evaluator.run(mine[m]);
+    SweepTable t = evaluator.run(mine[m]);
     evaluate_s += seconds_since(ts);
     ts = Clock::now();
     SweepHeader h = header_of(study, opt.shard, opt.shard_count);
@@ -324,6 +332,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     run_here += t.rows();
     progress.update(done_samples, run_here);
     collect_rule_values(study, t, rule_values);
+    fresh[m] = std::move(t);
     std::string why;
     if (interval_rule_met(study, rule_values, why)) {
       rule_met = true;
@@ -335,21 +344,20 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     }
   }
 
-  // Gather the chunk files, in sample order.
+  // Gather the chunks, in sample order: those run now from memory, the others from their files.
   auto ts = Clock::now();
-  SweepTable all = SweepTable::with_columns({}, {});
-  bool first = true;
+  std::vector<std::string> paths;
+  for (const auto& in : study.inputs) paths.push_back(in.path);
+  SweepTable all = SweepTable::with_columns(paths, study.output_columns());
+  all.reserve(done_samples);
   for (std::size_t m = 0; m < mine.size(); ++m) {
     if (!done[m]) continue;
-    SweepFile c = read_sweep_file(chunk_file(parts, mine[m]));
-    if (first) all = SweepTable::with_columns(c.table.input_paths, c.table.output_columns);
-    first = false;
-    all.append(c.table);
-  }
-  if (first) {
-    std::vector<std::string> paths;
-    for (const auto& in : study.inputs) paths.push_back(in.path);
-    all = SweepTable::with_columns(paths, study.output_columns());
+    if (fresh[m]) {
+      all.append(*fresh[m]);
+      fresh[m].reset();
+    } else {
+      all.append(read_sweep_file(chunk_file(parts, mine[m])).table);
+    }
   }
   all.sort_by_index();
   // The interval rule ends the sweep where it was met: later chunks (none in a sequential run)

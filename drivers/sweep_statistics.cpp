@@ -1,8 +1,13 @@
 #include "drivers/sweep_statistics.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <exception>
 #include <map>
+#include <thread>
 
 #include "sweeps/statistics.hpp"
 
@@ -37,6 +42,17 @@ const char* design_name(sweeps::Design d) {
   return "?";
 }
 
+// Threads for the columns: the hardware's, or OMP_NUM_THREADS when set (the same budget as the
+// sweep's kernels); at least 1.
+std::size_t statistics_threads() {
+  std::size_t n = std::max(1u, std::thread::hardware_concurrency());
+  if (const char* env = std::getenv("OMP_NUM_THREADS")) {
+    const long k = std::strtol(env, nullptr, 10);
+    if (k > 0) n = static_cast<std::size_t>(k);
+  }
+  return n;
+}
+
 }  // namespace
 
 json sweep_statistics(const Study& study, const SweepTable& table) {
@@ -57,24 +73,43 @@ json sweep_statistics(const Study& study, const SweepTable& table) {
   if (study.design != sweeps::Design::MonteCarlo)
     j["note"] = "confidence intervals assume independent samples; for Latin-hypercube, Sobol "
                 "and grid designs they are indicative only";
-  json outputs = json::object();
-  json exceed = json::array();
-  for (std::size_t c = 0; c < table.output_columns.size(); ++c) {
+  // Each column is described on its own (a sort of its ok values, then the sums in sorted
+  // order), so the columns run in parallel and the results do not depend on the thread count.
+  const std::size_t columns = table.output_columns.size();
+  std::vector<json> column_stats(columns);
+  std::vector<json> column_exceed(columns, json::array());
+  std::vector<std::exception_ptr> column_error(columns);
+  auto describe_column = [&](std::size_t c) {
     const std::string& column = table.output_columns[c];
     std::vector<double> v;
-    v.reserve(ok.size());
-    for (std::size_t i : ok) v.push_back(table.outputs[c][i]);
-    json o;
+    if (ok.size() == n) {
+      v = table.outputs[c];
+    } else {
+      v.reserve(ok.size());
+      for (std::size_t i : ok) v.push_back(table.outputs[c][i]);
+    }
+    json& o = column_stats[c];
     o["count"] = v.size();
     std::size_t nan_count = 0;
     for (double x : v) nan_count += std::isnan(x) || x == -INFINITY;
     if (v.empty() || nan_count > 0) {
       // An ok sample always has a value; a NaN here would be a bug, reported rather than hidden.
       if (nan_count > 0) o["error"] = std::to_string(nan_count) + " ok samples have no value";
-      outputs[column] = o;
-      continue;
+      return;
     }
-    const sweeps::OutputStatistics s = sweeps::describe(v, study.confidence);
+    const std::string method = column.substr(0, column.find('/'));
+    const std::string output = column.substr(column.find('/') + 1);
+    for (const auto& t : study.thresholds) {
+      if (t.output != output || (!t.method.empty() && t.method != method)) continue;
+      const sweeps::ExceedanceEstimate e = sweeps::exceedance(v, t.above, study.confidence);
+      column_exceed[c].push_back({{"column", column},
+                                  {"above", t.above},
+                                  {"count_above", e.exceed_count},
+                                  {"count", e.count},
+                                  {"probability", number(e.probability)},
+                                  {"ci", interval(e.ci)}});
+    }
+    const sweeps::OutputStatistics s = sweeps::describe(std::move(v), study.confidence);
     o["infinite_count"] = s.infinite_count;
     o["mean"] = number(s.mean);
     o["mean_ci"] = interval(s.mean_ci);
@@ -87,19 +122,28 @@ json sweep_statistics(const Study& study, const SweepTable& table) {
     o["q50_ci"] = interval(s.q50_ci);
     o["q95"] = number(s.q95);
     o["q95_ci"] = interval(s.q95_ci);
-    outputs[column] = o;
-    const std::string method = column.substr(0, column.find('/'));
-    const std::string output = column.substr(column.find('/') + 1);
-    for (const auto& t : study.thresholds) {
-      if (t.output != output || (!t.method.empty() && t.method != method)) continue;
-      const sweeps::ExceedanceEstimate e = sweeps::exceedance(v, t.above, study.confidence);
-      exceed.push_back({{"column", column},
-                        {"above", t.above},
-                        {"count_above", e.exceed_count},
-                        {"count", e.count},
-                        {"probability", number(e.probability)},
-                        {"ci", interval(e.ci)}});
+  };
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t c; (c = next.fetch_add(1)) < columns;) {
+      try {
+        describe_column(c);
+      } catch (...) {
+        column_error[c] = std::current_exception();
+      }
     }
+  };
+  const std::size_t threads = std::min(columns, statistics_threads());
+  std::vector<std::thread> pool;
+  for (std::size_t k = 1; k < threads; ++k) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  json outputs = json::object();
+  json exceed = json::array();
+  for (std::size_t c = 0; c < columns; ++c) {
+    if (column_error[c]) std::rethrow_exception(column_error[c]);
+    outputs[table.output_columns[c]] = std::move(column_stats[c]);
+    for (auto& e : column_exceed[c]) exceed.push_back(std::move(e));
   }
   j["outputs"] = outputs;
   j["exceedance"] = exceed;

@@ -181,6 +181,14 @@ void SweepTable::append(const SweepTable& o) {
   failure_reason.insert(failure_reason.end(), o.failure_reason.begin(), o.failure_reason.end());
 }
 
+void SweepTable::reserve(std::size_t n) {
+  index.reserve(n);
+  status.reserve(n);
+  wall_time.reserve(n);
+  for (auto& c : inputs) c.reserve(n);
+  for (auto& c : outputs) c.reserve(n);
+}
+
 void SweepTable::sort_by_index() {
   const std::size_t n = rows();
   std::vector<std::size_t> order(n);

@@ -44,6 +44,7 @@ struct SweepTable {
                                  std::vector<std::string> output_columns);
   // Appends `other`'s rows (same columns, else std::invalid_argument).
   void append(const SweepTable& other);
+  void reserve(std::size_t rows);
   // Sorts the rows (and failures) by sample index; throws std::runtime_error on a duplicate.
   void sort_by_index();
 };

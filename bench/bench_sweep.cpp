@@ -1,0 +1,300 @@
+// Throughput of the closed-form part of `lsi sweep` on the study scenes/studies/L1-B1-monte-carlo.json
+// (5 inputs: lognormal, truncated normal x2 with one correlated pair, discrete, uniform), batch 2^20
+// samples, on the default execution space (OpenMP: set OMP_NUM_THREADS):
+//   BM_sampler                 the sampler alone (sample_batch, sweeps/sampler.hpp)
+//   BM_sweep_kernel/methods:M  the sweep kernel (evaluate_closed_form_chunk, sweeps/closed_form_sweep.hpp):
+//                              draw, check the scene, evaluate; M = 1 empirical, 2 analytical, 3 both
+//   BM_models_only/methods:M   the models alone (kernels/closed_form/batch.hpp) on the same samples'
+//                              model inputs, precomputed
+//   BM_sweep_overhead/methods:M  the overhead of the sweep machinery: time = sweep kernel - models
+//                              only, both timed in the same iteration on the same samples; counter
+//                              overhead_ns_per_sample (sampling + scene check + the per-sample copies)
+//   BM_chunk_write / BM_chunk_read  write_sweep_file / read_sweep_file (drivers/sweep_table.hpp) of a
+//                              2^20-row table (5 inputs, 4 output columns) in /tmp, fsync included
+// items_per_second = samples per second; per-sample cost = 1 / items_per_second.
+// Run (docs/performance.md, "Sweeps", has the numbers and the machine):
+//   OMP_NUM_THREADS=2 OMP_PROC_BIND=false OMP_WAIT_POLICY=passive build/bench/bench_sweep
+//       --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+#include <unistd.h>
+
+#include <Kokkos_Core.hpp>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "drivers/study.hpp"
+#include "drivers/sweep_table.hpp"
+#include "kernels/closed_form/batch.hpp"
+#include "sweeps/closed_form_sweep.hpp"
+
+namespace {
+using namespace lsi;
+using Exec = Kokkos::DefaultExecutionSpace;
+using Mem = Exec::memory_space;
+using Matrix = Kokkos::View<double**, Kokkos::LayoutLeft, Mem>;
+constexpr std::uint64_t kBatch = std::uint64_t{1} << 20;
+
+const Study& study() {
+  // Never destroyed: what holds Views must not outlive Kokkos::finalize.
+  static const Study* s = new Study(load_study(LSI_SOURCE_DIR "/scenes/studies/L1-B1-monte-carlo.json"));
+  return *s;
+}
+
+sweeps::Sampler<Mem> sampler_of(const Study& s) {
+  std::vector<sweeps::DistributionSpec> specs;
+  for (const auto& in : s.inputs) specs.push_back(in.distribution);
+  return sweeps::Sampler<Mem>(specs, s.correlation, s.design, s.seed, s.samples);
+}
+
+sweeps::ClosedFormSweep<Mem> sweep_of(const Study& s, int methods) {
+  sweeps::ClosedFormSweep<Mem> sweep(sampler_of(s));
+  sweep.base = s.base_values;
+  for (std::size_t d = 0; d < s.inputs.size(); ++d) sweep.target[d] = s.inputs[d].field;
+  sweep.empirical = (methods & 1) != 0;
+  sweep.analytical = (methods & 2) != 0;
+  return sweep;
+}
+
+const char* methods_label(int m) { return m == 1 ? "empirical" : m == 2 ? "analytical" : "both"; }
+
+// The chunk buffers of the sweep kernel (as drivers/sweep_runner.cpp allocates them).
+struct Chunk {
+  Matrix inputs, outputs;
+  Kokkos::View<int*, Mem> invalid;
+  explicit Chunk(int dims)
+      : inputs("inputs", kBatch, dims),
+        outputs("outputs", kBatch, 2 * sweeps::closed_form_output_count),
+        invalid("invalid", kBatch) {}
+};
+
+// The model inputs of the first kBatch samples of the study (what the sweep kernel derives from
+// each sample's scene values), for the models-only kernels.
+struct ModelBatch {
+  Kokkos::View<double* [10], Kokkos::LayoutLeft, Mem> data;
+  ClosedFormInputs<Mem> in_empirical, in_analytical;
+  ClosedFormOutputs<Mem> out_empirical, out_analytical;
+  EmpiricalCoefficients empirical;
+  ModelBatch() : data("model inputs", kBatch) {
+    const Study& s = study();
+    const auto sweep = sweep_of(s, 3);
+    const int dims = sweep.sampler.dimensions();
+    Chunk c(dims);
+    sweeps::evaluate_closed_form_chunk(Exec(), sweep, 0, c.inputs, c.outputs, c.invalid);
+    Exec().fence();
+    const auto x = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.inputs);
+    Kokkos::View<double* [10], Kokkos::LayoutLeft, Kokkos::HostSpace> h("host", kBatch);
+    // tau_e and tau_a/lambda as the sweep uses them (column 8 = empirical tau here; the analytical
+    // batch gets its own tau/lambda columns through a second view below).
+    for (std::uint64_t i = 0; i < kBatch; ++i) {
+      sweeps::SceneValues v = sweep.base;
+      for (int d = 0; d < dims; ++d)
+        if (sweep.target[d] >= 0) v.value[sweep.target[d]] = x(i, d);
+      const sweeps::ModelInputs m = sweeps::model_inputs(v);
+      h(i, 0) = v.value[sweeps::thickness_m];
+      h(i, 1) = v.value[sweeps::velocity_m_s];
+      h(i, 2) = v.value[sweeps::density_kg_m3];
+      h(i, 3) = m.landslide_mass;
+      h(i, 4) = m.equivalent_length;
+      h(i, 5) = m.barrier_mass;
+      h(i, 6) = v.value[sweeps::base_friction];
+      h(i, 7) = m.face_angle_rad;
+      h(i, 8) = v.value[sweeps::empirical_tau];
+      TwoBodyCoefficients tc = default_two_body_coefficients(v.fixed);
+      if (v.analytical_lambda_given) tc.lambda = v.value[sweeps::analytical_lambda];
+      h(i, 9) = tc.lambda;
+      analytical_tau = v.analytical_tau_given ? v.value[sweeps::analytical_tau] : tc.tau;
+      empirical.a1 = v.value[sweeps::empirical_a1];
+      empirical.a2 = v.value[sweeps::empirical_a2];
+      empirical.kappa = v.value[sweeps::empirical_kappa];
+    }
+    Kokkos::deep_copy(data, h);
+    tau_a = Kokkos::View<double*, Mem>("analytical tau", kBatch);
+    Kokkos::deep_copy(tau_a, analytical_tau);
+    auto col = [&](int k) { return Kokkos::subview(data, Kokkos::ALL, k); };
+    in_empirical = {col(0), col(1), col(2), col(3), col(4), col(5), col(6), col(7), col(8), col(9)};
+    in_analytical = {col(0), col(1), col(2), col(3), col(4), col(5), col(6), col(7), tau_a, col(9)};
+    auto outs = [](const char* p) {
+      return ClosedFormOutputs<Mem>{Kokkos::View<double*, Mem>(std::string(p) + " peak", kBatch),
+                                    Kokkos::View<double*, Mem>(std::string(p) + " t1", kBatch),
+                                    Kokkos::View<double*, Mem>(std::string(p) + " t2", kBatch),
+                                    Kokkos::View<double*, Mem>(std::string(p) + " dx", kBatch)};
+    };
+    out_empirical = outs("empirical");
+    out_analytical = outs("analytical");
+  }
+  void run(int methods) const {
+    if (methods & 1) evaluate_empirical_batch(Exec(), in_empirical, empirical, out_empirical);
+    if (methods & 2) evaluate_two_body_batch(Exec(), in_analytical, out_analytical);
+  }
+  double analytical_tau = 0.25;
+  Kokkos::View<double*, Mem> tau_a;
+};
+
+const ModelBatch& model_batch() {
+  static const ModelBatch* b = new ModelBatch;  // never destroyed (holds Views)
+  return *b;
+}
+
+void BM_sampler(benchmark::State& state) {
+  const auto sampler = sampler_of(study());
+  Matrix out("samples", kBatch, sampler.dimensions());
+  sweeps::sample_batch(Exec(), sampler, 0, out);  // warm-up: first touch of the pages
+  Exec().fence();
+  for (auto _ : state) {
+    sweeps::sample_batch(Exec(), sampler, 0, out);
+    Exec().fence();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
+  state.counters["threads"] = Exec().concurrency();
+}
+BENCHMARK(BM_sampler)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_sweep_kernel(benchmark::State& state) {
+  const int methods = static_cast<int>(state.range(0));
+  const auto sweep = sweep_of(study(), methods);
+  Chunk c(sweep.sampler.dimensions());
+  sweeps::evaluate_closed_form_chunk(Exec(), sweep, 0, c.inputs, c.outputs, c.invalid);
+  Exec().fence();
+  for (auto _ : state) {
+    sweeps::evaluate_closed_form_chunk(Exec(), sweep, 0, c.inputs, c.outputs, c.invalid);
+    Exec().fence();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
+  state.SetLabel(methods_label(methods));
+  state.counters["threads"] = Exec().concurrency();
+}
+BENCHMARK(BM_sweep_kernel)->ArgName("methods")->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_models_only(benchmark::State& state) {
+  const int methods = static_cast<int>(state.range(0));
+  const ModelBatch& b = model_batch();
+  b.run(methods);
+  Exec().fence();
+  for (auto _ : state) {
+    b.run(methods);
+    Exec().fence();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
+  state.SetLabel(methods_label(methods));
+  state.counters["threads"] = Exec().concurrency();
+}
+BENCHMARK(BM_models_only)->ArgName("methods")->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_sweep_overhead(benchmark::State& state) {
+  using Clock = std::chrono::steady_clock;
+  const int methods = static_cast<int>(state.range(0));
+  const auto sweep = sweep_of(study(), methods);
+  const ModelBatch& b = model_batch();
+  Chunk c(sweep.sampler.dimensions());
+  sweeps::evaluate_closed_form_chunk(Exec(), sweep, 0, c.inputs, c.outputs, c.invalid);
+  b.run(methods);
+  Exec().fence();
+  double kernel_s = 0, models_s = 0;
+  for (auto _ : state) {
+    auto t0 = Clock::now();
+    sweeps::evaluate_closed_form_chunk(Exec(), sweep, 0, c.inputs, c.outputs, c.invalid);
+    Exec().fence();
+    auto t1 = Clock::now();
+    b.run(methods);
+    Exec().fence();
+    auto t2 = Clock::now();
+    const double k = std::chrono::duration<double>(t1 - t0).count();
+    const double m = std::chrono::duration<double>(t2 - t1).count();
+    kernel_s += k;
+    models_s += m;
+    state.SetIterationTime(k - m > 0 ? k - m : 0.0);
+  }
+  const double per = 1e9 / static_cast<double>(state.iterations() * kBatch);
+  state.counters["kernel_ns_per_sample"] = kernel_s * per;
+  state.counters["models_ns_per_sample"] = models_s * per;
+  state.counters["overhead_ns_per_sample"] = (kernel_s - models_s) * per;
+  state.SetLabel(methods_label(methods));
+}
+BENCHMARK(BM_sweep_overhead)->ArgName("methods")->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseManualTime();
+
+// A chunk of kBatch rows as the sweep writes it: 5 inputs, 4 output columns, all samples ok.
+SweepTable chunk_table() {
+  const Study& s = study();
+  std::vector<std::string> paths;
+  for (const auto& in : s.inputs) paths.push_back(in.path);
+  SweepTable t = SweepTable::with_columns(paths, s.output_columns());
+  const auto sweep = sweep_of(s, 3);
+  Chunk c(sweep.sampler.dimensions());
+  sweeps::evaluate_closed_form_chunk(Exec(), sweep, 0, c.inputs, c.outputs, c.invalid);
+  Exec().fence();
+  const auto x = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.inputs);
+  const auto y = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.outputs);
+  t.index.resize(kBatch);
+  t.status.assign(kBatch, 0);
+  t.wall_time.assign(kBatch, 1e-7f);
+  for (std::uint64_t i = 0; i < kBatch; ++i) t.index[i] = i;
+  for (std::size_t d = 0; d < paths.size(); ++d) {
+    t.inputs[d].resize(kBatch);
+    for (std::uint64_t i = 0; i < kBatch; ++i) t.inputs[d][i] = x(i, d);
+  }
+  for (std::size_t k = 0; k < t.outputs.size(); ++k) {
+    t.outputs[k].resize(kBatch);
+    for (std::uint64_t i = 0; i < kBatch; ++i) t.outputs[k][i] = y(i, k % y.extent(1));
+  }
+  return t;
+}
+
+std::string chunk_path() { return "/tmp/lsi_bench_sweep_chunk." + std::to_string(::getpid()) + ".h5"; }
+
+SweepHeader chunk_header() {
+  const Study& s = study();
+  SweepHeader h;
+  h.study = s.source;
+  h.fingerprint = s.fingerprint;
+  h.planned_samples = s.samples;
+  h.chunk_samples = kBatch;
+  h.complete = true;
+  return h;
+}
+
+void BM_chunk_write(benchmark::State& state) {
+  const SweepTable t = chunk_table();
+  const SweepHeader h = chunk_header();
+  const std::string path = chunk_path();
+  for (auto _ : state) write_sweep_file(path, h, t);
+  std::remove(path.c_str());
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * kBatch *
+                                                    (8 + 1 + 4 + 8 * (t.inputs.size() + t.outputs.size()))));
+}
+BENCHMARK(BM_chunk_write)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_chunk_read(benchmark::State& state) {
+  const std::string path = chunk_path();
+  const SweepTable t = chunk_table();
+  write_sweep_file(path, chunk_header(), t);
+  for (auto _ : state) {
+    SweepFile f = read_sweep_file(path);
+    benchmark::DoNotOptimize(f.table.index.data());
+  }
+  std::remove(path.c_str());
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * kBatch *
+                                                    (8 + 1 + 4 + 8 * (t.inputs.size() + t.outputs.size()))));
+}
+BENCHMARK(BM_chunk_read)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Kokkos::ScopeGuard kokkos(argc, argv);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::AddCustomContext("kokkos_version", std::to_string(KOKKOS_VERSION));
+  benchmark::AddCustomContext("git_revision", LSI_GIT_REVISION);
+  benchmark::AddCustomContext("execution_space", Exec::name());
+  benchmark::AddCustomContext("concurrency", std::to_string(Exec().concurrency()));
+  benchmark::AddCustomContext("batch", std::to_string(kBatch));
+  benchmark::AddCustomContext("study", "scenes/studies/L1-B1-monte-carlo.json");
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
