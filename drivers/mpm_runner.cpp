@@ -235,6 +235,12 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
                !motion.sliding();
       });
   progress.finish();
+  // A run stopped because a point left the grid stops inside a step, before any output: its last
+  // state goes into one more snapshot, to show where the point went (a non-finite state is not
+  // written: snapshots never hold NaN).
+  if (snap_dt > 0 && status == mpm::Status::LeftGrid &&
+      (out.snapshots.empty() || out.snapshots.back().time < solver.time()))
+    out.snapshots.push_back(snapshot_of(solver));
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.particles = particle_count;
   // A barrier pushed to the downstream end of the modelled domain is a physical outcome (far too
