@@ -229,15 +229,15 @@ Scene parse_scene(const json& j) {
   return scene;
 }
 
-json read_scene_document(const std::string& path) {
+json read_scene_document(const std::string& path, const std::string& kind) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::exists(path, ec)) fail(path + ": scene file not found");
-  if (fs::is_directory(path, ec)) fail(path + ": is a directory, not a scene file");
+  if (!fs::exists(path, ec)) fail(path + ": " + kind + " file not found");
+  if (fs::is_directory(path, ec)) fail(path + ": is a directory, not a " + kind + " file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path + ": cannot open scene file: " + std::strerror(errno));
+  if (!in) fail(path + ": cannot open " + kind + " file: " + std::strerror(errno));
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) fail(path + ": cannot read scene file");
+  if (in.bad()) fail(path + ": cannot read " + kind + " file");
 
   const json j = parse_json_document(text, path);
   if (!j.is_object()) {

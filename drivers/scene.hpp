@@ -103,6 +103,8 @@ Scene parse_scene(const nlohmann::json& j);
 Scene load_scene(const std::string& path);
 // Reads and parses a scene file as JSON (malformed JSON, missing file: InputError with the path);
 // the top level must be an object. No schema check.
-nlohmann::json read_scene_document(const std::string& path);   // also reports malformed JSON with line/column
+// `kind` names the file in messages ("scene", "study").
+nlohmann::json read_scene_document(const std::string& path,
+                                   const std::string& kind = "scene");   // also reports malformed JSON with line/column
 
 }  // namespace lsi

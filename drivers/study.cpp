@@ -467,7 +467,7 @@ Study parse_study(const json& j, const std::string& base_dir) {
 
 Study load_study(const std::string& path) {
   namespace fs = std::filesystem;
-  const json doc = read_scene_document(path);   // file errors and malformed JSON, with the path
+  const json doc = read_scene_document(path, "study");   // file errors and malformed JSON, with the path
   try {
     Study s = parse_study(doc, fs::path(path).parent_path().string());
     s.path = path;

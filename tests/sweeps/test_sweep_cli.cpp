@@ -116,6 +116,9 @@ TEST(SweepCli, StudyErrorsNameTheFieldAndExit2) {
     EXPECT_NE(r.out.find(expected), std::string::npos) << "expected '" << expected << "' in:\n" << r.out;
     EXPECT_EQ(r.out.find("\n", r.out.find("error")), r.out.size() - 1) << "one line:\n" << r.out;
   }
+  const Outcome missing = run("sweep " + (temp_dir() / "no-such-study.json").string() + " --out x.h5");
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.out.find("no-such-study.json: study file not found"), std::string::npos) << missing.out;
   const fs::path ok = write_study("shard", {});
   const Outcome s = run("sweep " + ok.string() + " --out " + (temp_dir() / "s.h5").string() + " --shard 3/2");
   EXPECT_EQ(s.code, 2);
