@@ -7,6 +7,7 @@
 
 #include "drivers/mpm_impact.hpp"
 #include "drivers/mpm_runner.hpp"
+#include "drivers/sweep_statistics.hpp"
 #include "sweeps/statistics.hpp"
 
 namespace lsi {
@@ -14,11 +15,6 @@ namespace {
 
 using nlohmann::json;
 
-json number(double v) {
-  if (std::isfinite(v)) return v;
-  if (std::isnan(v)) return "nan";
-  return v > 0 ? "inf" : "-inf";
-}
 
 double mpm_value(const MethodResult& r, const std::string& output) {
   if (output == "peak_force") return r.peak_force;
@@ -57,7 +53,7 @@ json mpm_at_quantiles(const Study& study, const SweepTable& t) {
       if (std::fabs(values[k] - target) < std::fabs(values[best] - target)) best = k;
     const std::size_t row = ok[best];
     json e = {{"quantile", p},
-              {"quantile_value", number(target)},
+              {"quantile_value", json_number(target)},
               {"column", q.method + "/" + q.output},
               {"sample", t.index[row]}};
     std::vector<double> x;
@@ -69,7 +65,7 @@ json mpm_at_quantiles(const Study& study, const SweepTable& t) {
     e["inputs"] = inputs;
     json closed = json::object();
     for (std::size_t c = 0; c < t.output_columns.size(); ++c)
-      if (t.output_columns[c].rfind("mpm/", 0) != 0) closed[t.output_columns[c]] = number(t.outputs[c][row]);
+      if (t.output_columns[c].rfind("mpm/", 0) != 0) closed[t.output_columns[c]] = json_number(t.outputs[c][row]);
     e["closed_form"] = closed;
     const auto t0 = std::chrono::steady_clock::now();
     try {
@@ -77,14 +73,14 @@ json mpm_at_quantiles(const Study& study, const SweepTable& t) {
           run_mpm_case(impact_case(parse_scene(sample_scene_document(study, x.data()))));
       e["mpm_status"] = o.status;
       json mpm = json::object(), errors = json::object();
-      for (const auto& output : study.outputs) mpm[output] = number(mpm_value(o.result, output));
+      for (const auto& output : study.outputs) mpm[output] = json_number(mpm_value(o.result, output));
       if (o.finished) {
         for (std::size_t c = 0; c < t.output_columns.size(); ++c) {
           const std::string& name = t.output_columns[c];
           if (name.rfind("mpm/", 0) == 0) continue;
           const double m = mpm_value(o.result, name.substr(name.find('/') + 1));
           const double v = t.outputs[c][row];
-          errors[name] = (std::isfinite(m) && m != 0.0 && std::isfinite(v)) ? number((v - m) / m)
+          errors[name] = (std::isfinite(m) && m != 0.0 && std::isfinite(v)) ? json_number((v - m) / m)
                                                                             : json(nullptr);
         }
       }

@@ -16,11 +16,6 @@ namespace {
 
 using nlohmann::json;
 
-json number(double v) {
-  if (std::isfinite(v)) return v;
-  if (std::isnan(v)) return "nan";
-  return v > 0 ? "inf" : "-inf";
-}
 
 double as_double(const json& v) {
   if (v.is_number()) return v.get<double>();
@@ -30,7 +25,7 @@ double as_double(const json& v) {
   return NAN;
 }
 
-json interval(const sweeps::Interval& i) { return json::array({number(i.low), number(i.high)}); }
+json interval(const sweeps::Interval& i) { return json::array({json_number(i.low), json_number(i.high)}); }
 
 const char* design_name(sweeps::Design d) {
   switch (d) {
@@ -54,6 +49,12 @@ std::size_t statistics_threads() {
 }
 
 }  // namespace
+
+json json_number(double v) {
+  if (std::isfinite(v)) return v;
+  if (std::isnan(v)) return "nan";
+  return v > 0 ? "inf" : "-inf";
+}
 
 json sweep_statistics(const Study& study, const SweepTable& table) {
   json j;
@@ -106,21 +107,21 @@ json sweep_statistics(const Study& study, const SweepTable& table) {
                                   {"above", t.above},
                                   {"count_above", e.exceed_count},
                                   {"count", e.count},
-                                  {"probability", number(e.probability)},
+                                  {"probability", json_number(e.probability)},
                                   {"ci", interval(e.ci)}});
     }
     const sweeps::OutputStatistics s = sweeps::describe(std::move(v), study.confidence);
     o["infinite_count"] = s.infinite_count;
-    o["mean"] = number(s.mean);
+    o["mean"] = json_number(s.mean);
     o["mean_ci"] = interval(s.mean_ci);
-    o["standard_deviation"] = number(s.standard_deviation);
-    o["min"] = number(s.min);
-    o["max"] = number(s.max);
-    o["q05"] = number(s.q05);
+    o["standard_deviation"] = json_number(s.standard_deviation);
+    o["min"] = json_number(s.min);
+    o["max"] = json_number(s.max);
+    o["q05"] = json_number(s.q05);
     o["q05_ci"] = interval(s.q05_ci);
-    o["q50"] = number(s.q50);
+    o["q50"] = json_number(s.q50);
     o["q50_ci"] = interval(s.q50_ci);
-    o["q95"] = number(s.q95);
+    o["q95"] = json_number(s.q95);
     o["q95_ci"] = interval(s.q95_ci);
   };
   std::atomic<std::size_t> next{0};

@@ -17,6 +17,9 @@ namespace lsi {
 
 nlohmann::json sweep_statistics(const Study& study, const SweepTable& table);
 
+// A double as JSON: finite values as numbers, the others as "inf", "-inf" or "nan".
+nlohmann::json json_number(double v);
+
 // The human-readable summary of sweep_statistics' JSON.
 std::string sweep_statistics_table(const nlohmann::json& statistics);
 
