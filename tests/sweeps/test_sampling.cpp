@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "support/expect_invalid.hpp"
 #include "sweeps/counter_rng.hpp"
 #include "sweeps/distribution.hpp"
 #include "sweeps/latin_hypercube.hpp"
@@ -31,15 +32,7 @@ using namespace lsi::sweeps;
 using HostSampler = Sampler<Kokkos::HostSpace>;
 constexpr double kPi = 3.14159265358979323846;
 
-// Runs fn and checks that it throws std::invalid_argument whose message contains `part`.
-void expect_invalid(const std::function<void()>& fn, const std::string& part) {
-  try {
-    fn();
-    ADD_FAILURE() << "no exception; expected one mentioning \"" << part << "\"";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << "message: " << e.what();
-  }
-}
+using lsi::test::expect_invalid;
 
 DistributionSpec uniform(double a, double b) {
   DistributionSpec s;

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "support/expect_invalid.hpp"
 #include "sweeps/counter_rng.hpp"
 #include "sweeps/normal_distribution.hpp"
 #include "sweeps/statistics.hpp"
@@ -25,14 +26,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kReplicates = 2000;
 const double kCoverageTolerance = 4 * std::sqrt(0.95 * 0.05 / kReplicates);
 
-void expect_invalid(const std::function<void()>& fn, const std::string& part) {
-  try {
-    fn();
-    ADD_FAILURE() << "no exception; expected one mentioning \"" << part << "\"";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << "message: " << e.what();
-  }
-}
+using lsi::test::expect_invalid;
 
 // n standard normal values of replicate r (Philox + Phi^-1: the same numbers on every platform).
 std::vector<double> normal_data(int n, std::uint64_t r, double mean = 0, double sd = 1) {
