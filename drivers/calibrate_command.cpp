@@ -48,6 +48,7 @@
 #include "drivers/mpm_runner.hpp"
 #include "drivers/scene.hpp"
 #include "drivers/subcommand.hpp"
+#include "drivers/time_call.hpp"
 #include "kernels/common/math.hpp"
 #include "sweeps/calibration.hpp"
 
@@ -209,22 +210,6 @@ double relative_error(double x, double ref) {
   if (!std::isfinite(ref) || ref == 0.0) return nan;   // MPM never stops, or a fixed barrier
   if (!std::isfinite(x)) return inf;
   return (x - ref) / ref;
-}
-
-// Mean wall time of one call, in seconds, repeating it for at least 20 ms (and at least 3 times)
-// so that microsecond-scale closed forms are measured above the clock's resolution.
-template <class F>
-double time_call(F&& f, MethodResult& out) {
-  using clock = std::chrono::steady_clock;
-  const auto start = clock::now();
-  int reps = 0;
-  double elapsed = 0.0;
-  do {
-    out = f();
-    ++reps;
-    elapsed = std::chrono::duration<double>(clock::now() - start).count();
-  } while (reps < 3 || (elapsed < 0.02 && reps < 100000));
-  return elapsed / reps;
 }
 
 Row closed_form_row(const Case& c, const std::string& method, const std::string& coefficients,

@@ -22,6 +22,7 @@
 #include "drivers/report.hpp"
 #include "drivers/scene.hpp"
 #include "drivers/subcommand.hpp"
+#include "drivers/text_file.hpp"
 
 namespace {
 
@@ -253,13 +254,8 @@ int main(int argc, char** argv) {
       if (format == "json") std::cout << lsi::comparison_json(rows, max_displacement).dump(2) << "\n";
       else std::cout << lsi::comparison_table(rows, max_displacement);
       if (!summary_json_path.empty()) {
-        const std::string tmp = summary_json_path + ".tmp." + std::to_string(getpid());
-        {
-          std::ofstream f(tmp);
-          f << lsi::comparison_json(rows, max_displacement).dump(2) << "\n";
-          if (!f) throw std::runtime_error("cannot write '" + summary_json_path + "'");
-        }
-        std::filesystem::rename(tmp, summary_json_path);
+        lsi::write_text_atomically(summary_json_path,
+                                   lsi::comparison_json(rows, max_displacement).dump(2) + "\n");
       }
       if (unstable) return 3;
     }

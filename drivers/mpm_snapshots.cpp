@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "drivers/text_file.hpp"
+
 namespace lsi {
 namespace {
 
@@ -194,21 +196,7 @@ void write_mpm_snapshots_xdmf(const std::string& h5_path, const std::vector<MpmS
     << "  </Domain>\n"
     << "</Xdmf>\n";
 
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  const auto fail = [&](const std::string& what) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw std::runtime_error("cannot write '" + path + "': " + what);
-  };
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) fail("cannot create '" + tmp + "': " + std::strerror(errno));
-    f << x.str();
-    f.flush();
-    if (!f) fail("cannot write '" + tmp + "'");
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
-    fail("cannot rename '" + tmp + "' onto it: " + std::strerror(errno));
+  write_text_atomically(path, x.str());
 }
 
 }  // namespace lsi

@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "drivers/mpm_impact.hpp"
+#include "drivers/text_file.hpp"
 #include "drivers/mpm_runner.hpp"
 #include "drivers/sweep_quantile_mpm.hpp"
 #include "drivers/sweep_statistics.hpp"
@@ -189,17 +190,6 @@ class SweepProgress {
   bool enabled_, printed_ = false;
   Clock::time_point start_;
 };
-
-void write_text_atomically(const fs::path& path, const std::string& text) {
-  const std::string tmp = path.string() + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream f(tmp);
-    f << text;
-    f.flush();
-    if (!f) throw std::runtime_error("cannot write '" + tmp + "'");
-  }
-  fs::rename(tmp, path);
-}
 
 // The column of the interval rule among the table's outputs (or -1).
 int rule_column(const Study& s, const SweepTable& t) {
