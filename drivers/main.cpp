@@ -185,7 +185,8 @@ int main(int argc, char** argv) {
                       "Also write the comparison as JSON to this file (written atomically)");
 
   const lsi::Subcommand subcommands[] = {lsi::add_sweep_command(app), lsi::add_merge_command(app),
-                                         lsi::add_calibrate_command(app)};
+                                         lsi::add_calibrate_command(app),
+                                         lsi::add_accuracy_command(app)};
 
   try {
     app.parse(argc, argv);

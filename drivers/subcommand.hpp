@@ -14,5 +14,6 @@ struct Subcommand {
 Subcommand add_sweep_command(CLI::App& app);       // drivers/sweep_command.cpp
 Subcommand add_merge_command(CLI::App& app);       // drivers/sweep_command.cpp
 Subcommand add_calibrate_command(CLI::App& app);   // drivers/calibrate_command.cpp
+Subcommand add_accuracy_command(CLI::App& app);    // drivers/accuracy_command.cpp
 
 }  // namespace lsi
