@@ -9,6 +9,7 @@
 #include "drivers/mpm_impact.hpp"
 #include "drivers/mpm_runner.hpp"
 #include "drivers/scene.hpp"
+#include "drivers/scene_reference.hpp"
 
 namespace lsi {
 namespace {
@@ -115,24 +116,9 @@ AccuracyStudy parse_accuracy_study(const json& j, const std::string& base_dir) {
   const ObjectReader root(j, "", {"name", "scene", "outputs", "series"});
   AccuracyStudy st;
   st.name = root.string("name");
-  const json* scene = root.find("scene");
-  if (!scene) root.fail_missing("scene", "a scene file path or a scene object");
-  if (scene->is_string()) {
-    std::filesystem::path p(scene->get<std::string>());
-    if (p.is_relative() && !base_dir.empty()) p = std::filesystem::path(base_dir) / p;
-    try {
-      st.scene_document = read_scene_document(p.string());
-    } catch (const InputError& e) {
-      fail(std::string("scene = ") + format_value(*scene) + ": " + e.what());
-    }
-  } else if (scene->is_object()) {
-    st.scene_document = *scene;
-  } else {
-    root.fail_at("scene", "must be a scene file path or a scene object");
-  }
-  Scene base;
+  st.scene_document = read_scene_reference(root, base_dir);
   try {
-    base = parse_scene(st.scene_document);
+    (void)parse_scene(st.scene_document);
   } catch (const InputError& e) {
     fail(std::string("scene: ") + e.what());
   }

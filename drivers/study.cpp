@@ -8,6 +8,7 @@
 
 #include "drivers/json_fields.hpp"
 #include "drivers/mpm_runner.hpp"   // ensure_kokkos
+#include "drivers/scene_reference.hpp"
 
 namespace lsi {
 namespace {
@@ -308,21 +309,7 @@ Study parse_study(const json& j, const std::string& base_dir) {
   s.name = root.string("name");
 
   // The base scene: a path (relative to the study file) or the scene itself.
-  const json* scene = root.find("scene");
-  if (!scene) root.fail_missing("scene", "a scene file path or a scene object");
-  if (scene->is_string()) {
-    std::filesystem::path p(scene->get<std::string>());
-    if (p.is_relative() && !base_dir.empty()) p = std::filesystem::path(base_dir) / p;
-    try {
-      s.scene_document = read_scene_document(p.string());
-    } catch (const InputError& e) {
-      fail(std::string("scene = ") + format_value(*scene) + ": " + e.what());
-    }
-  } else if (scene->is_object()) {
-    s.scene_document = *scene;
-  } else {
-    root.fail_at("scene", "must be a scene file path or a scene object");
-  }
+  s.scene_document = read_scene_reference(root, base_dir);
   try {
     s.base = parse_scene(s.scene_document);
   } catch (const InputError& e) {

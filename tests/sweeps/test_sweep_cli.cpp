@@ -77,7 +77,9 @@ void expect_same_table(const lsi::SweepFile& a, const lsi::SweepFile& b) {
   for (std::size_t c = 0; c < a.table.outputs.size(); ++c)
     for (std::size_t i = 0; i < a.table.rows(); ++i) {
       const double x = a.table.outputs[c][i], y = b.table.outputs[c][i];
-      if (!(std::isnan(x) && std::isnan(y))) ASSERT_EQ(x, y) << a.table.output_columns[c] << " row " << i;
+      if (!(std::isnan(x) && std::isnan(y))) {
+        ASSERT_EQ(x, y) << a.table.output_columns[c] << " row " << i;
+      }
     }
   EXPECT_EQ(a.table.failure_index, b.table.failure_index);
   EXPECT_EQ(a.table.failure_reason, b.table.failure_reason);
