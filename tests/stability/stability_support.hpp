@@ -1,0 +1,100 @@
+// Shared pieces of the stability matrix (docs/stability.md): scenes built from a base JSON with a
+// merge patch, and the "no NaN / Inf anywhere" check of a MethodResult.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "drivers/method_result.hpp"
+#include "drivers/scene.hpp"
+
+namespace lsi::stability {
+
+using nlohmann::json;
+
+// RFC 7396 merge patch of `patch` (JSON text) into a copy of `base`; null removes a key.
+inline json patched(json base, const std::string& patch) {
+  if (!patch.empty()) base.merge_patch(json::parse(patch));
+  return base;
+}
+
+inline Scene scene_of(const json& j) { return parse_scene(j); }
+
+// True when every value is finite.
+inline bool all_finite(const std::vector<double>& v, size_t* first_bad = nullptr) {
+  for (size_t i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v[i])) {
+      if (first_bad) *first_bad = i;
+      return false;
+    }
+  return true;
+}
+
+// Which non-finite scalars a result may hold, each by design (documented in docs/models.md and
+// docs/scene_schema.md), never NaN written as a number:
+//  * final_displacement = +infinity: the barrier never stops (no base friction, or still sliding
+//    at the end of an MPM run);
+//  * extra barrier_start_time / barrier_stop_time = NaN: "not given", the barrier does not move;
+//    barrier_stop_time = +infinity: it never stops;
+//  * extra min_overturning_safety / min_sliding_safety = +infinity: no overturning moment / no
+//    push at any instant.
+struct NonFiniteAllowed {
+  bool infinite_final_displacement = false;
+};
+
+// Checks every history, series and scalar of `r` (gtest failures name the field).
+inline void expect_no_nan(const MethodResult& r, const std::string& where,
+                          NonFiniteAllowed allowed = {}) {
+  const std::vector<std::pair<const char*, const std::vector<double>*>> histories = {
+      {"time", &r.time},
+      {"force", &r.force},
+      {"force_horizontal", &r.force_horizontal},
+      {"force_vertical", &r.force_vertical},
+      {"landslide_kinetic_energy", &r.landslide_kinetic_energy},
+      {"barrier_velocity", &r.barrier_velocity},
+      {"barrier_displacement", &r.barrier_displacement}};
+  for (const auto& [name, h] : histories) {
+    size_t bad = 0;
+    EXPECT_TRUE(all_finite(*h, &bad)) << where << ": " << name << "[" << bad << "] = " << (*h)[bad];
+    if (!h->empty()) {
+      EXPECT_EQ(h->size(), r.time.size()) << where << ": " << name;
+    }
+  }
+  for (const auto& [name, s] : r.series) {
+    size_t bad = 0;
+    EXPECT_TRUE(all_finite(s.values, &bad))
+        << where << ": series " << name << "[" << bad << "] = " << s.values[bad];
+    EXPECT_EQ(s.values.size(), r.time.size()) << where << ": series " << name;
+  }
+  EXPECT_TRUE(std::isfinite(r.peak_force)) << where << ": peak_force = " << r.peak_force;
+  EXPECT_TRUE(std::isfinite(r.rise_time)) << where << ": rise_time = " << r.rise_time;
+  EXPECT_TRUE(std::isfinite(r.impact_duration)) << where << ": impact_duration = " << r.impact_duration;
+  if (allowed.infinite_final_displacement) {
+    EXPECT_FALSE(std::isnan(r.final_displacement)) << where << ": final_displacement is NaN";
+    EXPECT_FALSE(r.final_displacement < 0.0) << where << ": final_displacement = " << r.final_displacement;
+  } else {
+    EXPECT_TRUE(std::isfinite(r.final_displacement))
+        << where << ": final_displacement = " << r.final_displacement;
+  }
+  for (const auto& [name, v] : r.extra) {
+    if (name == "barrier_start_time" || name == "barrier_stop_time") {
+      // NaN only as "not given" (the barrier does not move), then both are NaN together.
+      if (std::isnan(v)) {
+        EXPECT_EQ(r.final_displacement, 0.0) << where << ": " << name << " NaN but the barrier moved";
+        continue;
+      }
+      if (name == "barrier_stop_time" && std::isinf(v)) {
+        EXPECT_TRUE(std::isinf(r.final_displacement)) << where << ": stops never, displacement finite";
+        continue;
+      }
+    }
+    if ((name == "min_overturning_safety" || name == "min_sliding_safety") && v == INFINITY) continue;
+    EXPECT_TRUE(std::isfinite(v)) << where << ": extra " << name << " = " << v;
+  }
+}
+
+}  // namespace lsi::stability
