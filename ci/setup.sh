@@ -2,7 +2,8 @@
 # Installs what is missing (Debian packages, Kokkos with OpenMP), configures and builds lsi into build/.
 # Idempotent: a second run installs nothing and rebuilds only what changed.
 # Environment: LSI_BUILD_DIR (default build), LSI_BUILD_TYPE (default Release),
-#              Kokkos_ROOT (use your own Kokkos, e.g. with CUDA; nothing is built then).
+#              Kokkos_ROOT (use your own Kokkos, e.g. with CUDA; nothing is built then),
+#              LSI_PRESET (configure with a preset of CMakePresets.json, e.g. sanitize).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${LSI_BUILD_DIR:-$root/build}"
@@ -21,6 +22,7 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 cmake_args=(-DCMAKE_BUILD_TYPE="${LSI_BUILD_TYPE:-Release}")
 [ -n "${Kokkos_ROOT:-}" ] && cmake_args+=(-DKokkos_ROOT="$Kokkos_ROOT")
+[ -n "${LSI_PRESET:-}" ] && cmake_args=(--preset "$LSI_PRESET" "${cmake_args[@]:1}")
 if [ ! -f "$build/CMakeCache.txt" ]; then
   cmake -S "$root" -B "$build" "${cmake_args[@]}" >/dev/null
 fi
