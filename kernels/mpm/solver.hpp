@@ -18,6 +18,7 @@
 #include "kernels/mpm/grid.hpp"
 #include "kernels/mpm/grid_update.hpp"
 #include "kernels/mpm/p2g.hpp"
+#include "kernels/mpm/particle_extrema.hpp"
 #include "kernels/mpm/particles.hpp"
 #include "kernels/mpm/stress_update.hpp"
 #include "kernels/mpm/run_loop.hpp"
@@ -63,27 +64,11 @@ class Solver {
     }
     Kokkos::deep_copy(table, host);
     materials_ = table;
-    const auto p = particles_;
-    double vmax = 0.0;
-    Kokkos::parallel_reduce(
-        "lsi::mpm::initial_speed", Kokkos::RangePolicy<ExecSpace>(0, p.count),
-        KOKKOS_LAMBDA(const int q, double& vm) {
-          const double s = math::sqrt(p.velocity(q, 0) * p.velocity(q, 0) +
-                                      p.velocity(q, 1) * p.velocity(q, 1));
-          if (s > vm) vm = s;
-        },
-        Kokkos::Max<double>(vmax));
-    max_speed_ = vmax;
+    max_speed_ = largest_speed<ExecSpace>(particles_.velocity, particles_.count);
     initial_ = energy();
     max_mechanical_ = initial_.kinetic + initial_.elastic;
-    double mmin = 0.0;
-    Kokkos::parallel_reduce(
-        "lsi::mpm::lightest_point", Kokkos::RangePolicy<ExecSpace>(0, p.count),
-        KOKKOS_LAMBDA(const int q, double& m) {
-          if (p.mass(q) < m) m = p.mass(q);
-        },
-        Kokkos::Min<double>(mmin));
-    small_mass_ = p.count > 0 ? settings_.small_mass_fraction * mmin : 0.0;
+    small_mass_ = settings_.small_mass_fraction *
+                  lightest_mass<ExecSpace>(particles_.mass, particles_.count);
   }
 
   // Advances one step. Returns Running, or the reason the run must stop.

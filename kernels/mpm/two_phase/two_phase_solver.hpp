@@ -88,19 +88,9 @@ class TwoPhaseSolver {
     }
     Kokkos::deep_copy(table, host);
     materials_ = table;
-    const auto s = particles_.solid;
-    const auto vl = particles_.liquid_velocity;
-    double vmax = 0.0;
-    Kokkos::parallel_reduce(
-        "lsi::mpm::two_phase::initial_speed", Kokkos::RangePolicy<ExecSpace>(0, particles_.count),
-        KOKKOS_LAMBDA(const int q, double& vm) {
-          const double a = s.velocity(q, 0) * s.velocity(q, 0) + s.velocity(q, 1) * s.velocity(q, 1);
-          const double b = vl(q, 0) * vl(q, 0) + vl(q, 1) * vl(q, 1);
-          const double v = math::sqrt(math::max(a, b));
-          if (v > vm) vm = v;
-        },
-        Kokkos::Max<double>(vmax));
-    max_speed_ = vmax;
+    // The larger of the two phases' speeds at each point: the larger of the two maxima.
+    max_speed_ = std::max(largest_speed<ExecSpace>(particles_.solid.velocity, particles_.count),
+                          largest_speed<ExecSpace>(particles_.liquid_velocity, particles_.count));
     initial_ = energy();
     max_mechanical_ = initial_.kinetic() + initial_.elastic + initial_.liquid;
   }
