@@ -12,6 +12,10 @@ namespace {
 using nlohmann::json;
 
 constexpr std::size_t kMaxValueChars = 60;
+// Deepest nesting of arrays and objects a document may have. Scenes and studies need fewer than
+// 10 levels; nlohmann::json copies, compares and writes values recursively, so a document nested
+// 100000 levels deep (200 kB of "[[[...]]]") would overflow the stack there.
+constexpr std::size_t kMaxNestingDepth = 100;
 
 bool is_identifier(std::string_view key) {
   if (key.empty()) return false;
@@ -374,6 +378,13 @@ class PathTrackingBuilder : public nlohmann::json_sax<nlohmann::json> {
   }
   // Pointers to open containers stay valid: a parent only grows after its open child is closed.
   bool open(nlohmann::json&& container) {
+    if (frames_.size() >= kMaxNestingDepth) {
+      std::string path = value_path();
+      if (path.size() > kMaxValueChars) path = path.substr(0, kMaxValueChars - 3) + "...";
+      error = path + ": nested too deep (allowed: at most " + std::to_string(kMaxNestingDepth) +
+              " levels of arrays and objects)";
+      return false;
+    }
     frames_.push_back(Frame{insert(std::move(container)), {}});
     return true;
   }

@@ -1,14 +1,62 @@
 #include "drivers/mpm_impact.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
 
 #include "drivers/json_fields.hpp"
 #include "kernels/common/constants.hpp"
+#include "kernels/mpm/two_phase/two_phase_time_step.hpp"
 
 namespace lsi {
 namespace {
+
+// The most steps an explicit-drag run may need by its permeability limit alone.
+constexpr double kMaxExplicitDragSteps = 1e8;
 using CaseTwoPhase = MpmCase::TwoPhase;
+
+// The solver indexes grid nodes and material points with int (mpm::Grid: nx * ny): the grid may
+// hold at most INT_MAX / particles_per_cell nodes. A cell far too fine for the size of the flow
+// (its length, its run-up v0^2 / 2g) and of the barrier would overflow them.
+void check_grid_size(const MpmCase& c, double thickness) {
+  const double dx = c.settings.cell_size_m;
+  const double nx = std::floor((c.upper[0] - c.lower[0]) / dx + 0.5) + 1;
+  const double ny = std::floor((c.upper[1] - c.lower[1]) / dx + 0.5) + 1;
+  const double most = double(INT_MAX) / c.settings.particles_per_cell;
+  if (nx * ny <= most) return;   // false for NaN too
+  const double width = c.upper[0] - c.lower[0], height = c.upper[1] - c.lower[1];
+  const double least = std::sqrt(width * height / most);   // cell size that would fit
+  char domain[64], remedy[96];
+  std::snprintf(domain, sizeof domain, "%.3g m x %.3g m", width, height);
+  if (least <= thickness / 4)   // false for NaN and inf too
+    std::snprintf(remedy, sizeof remedy, "needs cell_size_m >= about %.3g m", least);
+  else if (std::isfinite(width * height))
+    std::snprintf(remedy, sizeof remedy,
+                  "too large for any cell_size_m <= landslide.thickness_m / 4");
+  else   // a subnormal cell size: the domain snapped to it overflows
+    std::snprintf(remedy, sizeof remedy, "use a larger cell_size_m");
+  throw InputError("methods.mpm.cell_size_m = " + json_fields::format_number(dx) +
+                   ": the MPM grid over this scene's domain (" + domain +
+                   ": the flow's length and run-up v0^2 / 2g, the barrier) would have " +
+                   json_fields::format_number(nx) + " x " + json_fields::format_number(ny) +
+                   " nodes, more than " + json_fields::format_number(std::floor(most)) +
+                   " (the solver's int indices / particles_per_cell): " + remedy);
+}
+
+// landslide.material.KEY, read in MPa or kPa (`factor` to Pa), in Pa: it must stay a finite double
+// (a Young's modulus of 1e308 MPa would be inf Pa).
+double in_pascal(double value, double factor, const std::string& key, const std::string& unit) {
+  const double pa = value * factor;
+  if (std::isfinite(pa)) return pa;
+  double most = std::numeric_limits<double>::max() / factor;
+  while (!std::isfinite(most * factor)) most = std::nextafter(most, 0.0);
+  throw InputError("landslide.material." + key + " = " + json_fields::format_number(value) +
+                   ": must be <= " + json_fields::format_number(most) + " (" + unit +
+                   ") for the MPM (in Pa it overflows a double)");
+}
 }  // namespace
 
 std::vector<std::array<double, 2>> landslide_polygon(const SceneLandslide& l, double front_x,
@@ -42,10 +90,24 @@ MpmCase impact_case(const Scene& scene) {
     throw InputError("methods.mpm.cell_size_m = " + json_fields::format_value(dx) +
                      ": must be <= landslide.thickness_m / 4 = " +
                      json_fields::format_value(h / 4) + " m (at least 4 cells through the flow)");
+  // The run ends once the flow has lost all but 1e-3 of its kinetic energy, which must therefore
+  // be finite and positive: v0 = 1e-300 m/s underflows it to 0, v0 = 1e200 m/s overflows it.
+  const double kinetic_energy = 0.5 * l.mass_kg_per_m() * v0 * v0;
+  if (!(std::isfinite(kinetic_energy) && kinetic_energy > 0))
+    throw InputError("landslide.velocity_m_s = " + json_fields::format_number(v0) +
+                     ": the landslide's kinetic energy m1 v0^2 / 2 = " +
+                     json_fields::format_number(kinetic_energy) + " J/m (m1 = " +
+                     json_fields::format_number(l.mass_kg_per_m()) +
+                     " kg/m): must be finite and > 0 for the MPM impact");
   if (!c.settings.end_time_given) {
     // The landslide passes in L / v0; twice that, plus the fall of the flow from the height of
     // the barrier, lets the barrier come to rest (the run ends earlier once all is at rest).
     c.settings.end_time_s = 2.0 * length / v0 + 2.0 * std::sqrt(2.0 * std::max(b.height_m, h) / g);
+    if (!std::isfinite(c.settings.end_time_s))
+      throw InputError("landslide.velocity_m_s = " + json_fields::format_number(v0) +
+                       ": the MPM's default end time 2 L / v0 + 2 sqrt(2 max(H, h) / g) = " +
+                       json_fields::format_number(c.settings.end_time_s) +
+                       " s is not finite: give methods.mpm.end_time_s");
   }
   if (!(c.settings.output_interval_s > 0.0)) c.settings.output_interval_s = c.settings.end_time_s / 400;
 
@@ -63,6 +125,7 @@ MpmCase impact_case(const Scene& scene) {
   auto snap_up = [&](double v) { return std::ceil(v / dx) * dx; };
   c.lower = {snap_down(x_left), -pad};
   c.upper = {snap_up(x_right), snap_up(y_top)};
+  check_grid_size(c, h);
   c.gravity = {0.0, -g};
   c.walls.bottom = {true, 0.0, c.settings.base_friction, false};
   // Upstream: a smooth wall far behind the tail. Downstream and above: no-slip walls that catch
@@ -79,7 +142,8 @@ MpmCase impact_case(const Scene& scene) {
     // Saturated mixture rho_m = (1 - n) rho_S + n rho_L with water (rho_L = 1000 kg/m^3).
     CaseTwoPhase tp;
     tp.liquid.density = 1000.0;
-    tp.liquid.bulk_modulus = 1e6 * l.material.liquid_bulk_modulus_mpa;
+    tp.liquid.bulk_modulus =
+        in_pascal(l.material.liquid_bulk_modulus_mpa, 1e6, "liquid_bulk_modulus_mpa", "MPa");
     tp.porosity = l.material.porosity;
     tp.conductivity = l.material.hydraulic_conductivity_m_s;
     tp.drag = c.settings.semi_implicit_drag ? mpm::two_phase::Drag::SemiImplicit
@@ -97,12 +161,30 @@ MpmCase impact_case(const Scene& scene) {
                        json_fields::format_value(n) + ")");
     m.density = rho_s;
     c.two_phase = tp;
+    if (!c.settings.semi_implicit_drag) {
+      // The explicit drag's permeability limit alone fixes the number of steps. Beyond 1e8 steps
+      // (days of run time at ~1e6 particle-updates/s) the run would look like a hang: refuse it
+      // with the numbers and the remedy (docs/stability.md, k = 1e-8 m/s needs 1.5e-9 s steps).
+      const double dt_k = c.settings.courant *
+                          mpm::two_phase::permeability_time_step(tp.conductivity, rho_s, n,
+                                                                 tp.liquid.density, g);
+      const double steps = c.settings.end_time_s / std::min(dt_k, c.settings.max_time_step_s);
+      if (!(steps <= kMaxExplicitDragSteps))
+        throw InputError("methods.mpm.drag = \"explicit\": the permeability limit of "
+                         "landslide.material.hydraulic_conductivity_m_s = " +
+                         json_fields::format_number(tp.conductivity) + " gives time steps of " +
+                         json_fields::format_number(dt_k) + " s, " +
+                         json_fields::format_number(std::ceil(steps)) + " steps for end_time_s = " +
+                         json_fields::format_number(c.settings.end_time_s) +
+                         " s (allowed: at most 1e8): use \"drag\": \"semi-implicit\" (no "
+                         "permeability limit) or a shorter end_time_s");
+    }
   }
-  m.young_modulus = 1e6 * l.material.young_modulus_mpa;
+  m.young_modulus = in_pascal(l.material.young_modulus_mpa, 1e6, "young_modulus_mpa", "MPa");
   m.poisson_ratio = l.material.poisson_ratio;
   m.friction_angle = l.material.friction_angle_deg * kPi / 180.0;
   m.dilatancy_angle = 0.0;
-  m.cohesion = 1e3 * l.material.cohesion_kpa;
+  m.cohesion = in_pascal(l.material.cohesion_kpa, 1e3, "cohesion_kpa", "kPa");
   m.tension_cutoff = 0.0;
   c.materials = {m};
   c.material_names = {"landslide"};
@@ -117,7 +199,7 @@ MpmCase impact_case(const Scene& scene) {
   body.surface_from_polygon = true;
   body.gravity = g;
   c.bodies = {body};
-  c.landslide_initial_kinetic_energy = 0.5 * l.mass_kg_per_m() * v0 * v0;
+  c.landslide_initial_kinetic_energy = kinetic_energy;
 
   mpm::Barrier barrier;
   barrier.shape = mpm::BarrierShape(0.0, 0.0, b.height_m, b.base_width_m, b.top_width_m, beta);

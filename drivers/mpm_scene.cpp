@@ -1,13 +1,25 @@
 #include "drivers/mpm_scene.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
+#include <limits>
 
 #include "drivers/json_fields.hpp"
 #include "drivers/scene.hpp"
 
 namespace lsi {
 namespace jf = json_fields;
+
+namespace {
+// Moduli and strengths are read in MPa or kPa and used in Pa: the value in Pa must stay a finite
+// double (a Young's modulus of 1e308 MPa would be inf Pa).
+jf::Range pascal_range(double lo, bool lo_inclusive, double factor, const std::string& unit) {
+  double hi = std::numeric_limits<double>::max() / factor;
+  while (!std::isfinite(hi * factor)) hi = std::nextafter(hi, 0.0);   // one step for 1e6
+  return jf::Range{jf::Bound{lo, lo_inclusive, {}}, jf::Bound{hi, true, {}}, unit};
+}
+}  // namespace
 
 MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& path,
                                bool impact) {
@@ -40,6 +52,9 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
   // Impact scenes without end_time_s get their default interval with their default end time.
   s.output_interval_s = r.number_or("output_interval_s", s.end_time_given ? s.end_time_s / 200 : 0.0,
                                     jf::greater_than(0, "s"));
+  if (s.end_time_given && !(s.output_interval_s > 0))   // end_time_s / 200 underflows to 0
+    r.fail_at("end_time_s", "too small: the default output_interval_s = end_time_s / 200 is 0 "
+                            "(give output_interval_s > 0 s)");
   const std::string transfer = r.choice("transfer", {"apic", "flip", "pic"}, std::string("apic"));
   s.apic = transfer == "apic";
   if (transfer == "flip") {
@@ -101,7 +116,13 @@ MpmCase parse_mpm_case(const nlohmann::json& scene) {
   if (!(y[1] > y[0])) d.fail_at("y", "must be increasing [y_min, y_max]");
   c.lower = {x[0], y[0]};
   c.upper = {x[1], y[1]};
-  if (m.has("gravity_m_s2")) c.gravity = pair_of(m, "gravity_m_s2", jf::any_number("m/s^2"));
+  if (m.has("gravity_m_s2")) {
+    c.gravity = pair_of(m, "gravity_m_s2", jf::any_number("m/s^2"));
+    const double magnitude = std::hypot(c.gravity[0], c.gravity[1]);   // the bodies' geostatic g
+    if (!std::isfinite(magnitude))
+      m.fail_at("gravity_m_s2", "its magnitude sqrt(gx^2 + gy^2) = " +
+                                    jf::format_number(magnitude) + " m/s^2: must be finite");
+  }
   if (auto w = m.optional_object("walls", {"left", "right", "bottom", "top"})) {
     c.walls.left = parse_wall(*w, "left");
     c.walls.right = parse_wall(*w, "right");
@@ -122,15 +143,16 @@ MpmCase parse_mpm_case(const nlohmann::json& scene) {
     mat.model = model == "mohr-coulomb" ? mpm::Material::Model::MohrCoulomb
                                         : mpm::Material::Model::LinearElastic;
     mat.density = r.number("density_kg_m3", jf::greater_than(0, "kg/m^3"));
-    mat.young_modulus = 1e6 * r.number("young_modulus_mpa", jf::greater_than(0, "MPa"));
+    mat.young_modulus = 1e6 * r.number("young_modulus_mpa", pascal_range(0, false, 1e6, "MPa"));
     mat.poisson_ratio = r.number("poisson_ratio", jf::interval('(', -1, 0.5, ')'));
     if (mat.model == mpm::Material::Model::MohrCoulomb) {
       mat.friction_angle = deg * r.number("friction_angle_deg", jf::interval('[', 0, 90, ')'));
       mat.dilatancy_angle = deg * r.number_or("dilatancy_angle_deg", 0.0, jf::interval('[', 0, 90, ')'));
       if (mat.dilatancy_angle > mat.friction_angle)
         r.fail_at("dilatancy_angle_deg", "must not exceed friction_angle_deg");
-      mat.cohesion = 1e3 * r.number_or("cohesion_kpa", 0.0, jf::at_least(0, "kPa"));
-      mat.tension_cutoff = 1e3 * r.number_or("tension_cutoff_kpa", 0.0, jf::at_least(0, "kPa"));
+      mat.cohesion = 1e3 * r.number_or("cohesion_kpa", 0.0, pascal_range(0, true, 1e3, "kPa"));
+      mat.tension_cutoff =
+          1e3 * r.number_or("tension_cutoff_kpa", 0.0, pascal_range(0, true, 1e3, "kPa"));
     } else {
       for (const char* k : {"friction_angle_deg", "dilatancy_angle_deg", "cohesion_kpa", "tension_cutoff_kpa"})
         if (r.has(k)) r.fail_at(k, "only used by \"model\": \"mohr-coulomb\"");
@@ -144,6 +166,20 @@ MpmCase parse_mpm_case(const nlohmann::json& scene) {
   const jf::ObjectReader methods = top.object("methods", {"mpm"});
   if (!methods.has("mpm")) methods.fail_missing("mpm", "the MPM settings");
   c.settings = parse_mpm_settings(methods.json().at("mpm"), "methods.mpm");
+  {
+    // The solver indexes grid nodes and material points with int (mpm::Grid: nx * ny): at most
+    // INT_MAX / particles_per_cell nodes.
+    const double dx = c.settings.cell_size_m;
+    const double nx = std::floor((c.upper[0] - c.lower[0]) / dx + 0.5) + 1;
+    const double ny = std::floor((c.upper[1] - c.lower[1]) / dx + 0.5) + 1;
+    const double most = double(INT_MAX) / c.settings.particles_per_cell;
+    if (!(nx * ny <= most))
+      jf::fail("methods.mpm.cell_size_m = " + jf::format_number(dx) + ": the grid over " +
+               d.path() + " would have " + jf::format_number(nx) + " x " + jf::format_number(ny) +
+               " nodes, more than " + jf::format_number(std::floor(most)) +
+               " (the solver's int indices / particles_per_cell): use a larger cell or a "
+               "smaller domain");
+  }
   // Material points must stay more than one cell inside the grid (quadratic B-splines reach one
   // node beyond their cell): bodies start at least two cells inside the domain.
   const double pad = 2.0 * c.settings.cell_size_m;

@@ -2,6 +2,7 @@
 // step (key names, ranges, defaults).
 #include "drivers/scene.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -99,6 +100,19 @@ SceneLandslide parse_landslide(const ObjectReader& root) {
   s.density_kg_m3 = r.number("density_kg_m3", greater_than(0, "kg/m^3"));
   s.shape = parse_shape(r);
   s.material = parse_material(r);
+  // Each value is in range, but their product may not be: L1,0 = (2 + i) h (or the rectangle's
+  // length), the cross-section L1,0 h and the mass per metre rho_m L1,0 h overflow a double for
+  // huge values (h = 1e308) and underflow to 0 for tiny ones; the methods need them finite.
+  const double mass = s.mass_kg_per_m();
+  if (!(std::isfinite(mass) && mass > 0)) {
+    const bool rectangle = s.shape.kind == LandslideShape::Kind::Rectangle;
+    fail(r.path() + ": thickness_m = " + format_number(s.thickness_m) +
+         (rectangle ? ", shape.length_m = " + format_number(s.shape.length_m)
+                    : ", shape.body_squares = " + std::to_string(s.shape.body_squares)) +
+         ", density_kg_m3 = " + format_number(s.density_kg_m3) + " give a mass per metre " +
+         (rectangle ? "rho_m L h" : "rho_m (2 + i) h^2") + " = " + format_number(mass) +
+         " kg/m: must be finite and > 0");
+  }
   return s;
 }
 
@@ -125,6 +139,15 @@ SceneBarrier parse_barrier(const ObjectReader& root) {
                                     format_rounded(min_angle_deg) + ")");
   }
 
+  // Each of H, B, b is in range, but the cross-section (B + b) H / 2 may overflow (or underflow).
+  const double area = b.area_m2();
+  if (!(std::isfinite(area) && area > 0)) {
+    fail(r.path() + ": height_m = " + format_number(b.height_m) + ", base_width_m = " +
+         format_number(b.base_width_m) + ", top_width_m = " + format_number(b.top_width_m) +
+         " give a cross-section (B + b) H / 2 = " + format_number(area) +
+         " m^2: must be finite and > 0");
+  }
+
   const bool has_density = r.has("density_kg_m3");
   const bool has_mass = r.has("mass_kg_per_m");
   if (has_density && has_mass) {
@@ -139,6 +162,11 @@ SceneBarrier parse_barrier(const ObjectReader& root) {
   }
   b.density_kg_m3 = r.optional_number("density_kg_m3", greater_than(0, "kg/m^3"));
   b.mass_kg_per_m = r.optional_number("mass_kg_per_m", greater_than(0, "kg/m"));
+  if (b.density_kg_m3 && !(std::isfinite(b.mass()) && b.mass() > 0)) {
+    r.fail_at("density_kg_m3", "with the cross-section (B + b) H / 2 = " + format_number(area) +
+                                   " m^2 gives a mass per metre of " + format_number(b.mass()) +
+                                   " kg/m: must be finite and > 0");
+  }
   b.base_friction = r.number_or("base_friction", 0.5, at_least(0));
   b.face_friction = r.number_or("face_friction", 0.3, at_least(0));
   b.fixed = r.boolean_or("fixed", false);
@@ -231,17 +259,24 @@ Scene parse_scene(const json& j) {
 
 json read_scene_document(const std::string& path, const std::string& kind) {
   namespace fs = std::filesystem;
+  // Messages are one line: a path with a control character (a study's "scene": "a\nb.json") is
+  // shown quoted and escaped.
+  const bool plain = std::none_of(path.begin(), path.end(), [](char c) {
+    return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+  });
+  const std::string shown =
+      plain ? path : json(path).dump(-1, ' ', false, json::error_handler_t::replace);
   std::error_code ec;
-  if (!fs::exists(path, ec)) fail(path + ": " + kind + " file not found");
-  if (fs::is_directory(path, ec)) fail(path + ": is a directory, not a " + kind + " file");
+  if (!fs::exists(path, ec)) fail(shown + ": " + kind + " file not found");
+  if (fs::is_directory(path, ec)) fail(shown + ": is a directory, not a " + kind + " file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path + ": cannot open " + kind + " file: " + std::strerror(errno));
+  if (!in) fail(shown + ": cannot open " + kind + " file: " + std::strerror(errno));
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) fail(path + ": cannot read " + kind + " file");
+  if (in.bad()) fail(shown + ": cannot read " + kind + " file");
 
-  const json j = parse_json_document(text, path);
+  const json j = parse_json_document(text, shown);
   if (!j.is_object()) {
-    fail(path + ": the top level must be a JSON object, got " + std::string(j.type_name()));
+    fail(shown + ": the top level must be a JSON object, got " + std::string(j.type_name()));
   }
   return j;
 }

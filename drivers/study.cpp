@@ -2,9 +2,11 @@
 #include "drivers/study.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 #include "drivers/json_fields.hpp"
 #include "drivers/mpm_runner.hpp"   // ensure_kokkos
@@ -79,7 +81,9 @@ std::vector<std::string> string_list(const ObjectReader& r, const std::string& k
 }
 
 std::vector<double> number_list(const ObjectReader& r, const std::string& key, const Range& range) {
-  const json& v = *r.find(key);
+  const json* found = r.find(key);
+  if (!found) r.fail_missing(key, "non-empty array of numbers");
+  const json& v = *found;
   if (!v.is_array() || v.empty()) r.fail_at(key, "must be a non-empty array of numbers");
   std::vector<double> out;
   for (std::size_t i = 0; i < v.size(); ++i)
@@ -96,11 +100,20 @@ StudyInput parse_input(const json& j, const std::string& at) {
   in.path = r.string("path");
   for (int f = 0; f < sweeps::scene_field_count; ++f)
     if (in.path == sweeps::scene_field_pointer[f]) in.field = f;
-  if (in.field < 0 && in.path.rfind("/methods/mpm/", 0) != 0) {
+  // An MPM setting is one key of methods.mpm: "/methods/mpm/KEY", KEY a plain name (letters,
+  // digits, '_'). Deeper or escaped pointers ("/methods/mpm/a/0", "/methods/mpm/a~2") name no
+  // setting, and some are not even valid JSON pointers (nlohmann::json would throw writing a
+  // sample's value there).
+  const std::string mpm_prefix = "/methods/mpm/";
+  const bool mpm_key =
+      in.path.rfind(mpm_prefix, 0) == 0 && in.path.size() > mpm_prefix.size() &&
+      std::all_of(in.path.begin() + static_cast<std::ptrdiff_t>(mpm_prefix.size()), in.path.end(),
+                  [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  if (in.field < 0 && !mpm_key) {
     std::string allowed;
     for (const char* p : sweeps::scene_field_pointer) allowed += std::string(p) + ", ";
     r.fail_at("path", "not a numeric scene key a study can sample (allowed: " + allowed +
-                          "or a key under /methods/mpm/)");
+                          "or /methods/mpm/KEY, one key of the MPM settings)");
   }
   const std::string kind = r.choice("distribution", kDistributions);
   // Keys each distribution takes; any other is an error (a forgotten "sd" must not pass silently).
@@ -126,6 +139,7 @@ StudyInput parse_input(const json& j, const std::string& at) {
     d.kind = K::Uniform;
     d.min = r.number("min", any_number());
     d.max = r.number("max", any_number());
+    if (!(d.max > d.min)) r.fail_at("max", "must be > min = " + format_number(d.min));
   } else if (kind == "normal" || kind == "lognormal") {
     d.kind = kind == "normal" ? K::Normal : K::Lognormal;
     d.mean = r.number("mean", kind == "normal" ? any_number() : greater_than(0));
@@ -136,6 +150,15 @@ StudyInput parse_input(const json& j, const std::string& at) {
     d.sd = r.number("sd", greater_than(0));
     d.min = r.number("min", any_number());
     d.max = r.number("max", any_number());
+    if (!(d.max > d.min)) r.fail_at("max", "must be > min = " + format_number(d.min));
+    // sweeps::validate's message for an interval without probability prints these four with
+    // std::stod, which throws std::out_of_range for a subnormal number: refused here.
+    for (const char* key : {"mean", "sd", "min", "max"}) {
+      const double v = r.number(key, any_number());
+      if (v != 0 && std::fabs(v) < std::numeric_limits<double>::min())
+        r.fail_at(key, "must not be subnormal (0 < |value| < " +
+                           format_number(std::numeric_limits<double>::min()) + ")");
+    }
   } else if (kind == "discrete") {
     d.kind = K::Discrete;
     d.values = number_list(r, "values", any_number());
@@ -150,6 +173,7 @@ StudyInput parse_input(const json& j, const std::string& at) {
       const double lo = r.number("min", any_number()), hi = r.number("max", any_number());
       const long long n = r.integer("count", interval('[', 2, 1000000, ']'));
       if (!(hi > lo)) r.fail_at("max", "must be > min = " + format_number(lo));
+      if (!std::isfinite(hi - lo)) r.fail_at("max", "max - min overflows a double: must be finite");
       for (long long i = 0; i < n; ++i) d.values.push_back(lo + (hi - lo) * double(i) / double(n - 1));
       d.values.back() = hi;
     }
@@ -206,7 +230,8 @@ std::vector<std::vector<double>> parse_correlation(const ObjectReader& root,
       auto it = std::find_if(inputs.begin(), inputs.end(),
                              [&](const StudyInput& in) { return in.path == p; });
       if (it == inputs.end())
-        fail(at + ".inputs[" + std::to_string(s) + "] = \"" + p + "\": not one of the study's inputs");
+        fail(at + ".inputs[" + std::to_string(s) + "] = " + format_value(json(p)) +
+             ": not one of the study's inputs");
       idx[s] = static_cast<std::size_t>(it - inputs.begin());
     }
     if (idx[0] == idx[1]) r.fail_at("inputs", "the two inputs must differ");

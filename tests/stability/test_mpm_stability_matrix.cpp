@@ -422,6 +422,29 @@ TEST_P(MpmStabilityMatrix, RunsCleanly) {
   }
 }
 
+// The explicit drag at k = 1e-8 m/s over a whole impact (the base scene's 1 s end time) would take
+// 6.8e8 steps of 1.5 ns: days of run time that look like a hang. The scene is refused before any
+// allocation, naming the drag, the conductivity, the step, the step count and the remedy; the
+// same drag over 2 us (the low_k_explicit case above: 1360 steps) is accepted.
+TEST(ExplicitDragLimit, RunThatWouldTakeDaysIsRefusedWithTheRemedy) {
+  const lsi::Scene scene = scene_of(patched(kBase, R"({
+      "landslide": {"material": {"hydraulic_conductivity_m_s": 1e-8}},
+      "methods": {"mpm": {"drag": "explicit", "end_time_s": 1.0}}})"));
+  try {
+    (void)lsi::impact_case(scene);
+    ADD_FAILURE() << "an explicit-drag run of 6.8e8 steps was accepted";
+  } catch (const lsi::InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("methods.mpm.drag = \"explicit\""), std::string::npos) << m;
+    EXPECT_NE(m.find("hydraulic_conductivity_m_s = 1e-08"), std::string::npos) << m;
+    EXPECT_NE(m.find("at most 1e8"), std::string::npos) << m;
+    EXPECT_NE(m.find("\"semi-implicit\""), std::string::npos) << m;
+  }
+  EXPECT_NO_THROW((void)lsi::impact_case(scene_of(patched(kBase, R"({
+      "landslide": {"material": {"hydraulic_conductivity_m_s": 1e-8}},
+      "methods": {"mpm": {"drag": "explicit", "end_time_s": 2e-6}}})"))));
+}
+
 INSTANTIATE_TEST_SUITE_P(StabilityMatrix, MpmStabilityMatrix, ::testing::ValuesIn(kCases),
                          [](const ::testing::TestParamInfo<MatrixCase>& i) {
                            return std::string(i.param.name);
