@@ -136,6 +136,15 @@ void material_momentum(const SaturatedSolver& sv, double p[2]) {
 }
 
 // Impact outputs particular to a solver: the largest pore pressure on the face (saturated).
+// What sets the dry solver's step besides the speeds: the largest expansion of a point
+// (kernels/mpm/time_step.hpp). The saturated solver has it in the points' porosity.
+void add_step_outputs(const DrySolver& sv, const AddSeries& add) {
+  add("largest_expansion", "1",
+      "largest V / V0 of a point, at least 1: the step uses the wave speed c0 sqrt of it",
+      sv.max_expansion());
+}
+void add_step_outputs(const SaturatedSolver&, const AddSeries&) {}
+
 void add_face_outputs(const DrySolver&, const MpmCase&, const AddSeries&) {}
 void add_face_outputs(const SaturatedSolver& sv, const MpmCase& c, const AddSeries& add) {
   add("face_pore_pressure_max", "Pa",
@@ -207,6 +216,7 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
         r.time.push_back(sv.time());
         const double kinetic = add_energies(sv, add);
         add("time_step", "s", "time step of the last step", sv.time_step());
+        add_step_outputs(sv, add);
         add("wall_force_x", "N/m", "reaction of the walls on the material, x", -sv.wall_force()[0]);
         add("wall_force_y", "N/m", "reaction of the walls on the material, y", -sv.wall_force()[1]);
         if (c.barrier) impact_outputs(sv.time(), kinetic);

@@ -1,7 +1,9 @@
 // Grid to particle: velocity (APIC: the grid velocity interpolated, with the affine matrix
-// C = 4/dx^2 sum w v_i (x_i - x_p)^T; or a FLIP/PIC blend, plain PIC at flip_ratio 0), velocity gradient L = sum v_i grad(w)^T,
-// and position x += dt sum w (v_i_old + v_i) / 2 (trapezoidal: exact for constant acceleration). In the same pass it reduces the largest particle speed (for the
-// next time step) and flags non-finite values or particles leaving the grid (health check).
+// C = 4/dx^2 sum w v_i (x_i - x_p)^T; or a FLIP/PIC blend, plain PIC at flip_ratio 0), velocity
+// gradient L = sum v_i grad(w)^T, and position x += dt sum w (v_i_old + v_i) / 2 (trapezoidal:
+// exact for constant acceleration). In the same pass it reduces the largest particle speed and
+// the largest expansion V / V0 (both for the next time step, time_step.hpp) and flags
+// non-finite values or particles leaving the grid (health check).
 // g2p_stress_update() also runs the stress update (stress_update.hpp) of each point in the same
 // pass, with the velocity gradient still in registers: one pass over the points instead of two.
 #pragma once
@@ -19,6 +21,7 @@ enum class Transfer { Apic, FlipPic };
 
 struct G2PReport {
   double max_speed = 0.0;   // m/s
+  double max_expansion = 1.0;   // largest V / V0 of a point, at least 1 (time_step.hpp)
   int non_finite = 0;       // number of particles with a non-finite velocity or position
   int outside = 0;          // number of particles too close to the grid edge (or beyond)
 };
@@ -34,12 +37,12 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
   const double apic = Flip ? 0.0 : 4.0 * inv_dx * inv_dx;
   const double xmax = (g.nx - 2) * dx, ymax = (g.ny - 2) * dx;   // keep 1 cell of padding
   const int nx = g.nx;
-  double vmax = 0.0;
+  double vmax = 0.0, jmax = 1.0;
   int bad = 0, out = 0;
   Kokkos::parallel_reduce(
       Stress == G2PStress::None ? "lsi::mpm::g2p" : "lsi::mpm::g2p_stress_update",
       Kokkos::RangePolicy<ExecSpace>(0, p.count),
-      KOKKOS_LAMBDA(const int q, double& vm, int& nonfinite, int& outside) {
+      KOKKOS_LAMBDA(const int q, double& vm, double& jm, int& nonfinite, int& outside) {
         const double xp = p.position(q, 0) - ox, yp = p.position(q, 1) - oy;
         const Stencil1D sx = quadratic_bspline(xp, inv_dx), sy = quadratic_bspline(yp, inv_dx);
         // Separable weights w = wx(a) wy(b): sums along each row first, then the row factors.
@@ -94,12 +97,14 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
         } else {
           const double s = math::sqrt(s2);
           if (s > vm) vm = s;
+          const double J = p.volume(q) / p.volume0(q);
+          if (J > jm) jm = J;
         }
         const double px = p.position(q, 0) - ox, py = p.position(q, 1) - oy;
         if (!(px > dx && px < xmax && py > dx && py < ymax)) ++outside;
       },
-      Kokkos::Max<double>(vmax), bad, out);
-  return {vmax, bad, out};
+      Kokkos::Max<double>(vmax), Kokkos::Max<double>(jmax), bad, out);
+  return {vmax, jmax > 1.0 ? jmax : 1.0, bad, out};
 }
 
 template <class ExecSpace, class MemorySpace>

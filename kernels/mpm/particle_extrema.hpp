@@ -1,5 +1,6 @@
 // Extrema over the material points that the solvers need once, at construction: the largest
-// speed (the first time step) and the lightest point's mass (the small-mass threshold). Free
+// speed and the largest expansion V / V0 (the first time step, time_step.hpp) and the lightest
+// point's mass (the small-mass threshold). Free
 // functions rather than lambdas in the constructors: nvcc does not accept an extended
 // __host__ __device__ lambda whose enclosing function is a constructor.
 #pragma once
@@ -21,6 +22,20 @@ double largest_speed(const VelocityView& v, int count) {
       },
       Kokkos::Max<double>(vmax));
   return count > 0 ? vmax : 0.0;
+}
+
+// Largest V / V0 over the points, at least 1 (time_step.hpp); 1 with no points.
+template <class ExecSpace, class VolumeView>
+double largest_expansion(const VolumeView& volume, const VolumeView& volume0, int count) {
+  double jmax = 1.0;
+  Kokkos::parallel_reduce(
+      "lsi::mpm::largest_expansion", Kokkos::RangePolicy<ExecSpace>(0, count),
+      KOKKOS_LAMBDA(const int q, double& jm) {
+        const double J = volume(q) / volume0(q);
+        if (J > jm) jm = J;
+      },
+      Kokkos::Max<double>(jmax));
+  return jmax > 1.0 ? jmax : 1.0;
 }
 
 // Smallest point mass, kg/m; 0 with no points.

@@ -65,6 +65,8 @@ class Solver {
     Kokkos::deep_copy(table, host);
     materials_ = table;
     max_speed_ = largest_speed<ExecSpace>(particles_.velocity, particles_.count);
+    expansion_ = largest_expansion<ExecSpace>(particles_.volume, particles_.volume0,
+                                              particles_.count);
     initial_ = energy();
     max_mechanical_ = initial_.kinetic + initial_.elastic;
     small_mass_ = settings_.small_mass_fraction *
@@ -73,7 +75,7 @@ class Solver {
 
   // Advances one step. Returns Running, or the reason the run must stop.
   Status step() {
-    dt_ = stable_time_step(grid_.dx, wave_speed_, max_speed_, settings_.courant,
+    dt_ = stable_time_step(grid_.dx, wave_speed_, expansion_, max_speed_, settings_.courant,
                            settings_.max_time_step);
     if (!(dt_ >= settings_.min_time_step)) return status_ = Status::TimeStepCollapse;
     if (settings_.atomic_scatter) p2g(particles_, grid_, atomic_scatter_, settings_.gravity);
@@ -97,6 +99,7 @@ class Solver {
     time_ += dt_;
     ++steps_;
     max_speed_ = r.max_speed;
+    expansion_ = r.max_expansion;
     if (r.non_finite > 0) return status_ = Status::NonFinite;
     if (r.outside > 0) return status_ = Status::LeftGrid;
     return status_ = Status::Running;
@@ -136,6 +139,8 @@ class Solver {
 
   double time() const { return time_; }
   double time_step() const { return dt_; }
+  // Largest V / V0 of a point after the last step, at least 1 (sets the next step, time_step.hpp).
+  double max_expansion() const { return expansion_; }
   long steps() const { return steps_; }
   Status status() const { return status_; }
   const double* wall_force() const { return wall_force_; }   // N/m on the walls, last step
@@ -159,6 +164,7 @@ class Solver {
   P2GScatter<ExecSpace, true> atomic_scatter_;
   P2GScatter<ExecSpace, false> duplicated_scatter_;
   double user_max_dt_;
+  double expansion_ = 1.0;   // largest V / V0 of the last G2P (time_step.hpp)
   double wave_speed_ = 0.0, max_speed_ = 0.0, dt_ = 0.0, time_ = 0.0, boundary_ = 0.0;
   double wall_force_[2] = {0.0, 0.0};
   long steps_ = 0;

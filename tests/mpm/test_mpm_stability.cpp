@@ -10,6 +10,7 @@
 #include <cmath>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
@@ -52,6 +53,14 @@ struct Bar {
       max_speed = std::max(max_speed, std::abs(v(q, 0)));
     }
     Kokkos::deep_copy(particles.velocity, v);
+  }
+
+  // Every point's volume times J, its initial volume V0 and mass unchanged: the state of points
+  // that a flow has pulled apart under the tension cut-off (time_step.hpp).
+  void expand(double J) {
+    auto V = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), particles.volume);
+    for (int q = 0; q < particles.count; ++q) V(q) *= J;
+    Kokkos::deep_copy(particles.volume, V);
   }
 
   Solver<Exec> solver(double courant) const {
@@ -140,9 +149,10 @@ TYPED_TEST(MpmStability, CourantHalfFinishes) {
             << " steps, largest |energy residual| " << worst_residual << "\n";
   ASSERT_EQ(s, Status::Finished) << describe(s);
   EXPECT_NEAR(solver.time(), t_end, 1e-12 * t_end);
-  // The time step is the Courant number times dx / (c + |v|max), 0 < |v|max <= ~v0 (1 % for the
-  // discrete transfer of the mode), at every output but the cut last step.
-  EXPECT_GE(dt_min * (1 + 1e-12), 0.5 * kDx / (kC + kV0 * 1.01));
+  // The time step is the Courant number times dx / (c sqrt(J) + |v|max), 0 < |v|max <= ~v0 (1 %
+  // for the discrete transfer of the mode), 1 <= J <= 1 + v0 / c (the peak strain; time_step.hpp),
+  // at every output but the cut last step.
+  EXPECT_GE(dt_min * (1 + 1e-12), 0.5 * kDx / (kC * std::sqrt(1.0 + 1.01 * kV0 / kC) + kV0 * 1.01));
   EXPECT_LE(dt_max, 0.5 * kDx / kC * (1 + 1e-12));
   auto x = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver.particles().position);
   auto v = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver.particles().velocity);
@@ -160,5 +170,74 @@ TYPED_TEST(MpmStability, CourantHalfFinishes) {
   // see test_mpm_elastic_bar) plus ~1 % dissipation over 10 periods; 5 % bounds both, far below
   // the unstable runs' growth (the 0.5 limit of Settings::energy_growth_limit).
   EXPECT_LT(worst_residual, 0.05);
+}
+
+// The time step of expanded points (time_step.hpp): a point of volume J V0 and mass rho0 V0 has
+// the wave speed c0 sqrt(J). The bar with J = 4 everywhere must therefore (1) vibrate with half
+// the period, (2) get the step C dx / (2 c0 + |v|max), (3) run stably at Courant 0.9 with that
+// step, while (4) the step that c0 alone gave (Courant 1.8 of the true speed: what an overtopping
+// flow behind a fixed barrier ran at before, docs/mpm.md) blows up.
+TYPED_TEST(MpmStability, ExpandedPointsAreStifferAndTheStepFollows) {
+  using Exec = TypeParam;
+  constexpr double kJ = 4.0;
+  // Quarter period: the kinetic energy of the mode (v = v0 sin, maximal at t = 0) first falls to
+  // its minimum at T / 4. Outputs every T0 / 800; the minimum is refined by a parabola.
+  auto quarter_period = [](Solver<Exec> solver) {
+    std::vector<double> t, k;
+    const double dt_out = kPeriod / 800;
+    solver.run(0.6 * kPeriod, dt_out, [&](const Solver<Exec>& sv) {
+      t.push_back(sv.time());
+      k.push_back(sv.energy().kinetic);
+    });
+    for (size_t i = 1; i + 1 < k.size(); ++i)
+      if (k[i] <= k[i - 1] && k[i] < k[i + 1]) {
+        const double a = k[i - 1] - 2 * k[i] + k[i + 1], b = 0.5 * (k[i + 1] - k[i - 1]);
+        return t[i] - b / a * (t[i + 1] - t[i]);
+      }
+    return -1.0;
+  };
+  // A fresh bar for every run: a solver shares the bar's point Views and moves them.
+  auto expanded_bar = [&] {
+    Bar<Exec> b;
+    b.expand(kJ);
+    return b;
+  };
+  const double q0 = quarter_period(Bar<Exec>().solver(0.5));
+  const double qJ = quarter_period(expanded_bar().solver(0.5));
+  std::cout << "[ stability ] quarter period: J = 1 " << q0 << " s, J = 4 " << qJ
+            << " s (ratio " << q0 / qJ << ", sqrt(J) = 2)\n";
+  ASSERT_GT(q0, 0.0);
+  ASSERT_GT(qJ, 0.0);
+  // The discrete bar's dispersion (16 cells: ~0.3 % on the period) is the same for both and
+  // cancels in the ratio; the output spacing T0 / 800 with the parabola leaves < 0.1 %. 1 %
+  // separates sqrt(J) = 2 from any other law (J^(1/4) would give 1.41, J^0 1).
+  EXPECT_NEAR(q0 / qJ, std::sqrt(kJ), 0.01 * std::sqrt(kJ));
+
+  // (2) The first step.
+  const Bar<Exec> b1 = expanded_bar();
+  auto s1 = b1.solver(0.5);
+  s1.step();
+  EXPECT_NEAR(s1.time_step(), 0.5 * kDx / (std::sqrt(kJ) * kC + b1.max_speed),
+              1e-12 * kDx / kC);
+
+  // (3) Courant 0.9 of the expanded speed: 10 periods of the expanded bar, energy bounded.
+  auto s3 = expanded_bar().solver(0.9);
+  double worst = 0.0;
+  const Status st3 = s3.run(10.0 * kPeriod / std::sqrt(kJ), kPeriod / 64, [&](const Solver<Exec>& sv) {
+    worst = std::max(worst, std::abs(sv.energy_residual(sv.energy())));
+  });
+  std::cout << "[ stability ] J = 4, Courant 0.9: " << describe(st3) << ", largest |energy residual| "
+            << worst << "\n";
+  EXPECT_EQ(st3, Status::Finished) << describe(st3);
+  // The staggering swing at Courant 0.9, omega dt / 2 ~ 4.5 %, plus dissipation; 10 % bounds it,
+  // far below the growth of the unstable run (0.5, Settings::energy_growth_limit).
+  EXPECT_LT(worst, 0.10);
+
+  // (4) Courant 1.8 of the expanded speed = the old step 0.9 dx / c0: unstable within the run.
+  auto s4 = expanded_bar().solver(1.8);
+  const Status st4 = s4.run(10.0 * kPeriod / std::sqrt(kJ), kPeriod / 64);
+  std::cout << "[ stability ] J = 4, the step of c0 alone: " << describe(st4) << " after "
+            << s4.steps() << " steps\n";
+  EXPECT_TRUE(is_unstable(st4)) << describe(st4);
 }
 }  // namespace

@@ -131,7 +131,9 @@ TwoPhaseG2PReport two_phase_g2p(const TwoPhaseParticles<MemorySpace>& p,
       },
       Kokkos::Max<double>(vmax), work, bad, out);
   TwoPhaseG2PReport r;
-  r.health = {vmax, bad, out};
+  r.health.max_speed = vmax;
+  r.health.non_finite = bad;
+  r.health.outside = out;
   r.load_work = work;
   return r;
 }
