@@ -23,6 +23,7 @@
 #include <Kokkos_Core.hpp>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -64,7 +65,9 @@ inline std::string format_number(double x) {
     std::ostringstream s;
     s.precision(precision);
     s << x;
-    if (std::stod(s.str()) == x) return s.str();
+    // strtod, not stod: stod throws out_of_range on a subnormal (ERANGE), and the message of
+    // an error about a subnormal input must still be written (found by fuzzing).
+    if (std::strtod(s.str().c_str(), nullptr) == x) return s.str();
   }
   std::ostringstream s;
   s.precision(17);

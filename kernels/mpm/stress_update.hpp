@@ -52,6 +52,20 @@ KOKKOS_FORCEINLINE_FUNCTION void update_point_stress(const Particles<MemorySpace
   // Volume: J of the step; equivalent deviatoric strain increment (plane strain).
   const double J = (1.0 + Lxx * dt) * (1.0 + Lyy * dt) - Lxy * Lyx * dt * dt;
   p.volume(q) *= J;
+  // A disconnected point: cohesionless material with no tensile strength, at zero stress (the
+  // apex return gives exact zeros) and larger than its initial volume. Its grains have lost
+  // contact; its volume no longer means anything (Dunatunga & Kamrin 2015 make such a state
+  // stress-free below a critical density). Keeping it would make the point stiffer per unit
+  // mass by V / V0 when it is compressed again (time_step.hpp), and an isolated APIC point keeps
+  // its affine expansion and grows exponentially (V / V0 of 2800 in 3 s measured): the step
+  // would shrink 50-fold for a speck of spray. It gets V0 back: it re-enters the continuum at
+  // its initial density when it lands. Mass, momentum and stress are untouched; a zero stress
+  // has no elastic energy, so the energy balance is untouched too.
+  if constexpr (WithPlasticity) {
+    if (m.disconnects && s[0] == 0.0 && s[1] == 0.0 && s[2] == 0.0 && s[3] == 0.0 &&
+        p.volume(q) > p.volume0(q))
+      p.volume(q) = p.volume0(q);
+  }
   const double em = (de[0] + de[1]) / 3.0;
   const double d0 = de[0] - em, d1 = de[1] - em, d2 = -em;
   p.deviatoric_strain(q) +=

@@ -350,10 +350,11 @@ TEST_P(MpmStabilityMatrix, RunsCleanly) {
     // Not collapsed either: C dx / (c sqrt(J) + |v|max) with |v|max <= 4 v0 (a splash reaches up
     // to 3 v0, docs/two_phase.md "Impacts") and J the largest expansion V / V0 of a point, which
     // raises the dry wave speed (kernels/mpm/time_step.hpp; reported as `largest_expansion`; the
-    // saturated solver has it in the porosity, inside c.high's range here). J itself must stay
-    // moderate: the cases here reach 1.04-28 (docs/stability.md); 100 would be a point
-    // torn out of the flow, a blow-up, and fails here, as does a collapsed step.
-    EXPECT_LT(J, 100.0);
+    // saturated solver has it in the porosity, inside c.high's range here). Expanded stress-free
+    // points of these cohesionless flows are disconnected (stress_update.hpp: V0 again), so J
+    // stays near 1 (measured <= 1.009); 1.5 would be a stressed point dilated by half, a
+    // blow-up, and fails here, as does a collapsed step.
+    EXPECT_LT(J, 1.5);
     EXPECT_GE(dt_min, C * dx / (c.high * std::sqrt(J) + 4.0 * v0));
   } else {
     // Explicit drag: the permeability limit, far below the CFL step, is the step, exactly (the

@@ -1,11 +1,14 @@
 // A fixed barrier overtopped by a fast flow: the reference scene L2-B1 (2.5 m at 9 m/s against a
 // 4 m barrier) with "fixed": true, at 8 cells through the flow. The overtopping flow tears apart
-// behind the barrier: its points expand with no stress (tension cut-off) to 10-40 times their
-// volume and, compressed again in the pile at the downstream heel, are that much stiffer per unit
-// mass. Before the time step followed the expansion (kernels/mpm/time_step.hpp: c = c0 sqrt(J))
-// this run stopped "a material point left the grid" at t = 3.5 s (two expanded points in a
-// period-2 oscillation growing x2 per step: docs/mpm.md), as did every fixed L2 and L3 scene.
-// It must now run to its end, cleanly.
+// behind the barrier. Its points used to expand with no stress (tension cut-off) to 10-40 times
+// their volume and, compressed again in the pile at the downstream heel, were that much stiffer
+// per unit mass: with the time step of the initial density this run stopped "a material point
+// left the grid" at t = 3.5 s (two expanded points in a period-2 oscillation growing x2 per step:
+// docs/mpm.md), as did every fixed L2 and L3 scene; with a step following the expansion
+// (time_step.hpp) it ran, with steps 6 times smaller. Now such points are disconnected
+// (stress_update.hpp: a stress-free cohesionless point gets its initial volume back), so they
+// re-enter the pile at their initial density. The run must finish cleanly, with V / V0 near 1
+// everywhere and the step of the initial density.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -60,17 +63,23 @@ TEST(OvertoppedFixedBarrier, RunsToItsEndCleanly) {
   EXPECT_EQ(out.status, "finished");
   ASSERT_TRUE(out.finished);
   expect_no_nan(r, "L2-B1-fixed-h8");
-  // It ran to the scene's end time (the driver's default for this landslide, 7.36 s), by which
-  // the flow has come almost to rest: less than 5 % of its kinetic energy left (measured 3.6 %).
+  // It ran to the scene's end time (the driver's default for this landslide, 7.36 s). What still
+  // moves then is mostly the overtopped flow, sliding away on the smooth base (no base friction,
+  // the paper's F1 = 0) after its 4 m fall: measured 11.5 % of the initial kinetic energy; 20 %
+  // fails on a flow that has not been stopped by the barrier.
   EXPECT_NEAR(r.time.back(), r.extra.at("end_time"), 1e-9 * r.time.back());
   EXPECT_GT(r.time.back(), 7.0);
-  EXPECT_LT(r.landslide_kinetic_energy.back(), 0.05 * r.landslide_kinetic_energy.front());
+  EXPECT_LT(r.landslide_kinetic_energy.back(), 0.20 * r.landslide_kinetic_energy.front());
   // No energy created: +5 % is the stability bound of the matrix (test_mpm_stability_matrix.cpp:
   // ten times tighter than the solver's stop). Measured 0.0 (the total only falls).
   EXPECT_LT(res_max, 0.05);
-  // The rule engaged: the expanded points made the step at least 4 times smaller than c0 alone
-  // would (J > 16 somewhere; measured 6.4 times, J ~ 40).
-  EXPECT_LT(dt_min, dt_c0 / 4);
+  // No point carries an expanded volume (measured 1.02: elastic unloading of connected points;
+  // 1.1 leaves room for that and fails on any expanded spray, 10-40 before), so the step stays
+  // that of the initial density and the flow speed (measured 0.80 of C dx / c0; 0.5 fails on a
+  // step shrunk by expansion or a splash faster than 2.5 c0).
+  const auto& J = r.series.at("largest_expansion").values;
+  EXPECT_LT(*std::max_element(J.begin(), J.end()), 1.1);
+  EXPECT_GT(dt_min, 0.5 * dt_c0);
   // The barrier never moves.
   for (double x : r.barrier_displacement) ASSERT_EQ(x, 0.0);
   // Both volumes account for the whole flow: the landslide's 50 m^2 (front 2.5^2 / 2, body 6
@@ -78,9 +87,6 @@ TEST(OvertoppedFixedBarrier, RunsToItsEndCleanly) {
   // 2.5 m^2) and the rest stays upstream. Both count the points' initial volumes, whose sum is
   // the polygon's area (measured 50.0000): 1e-9 is round-off.
   EXPECT_NEAR(overtopped + retained, 50.0, 1e-9 * 50.0);
-  // The step's expansion as reported (largest_expansion): more than 16, as the step shows.
-  const auto& J = r.series.at("largest_expansion").values;
-  EXPECT_GT(*std::max_element(J.begin(), J.end()), 16.0);
   EXPECT_GT(overtopped, 0.5);
   EXPECT_GT(retained, 40.0);
 }

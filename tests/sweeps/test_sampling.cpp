@@ -272,6 +272,10 @@ TEST(Distribution, ValidationMessagesNameTheParameter) {
   DistributionSpec grid_points = normal(0, 1);
   grid_points.values = {1, std::nan("")};
   expect_invalid([&] { validate(grid_points); }, "values[1] = nan: must be finite");
+  // Subnormal numbers are written at their shortest round-trip precision, not an exception
+  // (std::stod throws out_of_range on them; fuzzing found it).
+  expect_invalid([] { validate(uniform(5e-324, 5e-324)); }, "min = 5e-324 >= max = 5e-324");
+  expect_invalid([] { validate(normal(0, -1e-310)); }, "sd = -1e-310: must be > 0");
   // Valid ones pass, including a half-infinite truncation and a far upper tail.
   EXPECT_NO_THROW(validate(truncated(0, 1, 0, std::numeric_limits<double>::infinity())));
   EXPECT_NO_THROW(validate(truncated(0, 1, 30, 31)));

@@ -38,6 +38,9 @@ struct PreparedMaterial {
   Material material;
   double shear_modulus = 0.0, lame_lambda = 0.0;
   double sin_phi = 0.0, cos_phi = 1.0, sin_psi = 0.0;
+  // Cohesionless Mohr-Coulomb with no tensile strength: a point of it at zero stress that has
+  // expanded is disconnected (stress_update.hpp).
+  bool disconnects = false;
 
   PreparedMaterial() = default;
   KOKKOS_INLINE_FUNCTION explicit PreparedMaterial(const Material& m)
@@ -46,7 +49,9 @@ struct PreparedMaterial {
         lame_lambda(m.lame_lambda()),
         sin_phi(math::sin(m.friction_angle)),
         cos_phi(math::cos(m.friction_angle)),
-        sin_psi(math::sin(m.dilatancy_angle)) {}
+        sin_psi(math::sin(m.dilatancy_angle)),
+        disconnects(m.model == Material::Model::MohrCoulomb && m.cohesion == 0.0 &&
+                    m.tension_cutoff <= 0.0) {}
 };
 
 }  // namespace lsi::mpm
