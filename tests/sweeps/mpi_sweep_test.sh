@@ -17,6 +17,10 @@ mpi=("$mpiexec" -q --oversubscribe -np 2 -x OMP_NUM_THREADS=1 -x OMP_WAIT_POLICY
 [ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
 export OMP_NUM_THREADS=2 OMP_PROC_BIND=false OMP_WAIT_POLICY=passive
 fail() { echo "FAIL: $*" >&2; exit 1; }
+# Under the sanitizers (ci/sanitize.sh): Open MPI keeps allocations of its own and of its plugins
+# until exit, which ci/sanitize/lsan.supp suppresses by library name; that needs whole stacks (the
+# fast unwinder stops at the first Open MPI frame, compiled without frame pointers).
+if [ -n "${ASAN_OPTIONS:-}" ]; then export ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0"; fi
 
 # The study: scenes/studies/L1-B1-monte-carlo.json with 20000 samples in chunks of 2048 (10
 # chunks: shard 0 has 10240 samples, shard 1 has 9760) and the scene by absolute path.
