@@ -25,6 +25,7 @@
 //   OMP_NUM_THREADS=1 OMP_PROC_BIND=false OMP_WAIT_POLICY=passive build/bench/bench_bandwidth
 //       --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //   OMP_NUM_THREADS=2 ... (the same)
+#include "bench_context.hpp"
 #include <benchmark/benchmark.h>
 
 #include <Kokkos_Core.hpp>
@@ -34,34 +35,7 @@
 
 namespace {
 
-template <class Exec>
-std::string exec_name() {
-#ifdef KOKKOS_ENABLE_SERIAL
-  if constexpr (std::is_same_v<Exec, Kokkos::Serial>) return "Serial";
-#endif
-  return std::string(Exec::name());
-}
 
-std::string kokkos_backends() {
-  std::string s;
-  auto add = [&](const char* b) { s += (s.empty() ? "" : ",") + std::string(b); };
-#ifdef KOKKOS_ENABLE_SERIAL
-  add("Serial");
-#endif
-#ifdef KOKKOS_ENABLE_OPENMP
-  add("OpenMP");
-#endif
-#ifdef KOKKOS_ENABLE_THREADS
-  add("Threads");
-#endif
-#ifdef KOKKOS_ENABLE_CUDA
-  add("Cuda");
-#endif
-#ifdef KOKKOS_ENABLE_HIP
-  add("HIP");
-#endif
-  return s;
-}
 
 enum class Kind { Copy, Triad, Read, Write };
 
@@ -153,7 +127,7 @@ void bm_stream(benchmark::State& state, Kind kind) {
 
 template <class Exec>
 void register_space() {
-  const std::string ex = exec_name<Exec>();
+  const std::string ex = lsi::bench::exec_name<Exec>();
   struct K { Kind k; const char* name; };
   for (const K k : {K{Kind::Copy, "copy"}, K{Kind::Triad, "triad"}, K{Kind::Read, "read"},
                     K{Kind::Write, "write"}}) {
@@ -180,12 +154,7 @@ int main(int argc, char** argv) {
 #ifdef KOKKOS_ENABLE_SERIAL
   if constexpr (!std::is_same_v<Host, Kokkos::Serial>) register_space<Kokkos::Serial>();
 #endif
-  benchmark::AddCustomContext("kokkos_version", std::to_string(KOKKOS_VERSION));
-  benchmark::AddCustomContext("kokkos_backends", kokkos_backends());
-  benchmark::AddCustomContext("git_revision", LSI_GIT_REVISION);
-  benchmark::AddCustomContext("default_execution_space", Kokkos::DefaultExecutionSpace::name());
-  benchmark::AddCustomContext("default_host_execution_space", Host::name());
-  benchmark::AddCustomContext("default_host_concurrency", std::to_string(Host().concurrency()));
+  lsi::bench::add_kokkos_context(LSI_GIT_REVISION);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -57,6 +57,7 @@
 //       --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 //   (--benchmark_filter=^impact/ for the driver runs only; --benchmark_out=impact.json
 //    --benchmark_out_format=json to keep the numbers; OMP_NUM_THREADS=1 for one thread.)
+#include "bench_context.hpp"
 #include <benchmark/benchmark.h>
 
 #include <Kokkos_Core.hpp>
@@ -83,34 +84,7 @@ namespace tp = lsi::mpm::two_phase;
 constexpr double kG = 9.81;
 constexpr double kPi = 3.14159265358979323846;
 
-template <class Exec>
-std::string exec_name() {
-#ifdef KOKKOS_ENABLE_SERIAL
-  if constexpr (std::is_same_v<Exec, Kokkos::Serial>) return "Serial";
-#endif
-  return std::string(Exec::name());
-}
 
-std::string kokkos_backends() {
-  std::string s;
-  auto add = [&](const char* b) { s += (s.empty() ? "" : ",") + std::string(b); };
-#ifdef KOKKOS_ENABLE_SERIAL
-  add("Serial");
-#endif
-#ifdef KOKKOS_ENABLE_OPENMP
-  add("OpenMP");
-#endif
-#ifdef KOKKOS_ENABLE_THREADS
-  add("Threads");
-#endif
-#ifdef KOKKOS_ENABLE_CUDA
-  add("Cuda");
-#endif
-#ifdef KOKKOS_ENABLE_HIP
-  add("HIP");
-#endif
-  return s;
-}
 
 // ---------------------------------------------------------------------------------------------
 // 1. Whole impact runs through the driver.
@@ -315,12 +289,7 @@ void bm_column_step(benchmark::State& state, int n, Phases phases, bool atomic) 
     st.courant = 0.5;
     st.atomic_scatter = atomic;
     Solver<Exec> solver(c.grid, c.particles, {c.s.skeleton}, c.s.walls, st);
-    for (auto _ : state) {
-      if (solver.step() != Status::Running) {
-        state.SkipWithError(describe(solver.status()));
-        break;
-      }
-    }
+    lsi::bench::step_each_iteration(state, solver);
     Exec().fence();
     common_counters(state, c.particles.count, c.grid.size(), Exec().concurrency());
     return;
@@ -328,12 +297,7 @@ void bm_column_step(benchmark::State& state, int n, Phases phases, bool atomic) 
   WetColumn<Exec> c(n);
   auto solver = c.solver(phases == Phases::Explicit ? tp::Drag::Explicit : tp::Drag::SemiImplicit,
                          atomic);
-  for (auto _ : state) {
-    if (solver.step() != Status::Running) {
-      state.SkipWithError(describe(solver.status()));
-      break;
-    }
-  }
+  lsi::bench::step_each_iteration(state, solver);
   Exec().fence();
   common_counters(state, c.particles.count, c.grid.size(), Exec().concurrency());
   state.counters["time_step"] = solver.time_step();
@@ -405,7 +369,7 @@ enum class Scatters { Both, Plain, AtomicOnly };
 
 template <class Exec>
 void register_column(Scatters scatters) {
-  const std::string ex = exec_name<Exec>();
+  const std::string ex = lsi::bench::exec_name<Exec>();
   std::vector<bool> atomics;
   if (scatters != Scatters::AtomicOnly) atomics.push_back(false);
   if (scatters != Scatters::Plain) atomics.push_back(true);
@@ -468,12 +432,7 @@ int main(int argc, char** argv) {
   // A device (CUDA build): the column on it too, with atomics.
   using Device = Kokkos::DefaultExecutionSpace;
   if constexpr (!std::is_same_v<Device, Host>) register_column<Device>(Scatters::AtomicOnly);
-  benchmark::AddCustomContext("kokkos_version", std::to_string(KOKKOS_VERSION));
-  benchmark::AddCustomContext("kokkos_backends", kokkos_backends());
-  benchmark::AddCustomContext("git_revision", LSI_GIT_REVISION);
-  benchmark::AddCustomContext("default_execution_space", Kokkos::DefaultExecutionSpace::name());
-  benchmark::AddCustomContext("default_host_execution_space", Host::name());
-  benchmark::AddCustomContext("default_host_concurrency", std::to_string(Host().concurrency()));
+  lsi::bench::add_kokkos_context(LSI_GIT_REVISION);
   benchmark::AddCustomContext("impact_scene", "scenes/examples/impact-small.json, cell 0.0625 m, "
                                               "end_time_s 0.2");
   benchmark::RunSpecifiedBenchmarks();

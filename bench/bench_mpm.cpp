@@ -35,6 +35,7 @@
 // benchmark at a time (--benchmark_filter='^NAME') when the cores are idle, and compare two
 // builds by alternating single repetitions of each: the speed of the shared machine drifts by
 // +-30 % over minutes.
+#include "bench_context.hpp"
 #include <benchmark/benchmark.h>
 
 #include <Kokkos_Core.hpp>
@@ -88,13 +89,6 @@ struct Column {
   }
 };
 
-template <class Exec>
-std::string exec_name() {
-#ifdef KOKKOS_ENABLE_SERIAL
-  if constexpr (std::is_same_v<Exec, Kokkos::Serial>) return "Serial";
-#endif
-  return std::string(Exec::name());
-}
 
 void common_counters(benchmark::State& state, int count, int nodes, int threads) {
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(count));
@@ -108,12 +102,7 @@ template <class Exec>
 void bm_step(benchmark::State& state, int n, bool plastic, bool atomic) {
   Column<Exec> c(n, plastic, atomic);
   Solver<Exec> solver(c.grid, c.particles, {c.material}, c.walls, c.settings);
-  for (auto _ : state) {
-    if (solver.step() != Status::Running) {
-      state.SkipWithError(describe(solver.status()));
-      break;
-    }
-  }
+  lsi::bench::step_each_iteration(state, solver);
   Exec().fence();
   common_counters(state, c.particles.count, c.grid.size(), Exec().concurrency());
 }
@@ -182,7 +171,7 @@ void bm_kernel(benchmark::State& state, int n, Kernel k) {
 
 template <class Exec>
 void register_space(bool with_atomic) {
-  const std::string ex = exec_name<Exec>();
+  const std::string ex = lsi::bench::exec_name<Exec>();
   for (const int n : {50, 158}) {
     const int steps = n == 50 ? 400 : 40;
     const std::string size = "/particles:" + std::to_string(8 * n * n);
@@ -227,10 +216,7 @@ int main(int argc, char** argv) {
 #else
   register_space<Host>(true);
 #endif
-  benchmark::AddCustomContext("kokkos_version", std::to_string(KOKKOS_VERSION));
-  benchmark::AddCustomContext("git_revision", LSI_GIT_REVISION);
-  benchmark::AddCustomContext("default_host_execution_space", Host::name());
-  benchmark::AddCustomContext("default_host_concurrency", std::to_string(Host().concurrency()));
+  lsi::bench::add_kokkos_context(LSI_GIT_REVISION);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;
