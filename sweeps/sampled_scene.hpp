@@ -48,35 +48,40 @@ struct FieldRange {
   bool lo_closed, hi_closed, integer;
 };
 inline constexpr double unbounded = math::infinity();
-inline constexpr FieldRange scene_field_range[scene_field_count] = {
-    {0, unbounded, false, false, false},     // thickness_m > 0
-    {0, unbounded, false, false, false},     // velocity_m_s > 0
-    {0, unbounded, false, false, false},     // density_kg_m3 > 0
-    {0, 1000000, true, true, true},          // body_squares, integer in [0, 1e6]
-    {0, unbounded, false, false, false},     // length_m > 0
-    {0, 1, false, false, false},             // porosity in (0, 1)
-    {0, 90, true, false, false},             // friction_angle_deg in [0, 90)
-    {0, unbounded, true, false, false},      // cohesion_kpa >= 0
-    {0, unbounded, false, false, false},     // young_modulus_mpa > 0
-    {-1, 0.5, false, false, false},          // poisson_ratio in (-1, 0.5)
-    {0, unbounded, false, false, false},     // hydraulic_conductivity_m_s > 0
-    {0, unbounded, false, false, false},     // liquid_bulk_modulus_mpa > 0
-    {0, unbounded, false, false, false},     // liquid_viscosity_kpa_s > 0
-    {0, unbounded, false, false, false},     // height_m > 0
-    {0, unbounded, false, false, false},     // base_width_m > 0
-    {0, unbounded, true, true, false},       // top_width_m in [0, base_width_m]
-    {0, 90, false, true, false},             // face_angle_deg in (0, 90]
-    {0, unbounded, false, false, false},     // barrier density_kg_m3 > 0
-    {0, unbounded, false, false, false},     // mass_kg_per_m > 0
-    {0, unbounded, true, false, false},      // base_friction >= 0
-    {0, unbounded, true, false, false},      // face_friction >= 0
-    {0, unbounded, false, false, false},     // a1 > 0
-    {-5, 5, true, true, false},              // a2 in [-5, 5]
-    {0, 1, false, false, false},             // empirical tau in (0, 1)
-    {0, unbounded, true, false, false},      // kappa >= 0
-    {0, 1, false, true, false},              // lambda in (0, 1]
-    {0, 1, false, false, false},             // analytical tau in (0, 1)
-};
+// A function rather than a table at namespace scope: device code (a CUDA build checks samples on
+// the GPU) cannot read the host's global arrays.
+KOKKOS_INLINE_FUNCTION constexpr FieldRange scene_field_range(int field) {
+  constexpr FieldRange range[scene_field_count] = {
+      {0, unbounded, false, false, false},     // thickness_m > 0
+      {0, unbounded, false, false, false},     // velocity_m_s > 0
+      {0, unbounded, false, false, false},     // density_kg_m3 > 0
+      {0, 1000000, true, true, true},          // body_squares, integer in [0, 1e6]
+      {0, unbounded, false, false, false},     // length_m > 0
+      {0, 1, false, false, false},             // porosity in (0, 1)
+      {0, 90, true, false, false},             // friction_angle_deg in [0, 90)
+      {0, unbounded, true, false, false},      // cohesion_kpa >= 0
+      {0, unbounded, false, false, false},     // young_modulus_mpa > 0
+      {-1, 0.5, false, false, false},          // poisson_ratio in (-1, 0.5)
+      {0, unbounded, false, false, false},     // hydraulic_conductivity_m_s > 0
+      {0, unbounded, false, false, false},     // liquid_bulk_modulus_mpa > 0
+      {0, unbounded, false, false, false},     // liquid_viscosity_kpa_s > 0
+      {0, unbounded, false, false, false},     // height_m > 0
+      {0, unbounded, false, false, false},     // base_width_m > 0
+      {0, unbounded, true, true, false},       // top_width_m in [0, base_width_m]
+      {0, 90, false, true, false},             // face_angle_deg in (0, 90]
+      {0, unbounded, false, false, false},     // barrier density_kg_m3 > 0
+      {0, unbounded, false, false, false},     // mass_kg_per_m > 0
+      {0, unbounded, true, false, false},      // base_friction >= 0
+      {0, unbounded, true, false, false},      // face_friction >= 0
+      {0, unbounded, false, false, false},     // a1 > 0
+      {-5, 5, true, true, false},              // a2 in [-5, 5]
+      {0, 1, false, false, false},             // empirical tau in (0, 1)
+      {0, unbounded, true, false, false},      // kappa >= 0
+      {0, 1, false, true, false},              // lambda in (0, 1]
+      {0, 1, false, false, false},             // analytical tau in (0, 1)
+  };
+  return range[field];
+}
 
 // The same tolerance as the scene parser's face run-out check H / tan(beta) <= B - b.
 inline constexpr double face_run_out_tolerance_m = 1e-9;
@@ -109,7 +114,7 @@ KOKKOS_INLINE_FUNCTION int first_invalid_field(const SceneValues& s) {
       if (!(b >= 0.0 && b <= s.value[base_width_m] && math::isfinite(b))) return f;
       continue;
     }
-    if (!in_range(s.value[f], scene_field_range[f])) return f;
+    if (!in_range(s.value[f], scene_field_range(f))) return f;
   }
   // The upstream face runs out H / tan(beta) horizontally; it must fit in B - b.
   const double beta_deg = s.value[face_angle_deg];

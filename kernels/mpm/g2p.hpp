@@ -43,6 +43,10 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
       Stress == G2PStress::None ? "lsi::mpm::g2p" : "lsi::mpm::g2p_stress_update",
       Kokkos::RangePolicy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q, double& vm, double& jm, int& nonfinite, int& outside) {
+        // Named here, outside the `if constexpr`s: nvcc rejects a lambda whose first use (and
+        // so capture) of a variable is inside one.
+        [[maybe_unused]] const double fr = flip_ratio;
+        [[maybe_unused]] const auto& mats = materials;
         const double xp = p.position(q, 0) - ox, yp = p.position(q, 1) - oy;
         const Stencil1D sx = quadratic_bspline(xp, inv_dx), sy = quadratic_bspline(yp, inv_dx);
         // Separable weights w = wx(a) wy(b): sums along each row first, then the row factors.
@@ -79,7 +83,7 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
         }
         for (int r = 0; r < 2; ++r) {
           double vnew = v[r];
-          if constexpr (Flip) vnew = flip_ratio * (p.velocity(q, r) + dv[r]) + (1.0 - flip_ratio) * v[r];
+          if constexpr (Flip) vnew = fr * (p.velocity(q, r) + dv[r]) + (1.0 - fr) * v[r];
           p.velocity(q, r) = vnew;
           p.position(q, r) += dt * vmid[r];
           for (int c = 0; c < 2; ++c) {
@@ -88,7 +92,7 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
           }
         }
         if constexpr (Stress != G2PStress::None)
-          update_point_stress<Stress == G2PStress::Plastic>(p, q, materials(p.material(q)),
+          update_point_stress<Stress == G2PStress::Plastic>(p, q, mats(p.material(q)),
                                                             L[0][0], L[0][1], L[1][0], L[1][1], dt);
         const double s2 = p.velocity(q, 0) * p.velocity(q, 0) + p.velocity(q, 1) * p.velocity(q, 1);
         if (!(s2 < 1e300) || !(p.position(q, 0) == p.position(q, 0)) ||

@@ -32,7 +32,7 @@ double grid_update(const Grid<MemorySpace>& g, const Boundaries& walls, double d
   const NodeBox region = g.dirty_box();
   double dissipated = 0.0, fx = 0.0, fy = 0.0;
   if (region.empty()) return 0.0;
-  const int i0 = region.i0, i1 = region.i1;
+  const NodeItems<ExecSpace> items(region);
   const auto mass = g.mass;
   const auto momentum = g.momentum;
   const auto force = g.force;
@@ -40,9 +40,11 @@ double grid_update(const Grid<MemorySpace>& g, const Boundaries& walls, double d
   const auto velocity_old = g.velocity_old;
   const double gx = gravity ? gravity[0] : 0.0, gy = gravity ? gravity[1] : 0.0;
   Kokkos::parallel_reduce(
-      "lsi::mpm::grid_update", Kokkos::RangePolicy<ExecSpace>(region.j0, region.j1 + 1),
-      KOKKOS_LAMBDA(const int j, double& lost, double& rx, double& ry) {
-        for (int i = i0; i <= i1; ++i) {   // one row of the region: contiguous nodes
+      "lsi::mpm::grid_update", Kokkos::RangePolicy<ExecSpace>(0, items.count()),
+      KOKKOS_LAMBDA(const int t, double& lost, double& rx, double& ry) {
+        int j, i_begin, i_end;
+        items.nodes(t, j, i_begin, i_end);
+        for (int i = i_begin; i <= i_end; ++i) {   // a row of the region, or one node
           const int n = i + nx * j;
           const double m = mass(n);
           if (!(m > 0.0)) {

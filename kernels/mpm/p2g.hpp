@@ -39,13 +39,20 @@ struct GridScatter {
 #else
   static constexpr bool serial = false;
 #endif
-  static constexpr bool duplicated = !Atomic && !serial;
+  // One copy per thread only where the threads share the host's memory: on a device a copy per
+  // concurrent thread (hundreds of thousands) would not fit, so devices use atomics.
+  static constexpr bool duplicated =
+      !Atomic && !serial &&
+      Kokkos::SpaceAccessibility<Kokkos::HostSpace, typename ExecSpace::memory_space>::accessible;
+  static constexpr bool atomic = !serial && !duplicated;
   using Duplication = std::conditional_t<duplicated, Kokkos::Experimental::ScatterDuplicated,
                                          Kokkos::Experimental::ScatterNonDuplicated>;
-  using Contribution = std::conditional_t<Atomic && !serial, Kokkos::Experimental::ScatterAtomic,
+  using Contribution = std::conditional_t<atomic, Kokkos::Experimental::ScatterAtomic,
                                           Kokkos::Experimental::ScatterNonAtomic>;
+  // The layout of the grid's Views (LayoutRight on the host, LayoutLeft on a GPU).
+  using Layout = typename Kokkos::View<double* [2], typename ExecSpace::memory_space>::array_layout;
   template <class Data>
-  using SV = Kokkos::Experimental::ScatterView<Data, Kokkos::LayoutRight, ExecSpace,
+  using SV = Kokkos::Experimental::ScatterView<Data, Layout, ExecSpace,
                                                Kokkos::Experimental::ScatterSum, Duplication,
                                                Contribution>;
   SV<double*> mass;
@@ -218,11 +225,13 @@ void p2g(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g,
     const auto mass = g.mass;
     const auto momentum = g.momentum;
     const auto force = g.force;
-    const int i0 = region.i0, i1 = region.i1;
+    const NodeItems<ExecSpace> items(region);
     Kokkos::parallel_for(
-        "lsi::mpm::p2g_gather", Kokkos::RangePolicy<ExecSpace>(region.j0, region.j1 + 1),
-        KOKKOS_LAMBDA(const int j) {
-          for (int i = i0; i <= i1; ++i) {
+        "lsi::mpm::p2g_gather", Kokkos::RangePolicy<ExecSpace>(0, items.count()),
+        KOKKOS_LAMBDA(const int t) {
+          int j, i_begin, i_end;
+          items.nodes(t, j, i_begin, i_end);
+          for (int i = i_begin; i <= i_end; ++i) {   // a row of the region, or one node
             const int n = i + nx * j;
             double acc[F] = {0.0, 0.0, 0.0, 0.0, 0.0};
             for (int c = 0; c < nc; ++c) {
