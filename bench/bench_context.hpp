@@ -6,6 +6,8 @@
 #include <benchmark/benchmark.h>
 #include <string>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 namespace lsi::bench {
 
@@ -48,6 +50,19 @@ inline void add_kokkos_context(const char* git_revision) {
   benchmark::AddCustomContext("default_execution_space", Kokkos::DefaultExecutionSpace::name());
   benchmark::AddCustomContext("default_host_execution_space", Host::name());
   benchmark::AddCustomContext("default_host_concurrency", std::to_string(Host().concurrency()));
+}
+
+// Which P2G scatters a space runs: host spaces with threads both, Serial its plain one (it needs
+// neither), a device atomics only (per-thread copies are for host threads).
+enum class Scatters { Both, Plain, AtomicOnly };
+
+// The column sizes of bench_mpm and bench_impact as (cells across L0, steps per repetition): 20 000
+// and 199 712 points everywhere (2 x 2 points per cell, 8 n^2), and 2 000 000 and 8 000 000 points
+// on a device, which needs millions of points to fill (docs/cuda.md).
+inline std::vector<std::pair<int, int>> column_sizes(Scatters scatters) {
+  std::vector<std::pair<int, int>> sizes = {{50, 400}, {158, 40}};
+  if (scatters == Scatters::AtomicOnly) sizes.insert(sizes.end(), {{500, 40}, {1000, 20}});
+  return sizes;
 }
 
 // One solver step per benchmark iteration; a step that does not leave the solver running

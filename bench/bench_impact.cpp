@@ -39,7 +39,8 @@
 //    water with K_L = 30 MPa, k = 1e-4 m/s. 400 steps per repetition at 20 k points, 40 at 200 k,
 //    as bench_mpm. Variants: the execution space (the default host space and Serial), dry /
 //    saturated with semi-implicit or explicit drag, duplicated / atomic scatter. In a CUDA build
-//    the column also runs on the device (atomic scatter only).
+//    the column also runs on the device (atomic scatter only), also at 2 000 000 and 8 000 000
+//    points (40 and 20 steps): a GPU needs millions of points to fill (docs/cuda.md).
 //    items_per_second = particle-updates/s.
 // 3. twophase_kernel/...: the two-phase kernels one at a time on that saturated column advanced 5
 //    steps (warm caches, as bench_mpm's kernel/...): p2g (ScatterViews: reset, scatter,
@@ -363,9 +364,7 @@ void bm_twophase_kernel(benchmark::State& state, int n, TpKernel k) {
   common_counters(state, p.count, g.size(), Exec().concurrency());
 }
 
-// Which P2G scatters a space runs: host spaces with threads both, Serial its plain one (it needs
-// neither), a device atomics only (per-thread copies are for host threads).
-enum class Scatters { Both, Plain, AtomicOnly };
+using lsi::bench::Scatters;
 
 template <class Exec>
 void register_column(Scatters scatters) {
@@ -377,8 +376,7 @@ void register_column(Scatters scatters) {
     if (scatters == Scatters::Plain) return "";
     return atomic ? "/atomic" : "/duplicated";
   };
-  for (const int n : {50, 158}) {
-    const int steps = n == 50 ? 400 : 40;
+  for (const auto& [n, steps] : lsi::bench::column_sizes(scatters)) {
     const std::string size = "/particles:" + std::to_string(8 * n * n);
     struct P { Phases p; const char* name; };
     for (const P ph : {P{Phases::Dry, "dry"}, P{Phases::SemiImplicit, "saturated"},

@@ -14,7 +14,8 @@
 // benchmark builds the column afresh and runs a fixed number of steps (400 at 20 k, 40 at 200 k
 // points), so every repetition does the same physical work.
 //
-// Variants: the execution space (Serial, and the default host space: OpenMP when compiled in), the
+// Variants: the execution space (Serial, the default host space: OpenMP when compiled in, and in a
+// CUDA build the device, with atomics, also at 2 000 000 and 8 000 000 points), the
 // P2G scatter (one node-interleaved buffer per thread, "duplicated", or one buffer with atomic
 // additions; Serial needs neither and always uses one plain buffer, so it is run once), and one
 // benchmark per kernel called directly on a column advanced 5 steps: p2g (scatter + gather),
@@ -169,15 +170,18 @@ void bm_kernel(benchmark::State& state, int n, Kernel k) {
   }
 }
 
+using lsi::bench::Scatters;
+
 template <class Exec>
-void register_space(bool with_atomic) {
+void register_space(Scatters scatters) {
   const std::string ex = lsi::bench::exec_name<Exec>();
-  for (const int n : {50, 158}) {
-    const int steps = n == 50 ? 400 : 40;
+  const bool with_atomic = scatters != Scatters::Plain;
+  for (const auto& [n, steps] : lsi::bench::column_sizes(scatters)) {
     const std::string size = "/particles:" + std::to_string(8 * n * n);
     for (const bool plastic : {false, true}) {
       for (const bool atomic : {false, true}) {
         if (atomic && !with_atomic) continue;
+        if (!atomic && scatters == Scatters::AtomicOnly) continue;
         const std::string name = "step/" + ex + (plastic ? "/mohr_coulomb" : "/elastic") +
                                  (with_atomic ? (atomic ? "/atomic" : "/duplicated") : "") + size;
         benchmark::RegisterBenchmark(name.c_str(), bm_step<Exec>, n, plastic, atomic)
@@ -187,15 +191,16 @@ void register_space(bool with_atomic) {
       }
     }
     struct K { Kernel k; const char* name; };
-    std::vector<K> kernels = {{Kernel::P2G, with_atomic ? "p2g_duplicated" : "p2g"},
-                              {Kernel::GridUpdate, "grid_update"},
+    std::vector<K> kernels = {{Kernel::GridUpdate, "grid_update"},
                               {Kernel::G2P, "g2p"},
                               {Kernel::StressElastic, "stress_update_elastic"},
                               {Kernel::StressPlastic, "stress_update_plastic"},
                               {Kernel::G2PStressElastic, "g2p_stress_elastic"},
                               {Kernel::G2PStressPlastic, "g2p_stress_plastic"}};
     if (n == 50) kernels.push_back({Kernel::ForkJoin, "fork_join"});
-    if (with_atomic) kernels.insert(kernels.begin() + 1, {Kernel::P2GAtomic, "p2g_atomic"});
+    if (with_atomic) kernels.insert(kernels.begin(), {Kernel::P2GAtomic, "p2g_atomic"});
+    if (scatters != Scatters::AtomicOnly)
+      kernels.insert(kernels.begin(), {Kernel::P2G, with_atomic ? "p2g_duplicated" : "p2g"});
     for (const auto& k : kernels) {
       const std::string name = "kernel/" + ex + "/" + k.name + size;
       benchmark::RegisterBenchmark(name.c_str(), bm_kernel<Exec>, n, k.k)
@@ -211,11 +216,14 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   using Host = Kokkos::DefaultHostExecutionSpace;
 #ifdef KOKKOS_ENABLE_SERIAL
-  if constexpr (!std::is_same_v<Host, Kokkos::Serial>) register_space<Host>(true);
-  register_space<Kokkos::Serial>(false);
+  if constexpr (!std::is_same_v<Host, Kokkos::Serial>) register_space<Host>(Scatters::Both);
+  register_space<Kokkos::Serial>(Scatters::Plain);
 #else
-  register_space<Host>(true);
+  register_space<Host>(Scatters::Both);
 #endif
+  // A device (CUDA build): the column on it too, with atomics, up to 8 M points.
+  using Device = Kokkos::DefaultExecutionSpace;
+  if constexpr (!std::is_same_v<Device, Host>) register_space<Device>(Scatters::AtomicOnly);
   lsi::bench::add_kokkos_context(LSI_GIT_REVISION);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
