@@ -28,23 +28,32 @@
 
 namespace lsi::mpm {
 
+namespace detail {
+// How both scatters add up on ExecSpace: Serial into one buffer with plain additions; host
+// threads into one buffer (copy) per thread, unless `Atomic` asks for atomics; a device with
+// atomic additions into one buffer (a copy per concurrent GPU thread would not fit).
+template <class ExecSpace, bool Atomic>
+struct ScatterMode {
+#ifdef KOKKOS_ENABLE_SERIAL
+  static constexpr bool serial = std::is_same_v<ExecSpace, Kokkos::Serial>;
+#else
+  static constexpr bool serial = false;
+#endif
+  static constexpr bool duplicated =
+      !Atomic && !serial &&
+      Kokkos::SpaceAccessibility<Kokkos::HostSpace, typename ExecSpace::memory_space>::accessible;
+  static constexpr bool atomic = !serial && !duplicated;
+};
+}  // namespace detail
+
 // The scatter targets of the two-phase P2G: Kokkos ScatterViews, allocated once per solver and
 // reset every step (allocating the per-thread copies every step costs as much as the scatter
 // itself on small grids).
 template <class ExecSpace, bool Atomic>
 struct GridScatter {
   using Exec = ExecSpace;
-#ifdef KOKKOS_ENABLE_SERIAL
-  static constexpr bool serial = std::is_same_v<ExecSpace, Kokkos::Serial>;
-#else
-  static constexpr bool serial = false;
-#endif
-  // One copy per thread only where the threads share the host's memory: on a device a copy per
-  // concurrent thread (hundreds of thousands) would not fit, so devices use atomics.
-  static constexpr bool duplicated =
-      !Atomic && !serial &&
-      Kokkos::SpaceAccessibility<Kokkos::HostSpace, typename ExecSpace::memory_space>::accessible;
-  static constexpr bool atomic = !serial && !duplicated;
+  using Mode = detail::ScatterMode<ExecSpace, Atomic>;
+  static constexpr bool duplicated = Mode::duplicated, atomic = Mode::atomic;
   using Duplication = std::conditional_t<duplicated, Kokkos::Experimental::ScatterDuplicated,
                                          Kokkos::Experimental::ScatterNonDuplicated>;
   using Contribution = std::conditional_t<atomic, Kokkos::Experimental::ScatterAtomic,
@@ -75,15 +84,8 @@ template <class ExecSpace, bool Atomic>
 struct P2GScatter {
   using Exec = ExecSpace;
   using Mem = typename ExecSpace::memory_space;
-#ifdef KOKKOS_ENABLE_SERIAL
-  static constexpr bool serial = std::is_same_v<ExecSpace, Kokkos::Serial>;
-#else
-  static constexpr bool serial = false;
-#endif
-  // One buffer per thread only where the threads share the host's memory; devices use atomics.
-  static constexpr bool duplicated =
-      !Atomic && !serial && Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
-  static constexpr bool atomic = !serial && !duplicated;
+  using Mode = detail::ScatterMode<ExecSpace, Atomic>;
+  static constexpr bool duplicated = Mode::duplicated, atomic = Mode::atomic;
   static constexpr int kFields = detail::kP2GFields;
 
   int copies_count = 0;
