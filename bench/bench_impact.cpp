@@ -24,7 +24,7 @@
 //      dry/free/snapshots        + particle snapshots every 0.02 s (11 snapshots)
 //      saturated/fixed           two-phase landslide (semi-implicit drag), fixed barrier
 //      saturated/free            + barrier dynamics (the scene's physics, as the paper)
-//      saturated/free/atomic     ScatterViews with atomics instead of duplicated ones
+//      saturated/free/atomic     P2G with atomics instead of per-thread buffers
 //      saturated/free/explicit_drag/end:0.02s  the paper's explicit Darcy drag: its time step is
 //                                about 10x smaller, so this one runs 0.02 s (as many steps as
 //                                the others' 0.2 s; compare particle-updates/s, not run times)
@@ -43,10 +43,12 @@
 //    points (40 and 20 steps): a GPU needs millions of points to fill (docs/cuda.md).
 //    items_per_second = particle-updates/s.
 // 3. twophase_kernel/...: the two-phase kernels one at a time on that saturated column advanced 5
-//    steps (warm caches, as bench_mpm's kernel/...): p2g (ScatterViews: reset, scatter,
-//    contribute; duplicated or atomic), grid_update (semi-implicit / explicit drag),
-//    g2p, stress_update (the skeleton's Mohr-Coulomb update), pore_pressure_update,
-//    time_step_limits. items_per_second = points / seconds per call.
+//    steps (warm caches, as bench_mpm's kernel/...): p2g (scatter into per-thread buffers or
+//    atomically, then the gather over the touched nodes), grid_update (semi-implicit /
+//    explicit drag), g2p, stress_update (the skeleton's Mohr-Coulomb update),
+//    pore_pressure_update, time_step_limits (the separate kernels), and g2p_update (what the
+//    solver runs: the last four fused in one pass over the points).
+//    items_per_second = points / seconds per call.
 //
 // Times: real_time (the rates: items_per_second, solver_pups) and cpu_time = the CPU time of the
 // whole process (all threads; MeasureProcessCPUTime). On a machine shared with other work the
@@ -306,7 +308,7 @@ void bm_column_step(benchmark::State& state, int n, Phases phases, bool atomic) 
 
 enum class TpKernel {
   P2G, P2GAtomic, GridUpdateSemiImplicit, GridUpdateExplicit, G2P, StressUpdate, PorePressure,
-  TimeStepLimits
+  TimeStepLimits, G2PUpdate
 };
 
 template <class Exec>
@@ -330,9 +332,16 @@ void bm_twophase_kernel(benchmark::State& state, int n, TpKernel k) {
   using Duplicated = tp::TwoPhaseScatter<Exec, !kHost>;
   Duplicated duplicated;   // allocated once, as in the solver
   tp::TwoPhaseScatter<Exec, true> atomic;
-  if (k == TpKernel::P2G) duplicated = Duplicated(g);
-  if (k == TpKernel::P2GAtomic) atomic = tp::TwoPhaseScatter<Exec, true>(g);
+  if (k == TpKernel::P2G) duplicated = Duplicated(g.solid);
+  if (k == TpKernel::P2GAtomic) atomic = tp::TwoPhaseScatter<Exec, true>(g.solid);
   const double gravity[2] = {0.0, -kG};
+  tp::TwoPhasePointWork fused;   // as the solver: Mohr-Coulomb, pore pressure, next limits
+  fused.plastic = true;
+  fused.pore_pressure = true;
+  fused.pore.bulk_modulus = fused.time_step.liquid_bulk_modulus = c.s.liquid.bulk_modulus;
+  fused.pore.density = fused.time_step.liquid_density = c.s.liquid.density;
+  fused.pore.length = fused.time_step.cell_size = g.dx();
+  fused.time_step.darcy_gravity = kG;
   for (auto _ : state) {
     switch (k) {
       case TpKernel::P2G:
@@ -357,6 +366,9 @@ void bm_twophase_kernel(benchmark::State& state, int n, TpKernel k) {
       case TpKernel::TimeStepLimits:
         benchmark::DoNotOptimize(
             tp::two_phase_time_step_limits<Exec>(p, materials, c.s.liquid, kG));
+        break;
+      case TpKernel::G2PUpdate:
+        benchmark::DoNotOptimize(tp::two_phase_g2p_update<Exec>(p, g, dt, materials, fused));
         break;
     }
     Exec().fence();
@@ -399,7 +411,8 @@ void register_column(Scatters scatters) {
                        K{TpKernel::GridUpdateExplicit, "grid_update_explicit"},
                        K{TpKernel::G2P, "g2p"}, K{TpKernel::StressUpdate, "stress_update_plastic"},
                        K{TpKernel::PorePressure, "pore_pressure_update"},
-                       K{TpKernel::TimeStepLimits, "time_step_limits"}})
+                       K{TpKernel::TimeStepLimits, "time_step_limits"},
+                       K{TpKernel::G2PUpdate, "g2p_update"}})
       kernels.push_back(k);
     for (const auto& k : kernels) {
       const std::string name = "twophase_kernel/" + ex + "/" + k.name + size;

@@ -36,40 +36,49 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
   BarrierContactReport r;
   double f[6] = {0, 0, 0, 0, 0, 0}, work = 0.0;
   int nodes = 0;
+  // Only the nodes that may hold mass (Grid::mass_box, set by P2G).
+  const NodeBox region = g.mass_box();
+  if (region.empty()) return r;
+  const NodeItems<ExecSpace> items(region);
   Kokkos::parallel_reduce(
-      "lsi::mpm::barrier_contact", Kokkos::RangePolicy<ExecSpace>(0, g.size()),
-      KOKKOS_LAMBDA(const int n, double& f0, double& f1, double& f2, double& f3, double& f4,
+      "lsi::mpm::barrier_contact", Kokkos::RangePolicy<ExecSpace>(0, items.count()),
+      KOKKOS_LAMBDA(const int item, double& f0, double& f1, double& f2, double& f3, double& f4,
                     double& f5, double& w, int& count) {
-        const double m = g.mass(n);
-        if (!(m > 0.0)) return;
-        const double x = ox + (n % nx) * dx - displacement, y = oy + (n / nx) * dx;
-        if (y < b.toe[1] - tol) return;   // below the base: the base wall's business
-        int k = 0;
-        if (b.outside_distance(x, y, k) > tol) return;
-        const double nxk = b.face[k].normal[0], nyk = b.face[k].normal[1];
-        const double v[2] = {g.velocity(n, 0), g.velocity(n, 1)};
-        const double rel[2] = {v[0] - velocity, v[1]};
-        const double vn = rel[0] * nxk + rel[1] * nyk;
-        if (vn >= 0.0) return;
-        // Tangential relative velocity after removing the normal part, then Coulomb.
-        double t[2] = {rel[0] - vn * nxk, rel[1] - vn * nyk};
-        const double vt = math::sqrt(t[0] * t[0] + t[1] * t[1]);
-        const double reduce = friction * (-vn);
-        const double keep = vt <= reduce ? 0.0 : (vt - reduce) / vt;
-        t[0] *= keep;
-        t[1] *= keep;
-        const double vnew[2] = {velocity + t[0], t[1]};
-        double imp[2];
-        for (int d = 0; d < 2; ++d) {
-          imp[d] = m * (vnew[d] - v[d]);   // impulse on the node
-          w -= imp[d] * 0.5 * (g.velocity_old(n, d) + vnew[d]);
-          g.velocity(n, d) = vnew[d];
+        int j, i_begin, i_end;
+        items.nodes(item, j, i_begin, i_end);
+        for (int i = i_begin; i <= i_end; ++i) {   // a row of the region, or one node
+          const int n = i + nx * j;
+          const double m = g.mass(n);
+          if (!(m > 0.0)) continue;
+          const double x = ox + i * dx - displacement, y = oy + j * dx;
+          if (y < b.toe[1] - tol) continue;   // below the base: the base wall's business
+          int k = 0;
+          if (b.outside_distance(x, y, k) > tol) continue;
+          const double nxk = b.face[k].normal[0], nyk = b.face[k].normal[1];
+          const double v[2] = {g.velocity(n, 0), g.velocity(n, 1)};
+          const double rel[2] = {v[0] - velocity, v[1]};
+          const double vn = rel[0] * nxk + rel[1] * nyk;
+          if (vn >= 0.0) continue;
+          // Tangential relative velocity after removing the normal part, then Coulomb.
+          double t[2] = {rel[0] - vn * nxk, rel[1] - vn * nyk};
+          const double vt = math::sqrt(t[0] * t[0] + t[1] * t[1]);
+          const double reduce = friction * (-vn);
+          const double keep = vt <= reduce ? 0.0 : (vt - reduce) / vt;
+          t[0] *= keep;
+          t[1] *= keep;
+          const double vnew[2] = {velocity + t[0], t[1]};
+          double imp[2];
+          for (int d = 0; d < 2; ++d) {
+            imp[d] = m * (vnew[d] - v[d]);   // impulse on the node
+            w -= imp[d] * 0.5 * (g.velocity_old(n, d) + vnew[d]);
+            g.velocity(n, d) = vnew[d];
+          }
+          const double fx = -imp[0] / dt, fy = -imp[1] / dt;   // on the barrier
+          if (k == 0) { f0 += fx; f1 += fy; }
+          else if (k == 1) { f2 += fx; f3 += fy; }
+          else { f4 += fx; f5 += fy; }
+          ++count;
         }
-        const double fx = -imp[0] / dt, fy = -imp[1] / dt;   // on the barrier
-        if (k == 0) { f0 += fx; f1 += fy; }
-        else if (k == 1) { f2 += fx; f3 += fy; }
-        else { f4 += fx; f5 += fy; }
-        ++count;
       },
       f[0], f[1], f[2], f[3], f[4], f[5], work, nodes);
   for (int k = 0; k < 3; ++k) {

@@ -50,12 +50,10 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
         const double xp = p.position(q, 0) - ox, yp = p.position(q, 1) - oy;
         const Stencil1D sx = quadratic_bspline(xp, inv_dx), sy = quadratic_bspline(yp, inv_dx);
         // Separable weights w = wx(a) wy(b): sums along each row first, then the row factors.
-        double wx[3], wxd[3], dwx[3];
-        for (int a = 0; a < 3; ++a) {
-          wx[a] = sx.w[a];
-          wxd[a] = sx.w[a] * ((sx.base + a) * dx - xp);
-          dwx[a] = sx.dw[a];
-        }
+        const double* wx = sx.w;
+        const double* dwx = sx.dw;
+        double wxd[3];
+        offset_weights(sx, xp, dx, wxd);
         double v[2] = {0, 0}, dv[2] = {0, 0}, vmid[2] = {0, 0}, C[2][2] = {{0, 0}, {0, 0}},
                L[2][2] = {{0, 0}, {0, 0}};
         for (int b = 0; b < 3; ++b) {   // rows outside: the inner loop walks contiguous nodes

@@ -14,7 +14,7 @@ struct Stencil1D {
 };
 
 // x: particle coordinate relative to the grid origin; dx: cell size.
-KOKKOS_INLINE_FUNCTION Stencil1D quadratic_bspline(double x, double inv_dx) {
+KOKKOS_FORCEINLINE_FUNCTION Stencil1D quadratic_bspline(double x, double inv_dx) {
   Stencil1D s;
   const double xi = x * inv_dx;
   s.base = static_cast<int>(xi - 0.5);            // floor, xi > 0.5 inside the padded grid
@@ -27,6 +27,13 @@ KOKKOS_INLINE_FUNCTION Stencil1D quadratic_bspline(double x, double inv_dx) {
   s.dw[1] = -2.0 * b * inv_dx;
   s.dw[2] = c * inv_dx;
   return s;
+}
+
+// The weights times the nodes' offsets from the particle, w_a (x_a - x) for the 3 nodes of s
+// (x relative to the grid origin): the APIC moments of the separable P2G and G2P sums.
+KOKKOS_FORCEINLINE_FUNCTION void offset_weights(const Stencil1D& s, double x, double dx,
+                                                double out[3]) {
+  for (int a = 0; a < 3; ++a) out[a] = s.w[a] * ((s.base + a) * dx - x);
 }
 
 }  // namespace lsi::mpm

@@ -35,7 +35,7 @@ struct Settings {
   double gravity[2] = {0.0, -9.81};                                 // m/s^2
   Transfer transfer = Transfer::Apic;   // APIC, or a FLIP/PIC blend without affine terms
   double flip_ratio = 0.99;           // FlipPic only: share of FLIP, [0, 1] (0: plain PIC)
-  bool atomic_scatter = false;        // P2G with atomics instead of duplicated ScatterViews
+  bool atomic_scatter = false;        // P2G with atomics instead of per-thread buffers (p2g.hpp)
   double energy_growth_limit = 0.5;   // relative growth of the total energy deemed unstable
   // Nodes with less mass than this fraction of the lightest point get gravity but no internal
   // force (grid_update.hpp: the small-mass instability at the edge of the B-spline support).

@@ -109,6 +109,44 @@ double project_pore_pressure(const TwoPhaseParticles<MemorySpace>& p, const TwoP
   return drop;
 }
 
+// The pore pressure, porosity and viscous pressure of point q from D = volumetric_rate(q) (set by
+// the caller) and the solid velocity gradient L of the step; V = volume(q) must already be the
+// end-of-step volume (stress_update.hpp). Returns the work of the bulk viscosity, J/m (0 when it
+// is off). Shared by pore_pressure_update() and the fused two-phase G2P (two_phase_g2p.hpp).
+KOKKOS_FORCEINLINE_FUNCTION double mixture_volumetric_rate(double n, double trace_L_solid,
+                                                          double liquid_divergence) {
+  return (1.0 - n) * trace_L_solid + n * liquid_divergence;
+}
+
+struct PorePressureConstants {
+  double bulk_modulus = 2.2e9;   // K_L, Pa
+  double density = 1000.0;       // rho_L, kg/m^3
+  double c1 = 0.0, c2 = 0.0;     // bulk viscosity (BulkViscosity), 0, 0: off
+  double length = 0.0;           // l of the viscosity (the cell size), m
+  KOKKOS_INLINE_FUNCTION bool viscous() const { return c1 > 0.0 || c2 > 0.0; }
+};
+
+template <class MemorySpace>
+KOKKOS_FORCEINLINE_FUNCTION double update_point_pore_pressure(
+    const TwoPhaseParticles<MemorySpace>& p, const int q, const PreparedMaterial& m,
+    const PorePressureConstants& k, const double Lxx, const double Lxy, const double Lyx,
+    const double Lyy, const double dt) {
+  const auto& s = p.solid;
+  const double n = p.porosity(q), d = p.volumetric_rate(q);
+  p.pore_pressure(q) -= k.bulk_modulus / n * d * dt;
+  const double J = (1.0 + Lxx * dt) * (1.0 + Lyy * dt) - Lxy * Lyx * dt * dt;
+  const double n1 = 1.0 - (1.0 - n) / J;
+  p.porosity(q) = n1;
+  if (!k.viscous()) return 0.0;
+  const double V = s.volume(q);
+  const double dissipated = -p.viscous_pressure(q) * d * V * dt;
+  const double M = m.lame_lambda + 2.0 * m.shear_modulus;
+  const double c = saturated_wave_speed(M, m.material.density, n1, k.density, k.bulk_modulus);
+  const double rho_m = (s.mass(q) + p.liquid_mass(q)) / V;
+  p.viscous_pressure(q) = bulk_viscous_pressure(rho_m, c, k.length, d, k.c1, k.c2);
+  return dissipated;
+}
+
 // Returns the dissipation of the step, J/m: the work of the bulk viscosity and the liquid energy
 // released at free-surface points (0 with both off). g.dx() is the length l of the viscosity.
 template <class ExecSpace, class MemorySpace>
@@ -123,9 +161,9 @@ double pore_pressure_update(const TwoPhaseParticles<MemorySpace>& p, const TwoPh
   Kokkos::parallel_for(
       "lsi::mpm::two_phase::volumetric_rate", Kokkos::RangePolicy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q) {
-        const double n = p.porosity(q);
-        D(q) = (1.0 - n) * (s.velocity_gradient(q, 0, 0) + s.velocity_gradient(q, 1, 1)) +
-               n * p.liquid_divergence(q);
+        D(q) = mixture_volumetric_rate(
+            p.porosity(q), s.velocity_gradient(q, 0, 0) + s.velocity_gradient(q, 1, 1),
+            p.liquid_divergence(q));
       });
   const bool surface = free_surface_fill > 0.0;
   if (surface) nodal_volume<ExecSpace>(p, g);
@@ -133,29 +171,16 @@ double pore_pressure_update(const TwoPhaseParticles<MemorySpace>& p, const TwoPh
   const double ox = g.solid.origin[0], oy = g.solid.origin[1], inv_dx = 1.0 / g.solid.dx;
   const double inv_cell = inv_dx * inv_dx, fill_min = free_surface_fill;
   const int nx = g.solid.nx;
-  const bool viscous = viscosity.on();
-  const double c1 = viscosity.linear, c2 = viscosity.quadratic;
-  const double l = g.dx();
+  const PorePressureConstants k{K_L, rho_L, viscosity.linear, viscosity.quadratic, g.dx()};
   double dissipated = 0.0;
   Kokkos::parallel_reduce(
       "lsi::mpm::two_phase::pore_pressure_update", Kokkos::RangePolicy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q, double& diss) {
-        const double Lxx = s.velocity_gradient(q, 0, 0), Lxy = s.velocity_gradient(q, 0, 1),
-                     Lyx = s.velocity_gradient(q, 1, 0), Lyy = s.velocity_gradient(q, 1, 1);
-        const double n = p.porosity(q), d = D(q);
-        p.pore_pressure(q) -= K_L / n * d * dt;
-        const double J = (1.0 + Lxx * dt) * (1.0 + Lyy * dt) - Lxy * Lyx * dt * dt;
-        const double n1 = 1.0 - (1.0 - n) / J;
-        p.porosity(q) = n1;
-        if (viscous) {
-          const double V = s.volume(q);
-          diss -= p.viscous_pressure(q) * d * V * dt;
-          const PreparedMaterial& m = materials(s.material(q));
-          const double M = m.lame_lambda + 2.0 * m.shear_modulus;
-          const double c = saturated_wave_speed(M, m.material.density, n1, rho_L, K_L);
-          const double rho_m = (s.mass(q) + p.liquid_mass(q)) / V;
-          p.viscous_pressure(q) = bulk_viscous_pressure(rho_m, c, l, d, c1, c2);
-        }
+        diss += update_point_pore_pressure(
+            p, q, materials(s.material(q)), k, s.velocity_gradient(q, 0, 0),
+            s.velocity_gradient(q, 0, 1), s.velocity_gradient(q, 1, 0),
+            s.velocity_gradient(q, 1, 1), dt);
+        const double n1 = p.porosity(q);
         if (surface) {
           // Fill of the point's neighbourhood: sum_i w_ip (sum_q w_iq V_q) / dx^2 (1 inside the
           // material; 0.62 for the top row of 2 x 2 points per cell under a flat surface, 0.85

@@ -53,77 +53,92 @@ GridUpdateReport two_phase_grid_update_impl(const TwoPhaseGrid<MemorySpace>& g,
   const int nx = S.nx;
   GridUpdateReport rep;
   double fx = 0.0, fy = 0.0;
+  // Only the nodes whose fields may be nonzero (Grid::active, set by two_phase_p2g for both
+  // grids): outside them nothing moves.
+  const NodeBox region = S.dirty_box();
+  if (region.empty()) return rep;
+  const NodeItems<ExecSpace> items(region);
   Kokkos::parallel_reduce(
       SemiImplicit ? "lsi::mpm::two_phase::grid_update_semi_implicit"
                    : "lsi::mpm::two_phase::grid_update_explicit",
-      Kokkos::RangePolicy<ExecSpace>(0, S.size()),
-      KOKKOS_LAMBDA(const int i, double& wall_lost, double& drag_lost, double& seep, double& rx,
+      Kokkos::RangePolicy<ExecSpace>(0, items.count()),
+      KOKKOS_LAMBDA(const int t, double& wall_lost, double& drag_lost, double& seep, double& rx,
                     double& ry) {
-        const double mS = S.mass(i), mL = L.mass(i);
-        if (!(mS > 0.0)) {
-          for (int d = 0; d < 2; ++d)
-            S.velocity(i, d) = S.velocity_old(i, d) = L.velocity(i, d) = L.velocity_old(i, d) = 0.0;
-          return;
-        }
-        const bool wet = mL > 0.0;
-        const double Q = wet ? drag(i) : 0.0;
-        double vS0[2], vL0[2], vS[2], vL[2], wd[2];
-        for (int d = 0; d < 2; ++d) {
-          vS0[d] = S.momentum(i, d) / mS;
-          vL0[d] = wet ? L.momentum(i, d) / mL : vS0[d];
-        }
-        if (!wet) {
-          for (int d = 0; d < 2; ++d) {
-            vS[d] = vS0[d] + dt * S.force(i, d) / mS;
-            vL[d] = vS[d];
-            wd[d] = 0.0;
+        int j, i_begin, i_end;
+        items.nodes(t, j, i_begin, i_end);
+        for (int ii = i_begin; ii <= i_end; ++ii) {   // a row of the region, or one node
+          const int i = ii + nx * j;
+          const double mS = S.mass(i), mL = L.mass(i);
+          if (!(mS > 0.0)) {
+            for (int d = 0; d < 2; ++d)
+              S.velocity(i, d) = S.velocity_old(i, d) = L.velocity(i, d) = L.velocity_old(i, d) =
+                  0.0;
+            continue;
           }
-        } else if constexpr (SemiImplicit) {
-          const double relax = 1.0 / (1.0 + dt * Q * (1.0 / mL + 1.0 / mS));
+          const bool wet = mL > 0.0;
+          const double Q = wet ? drag(i) : 0.0;
+          double vS0[2], vL0[2], vS[2], vL[2], wd[2];
           for (int d = 0; d < 2; ++d) {
-            const double fL = L.force(i, d), fmix = S.force(i, d);
-            const double vLs = vL0[d] + dt * fL / mL, vSs = vS0[d] + dt * (fmix - fL) / mS;
-            wd[d] = (vLs - vSs) * relax;
-            vL[d] = vLs - dt * Q * wd[d] / mL;
-            const double aL = (vL[d] - vL0[d]) / dt;
-            vS[d] = vS0[d] + dt * (fmix - mL * aL) / mS;
+            vS0[d] = S.momentum(i, d) / mS;
+            vL0[d] = wet ? L.momentum(i, d) / mL : vS0[d];
           }
-        } else {
+          if (!wet) {
+            for (int d = 0; d < 2; ++d) {
+              vS[d] = vS0[d] + dt * S.force(i, d) / mS;
+              vL[d] = vS[d];
+              wd[d] = 0.0;
+            }
+          } else if constexpr (SemiImplicit) {
+            const double relax = 1.0 / (1.0 + dt * Q * (1.0 / mL + 1.0 / mS));
+            for (int d = 0; d < 2; ++d) {
+              const double fL = L.force(i, d), fmix = S.force(i, d);
+              const double vLs = vL0[d] + dt * fL / mL, vSs = vS0[d] + dt * (fmix - fL) / mS;
+              wd[d] = (vLs - vSs) * relax;
+              vL[d] = vLs - dt * Q * wd[d] / mL;
+              const double aL = (vL[d] - vL0[d]) / dt;
+              vS[d] = vS0[d] + dt * (fmix - mL * aL) / mS;
+            }
+          } else {
+            for (int d = 0; d < 2; ++d) {
+              wd[d] = vL0[d] - vS0[d];
+              const double aL = (L.force(i, d) - Q * wd[d]) / mL;
+              vL[d] = vL0[d] + dt * aL;
+              vS[d] = vS0[d] + dt * (S.force(i, d) - mL * aL) / mS;
+            }
+          }
+          const double bS[2] = {vS[0], vS[1]}, bL[2] = {vL[0], vL[1]};
+          const double x = ox + ii * dx, y = oy + j * dx;
+          const bool hitS = apply_walls(walls, x, y, vS, tol);
+          const bool hitL = wet && apply_walls(liquid_walls, x, y, vL, tol);
+          double vSm[2], vLm[2];
           for (int d = 0; d < 2; ++d) {
-            wd[d] = vL0[d] - vS0[d];
-            const double aL = (L.force(i, d) - Q * wd[d]) / mL;
-            vL[d] = vL0[d] + dt * aL;
-            vS[d] = vS0[d] + dt * (S.force(i, d) - mL * aL) / mS;
+            vSm[d] = 0.5 * (vS0[d] + vS[d]);
+            vLm[d] = 0.5 * (vL0[d] + vL[d]);
           }
-        }
-        const double bS[2] = {vS[0], vS[1]}, bL[2] = {vL[0], vL[1]};
-        const double x = ox + (i % nx) * dx, y = oy + (i / nx) * dx;
-        const bool hitS = apply_walls(walls, x, y, vS, tol);
-        const bool hitL = wet && apply_walls(liquid_walls, x, y, vL, tol);
-        double vSm[2], vLm[2];
-        for (int d = 0; d < 2; ++d) {
-          vSm[d] = 0.5 * (vS0[d] + vS[d]);
-          vLm[d] = 0.5 * (vL0[d] + vL[d]);
-        }
-        if (hitS || hitL) {
-          for (int d = 0; d < 2; ++d)
-            wall_lost -= mS * (vS[d] - bS[d]) * vSm[d] + (wet ? mL * (vL[d] - bL[d]) * vLm[d] : 0.0);
-          rx += -(mS * (vS[0] - bS[0]) + (wet ? mL * (vL[0] - bL[0]) : 0.0)) / dt;
-          ry += -(mS * (vS[1] - bS[1]) + (wet ? mL * (vL[1] - bL[1]) : 0.0)) / dt;
-        }
-        if (wet) {
-          const double wm[2] = {vLm[0] - vSm[0], vLm[1] - vSm[1]};
-          drag_lost += dt * Q * (wd[0] * wm[0] + wd[1] * wm[1]);
-          seep += dt * mL * (gx * wm[0] + gy * wm[1]);
-        }
-        for (int d = 0; d < 2; ++d) {
-          S.velocity_old(i, d) = vS0[d];
-          S.velocity(i, d) = vS[d];
-          L.velocity_old(i, d) = vL0[d];
-          L.velocity(i, d) = vL[d];
+          if (hitS || hitL) {
+            for (int d = 0; d < 2; ++d)
+              wall_lost -=
+                  mS * (vS[d] - bS[d]) * vSm[d] + (wet ? mL * (vL[d] - bL[d]) * vLm[d] : 0.0);
+            rx += -(mS * (vS[0] - bS[0]) + (wet ? mL * (vL[0] - bL[0]) : 0.0)) / dt;
+            ry += -(mS * (vS[1] - bS[1]) + (wet ? mL * (vL[1] - bL[1]) : 0.0)) / dt;
+          }
+          if (wet) {
+            const double wm[2] = {vLm[0] - vSm[0], vLm[1] - vSm[1]};
+            drag_lost += dt * Q * (wd[0] * wm[0] + wd[1] * wm[1]);
+            seep += dt * mL * (gx * wm[0] + gy * wm[1]);
+          }
+          for (int d = 0; d < 2; ++d) {
+            S.velocity_old(i, d) = vS0[d];
+            S.velocity(i, d) = vS[d];
+            L.velocity_old(i, d) = vL0[d];
+            L.velocity(i, d) = vL[d];
+          }
         }
       },
       rep.wall_dissipation, rep.drag_dissipation, rep.seepage_gravity_work, fx, fy);
+  // Every node outside the mass rectangle is now zero.
+  S.set_dirty_box(S.mass_box());
+  L.set_dirty_box(L.mass_box());
   rep.wall_force[0] = fx;
   rep.wall_force[1] = fy;
   return rep;

@@ -1,5 +1,7 @@
-// Two-phase particle to grid, one pass over the points (ScatterViews as the single-phase P2G,
-// duplicated per thread or atomic). Per node i and point p, w = w_ip, with APIC momenta:
+// Two-phase particle to grid with the single-phase P2G's two passes (p2g.hpp: a scatter into
+// node-interleaved buffers, 11 doubles per node, per thread or atomic, then a gather over the
+// touched rectangle of nodes that leaves the grids' active rectangles for the grid update).
+// Per node i and point p, w = w_ip, with APIC momenta:
 //   solid   mass     w m_S                 momentum w m_S (v_S + C_S (x_i - x_p))
 //   liquid  mass     w m_L                 momentum w m_L (v_L + C_L (x_i - x_p))
 //   mixture force   -V (sigma' - p I) grad(w) + w (m_S + m_L) g + w t_p      (t_p: surface load)
@@ -24,7 +26,6 @@
 // base); a body approaching a wall through the air would feel its mirror within 1.5 cells.
 #pragma once
 #include <Kokkos_Core.hpp>
-#include <Kokkos_ScatterView.hpp>
 
 #include "kernels/mpm/boundary.hpp"
 #include "kernels/mpm/p2g.hpp"
@@ -34,150 +35,186 @@
 
 namespace lsi::mpm::two_phase {
 
-template <class ExecSpace, bool Atomic>
-struct TwoPhaseScatter {
-  using Single = GridScatter<ExecSpace, Atomic>;
-  Single solid, liquid;
-  typename Single::template SV<double*> drag;
-
-  TwoPhaseScatter() = default;
-  template <class MemorySpace>
-  explicit TwoPhaseScatter(const TwoPhaseGrid<MemorySpace>& g)
-      : solid(g.solid), liquid(g.liquid), drag(g.drag) {}
+// The interleaved record of a node in the two-phase P2G's buffers.
+namespace node_field {
+enum : int {
+  SolidMass, SolidMomentumX, SolidMomentumY, MixtureForceX, MixtureForceY,
+  LiquidMass, LiquidMomentumX, LiquidMomentumY, LiquidForceX, LiquidForceY,
+  Drag, Count
 };
+}
+
+template <class ExecSpace, bool Atomic>
+using TwoPhaseScatter = P2GScatter<ExecSpace, Atomic, node_field::Count>;
+
+// The walls of the mirror correction, relative to the grid origin (see the file comment).
+struct MirrorWalls {
+  bool any = false;
+  bool solid[4] = {false, false, false, false};    // left, right, bottom, top
+  bool liquid[4] = {false, false, false, false};
+  double at[4] = {0.0, 0.0, 0.0, 0.0};
+};
+
+namespace detail {
+
+// Point q's contributions (3 x 3 nodes, and its mirror images' within the same stencil) into the
+// interleaved buffer `buf`; (bi, bj): the first node of its stencil.
+template <bool Atomic, class MemorySpace>
+KOKKOS_FORCEINLINE_FUNCTION void two_phase_p2g_point(
+    const TwoPhaseParticles<MemorySpace>& p, const int q, double* buf, const double ox,
+    const double oy, const double dx, const double inv_dx, const int nx, const double gx,
+    const double gy, const double rhoLg, const MirrorWalls& mw, int& bi, int& bj) {
+  using lsi::mpm::detail::scatter_add;
+  namespace nf = node_field;
+  constexpr int F = nf::Count;
+  const auto& s = p.solid;
+  const double xp = s.position(q, 0) - ox, yp = s.position(q, 1) - oy;
+  const Stencil1D sx = quadratic_bspline(xp, inv_dx), sy = quadratic_bspline(yp, inv_dx);
+  const double mS = s.mass(q), mL = p.liquid_mass(q), V = s.volume(q);
+  // p + q: the artificial bulk viscosity acts like a pore pressure (pore_pressure_update.hpp)
+  const double n = p.porosity(q), pw = p.pore_pressure(q) + p.viscous_pressure(q);
+  // total stress times volume (tension positive)
+  const double Vs[3] = {V * (s.stress(q, 0) - pw), V * (s.stress(q, 1) - pw), V * s.stress(q, 2)};
+  const double Vnp = V * n * pw;
+  const double Q = V * n * n * rhoLg / p.conductivity(q);
+  const double fext[2] = {(mS + mL) * gx + p.traction(q, 0), (mS + mL) * gy + p.traction(q, 1)};
+  const double fLext[2] = {mL * gx, mL * gy};
+  const double mvS[2] = {mS * s.velocity(q, 0), mS * s.velocity(q, 1)};
+  const double mvL[2] = {mL * p.liquid_velocity(q, 0), mL * p.liquid_velocity(q, 1)};
+  const double mCS[2][2] = {{mS * s.affine(q, 0, 0), mS * s.affine(q, 0, 1)},
+                            {mS * s.affine(q, 1, 0), mS * s.affine(q, 1, 1)}};
+  const double mCL[2][2] = {{mL * p.liquid_affine(q, 0, 0), mL * p.liquid_affine(q, 0, 1)},
+                            {mL * p.liquid_affine(q, 1, 0), mL * p.liquid_affine(q, 1, 1)}};
+  // Separable weights w = wx(a) wy(b), as the single-phase p2g_point: per node
+  //   momentum  w (m v + m C (x_i - x_p))   = wx P[r] + wx dxa Q[r]
+  //   forces    a.grad(w) + w f              = dwx F1[r] + wx F0[r]
+  // with the row factors below.
+  const double* wx = sx.w;
+  const double* dwx = sx.dw;
+  double wxd[3];
+  offset_weights(sx, xp, dx, wxd);
+  for (int b = 0; b < 3; ++b) {
+    const double wy = sy.w[b], dwy = sy.dw[b], dyb = (sy.base + b) * dx - yp;
+    const double PS[2] = {wy * (mvS[0] + mCS[0][1] * dyb), wy * (mvS[1] + mCS[1][1] * dyb)};
+    const double QS[2] = {wy * mCS[0][0], wy * mCS[1][0]};
+    const double PL[2] = {wy * (mvL[0] + mCL[0][1] * dyb), wy * (mvL[1] + mCL[1][1] * dyb)};
+    const double QL[2] = {wy * mCL[0][0], wy * mCL[1][0]};
+    // mixture: -(Vs . grad w) + w fext;  liquid: Vnp grad w + w fLext
+    const double FS1[2] = {-Vs[0] * wy, -Vs[2] * wy};
+    const double FS0[2] = {-Vs[2] * dwy + wy * fext[0], -Vs[1] * dwy + wy * fext[1]};
+    const double FL1 = Vnp * wy;
+    const double FL0[2] = {wy * fLext[0], Vnp * dwy + wy * fLext[1]};
+    double* row = buf + F * (sx.base + nx * (sy.base + b));
+    for (int a = 0; a < 3; ++a) {
+      double* node = row + F * a;
+      const double w = wx[a] * wy;
+      scatter_add<Atomic>(node + nf::SolidMass, w * mS);
+      scatter_add<Atomic>(node + nf::SolidMomentumX, wx[a] * PS[0] + wxd[a] * QS[0]);
+      scatter_add<Atomic>(node + nf::SolidMomentumY, wx[a] * PS[1] + wxd[a] * QS[1]);
+      scatter_add<Atomic>(node + nf::MixtureForceX, dwx[a] * FS1[0] + wx[a] * FS0[0]);
+      scatter_add<Atomic>(node + nf::MixtureForceY, dwx[a] * FS1[1] + wx[a] * FS0[1]);
+      scatter_add<Atomic>(node + nf::LiquidMass, w * mL);
+      scatter_add<Atomic>(node + nf::LiquidMomentumX, wx[a] * PL[0] + wxd[a] * QL[0]);
+      scatter_add<Atomic>(node + nf::LiquidMomentumY, wx[a] * PL[1] + wxd[a] * QL[1]);
+      scatter_add<Atomic>(node + nf::LiquidForceX, dwx[a] * FL1 + wx[a] * FL0[0]);
+      scatter_add<Atomic>(node + nf::LiquidForceY, wx[a] * FL0[1]);
+      scatter_add<Atomic>(node + nf::Drag, w * Q);
+    }
+  }
+  bi = sx.base;
+  bj = sy.base;
+  if (!mw.any) return;
+  // Mirror images across the walls (see the file comment). Wall k: axis a (0: x, 1: y),
+  // position c, inward sign s (+1: the material is on the side of larger coordinates). The free
+  // nodes of an image's stencil lie in the point's own stencil (the point is within 1.5 cells of
+  // the wall), so the touched rectangle covers them.
+  const double tol = 1e-9 * dx;
+  for (int k = 0; k < 4; ++k) {
+    const bool solid_wall = mw.solid[k], liquid_wall = mw.liquid[k];
+    if (!solid_wall && !liquid_wall) continue;
+    const int ax = k < 2 ? 0 : 1;
+    const double c = mw.at[k], sgn = (k == 0 || k == 2) ? 1.0 : -1.0;
+    const double pos[2] = {xp, yp};
+    const double dist = sgn * (pos[ax] - c);   // > 0 inside
+    if (!(dist > 0.0 && dist < 1.5 * dx)) continue;
+    double mpos[2] = {xp, yp};
+    mpos[ax] = 2.0 * c - pos[ax];
+    const Stencil1D mx = quadratic_bspline(mpos[0], inv_dx);
+    const Stencil1D my = quadratic_bspline(mpos[1], inv_dx);
+    // Normal force of the image: -V (sigma_nn d_n w - sigma_nt d_t w) - w m g_n (mixture),
+    // V n p d_n w - w m_L g_n (liquid).
+    const double snn = Vs[ax == 0 ? 0 : 1], snt = Vs[2];
+    const double gn = ax == 0 ? gx : gy;
+    for (int b = 0; b < 3; ++b)
+      for (int a = 0; a < 3; ++a) {
+        const int ni[2] = {mx.base + a, my.base + b};
+        if (!(sgn * (ni[ax] * dx - c) > tol)) continue;   // free nodes only
+        double* node = buf + F * (ni[0] + nx * ni[1]);
+        const double w = mx.w[a] * my.w[b];
+        const double gw[2] = {mx.dw[a] * my.w[b], mx.w[a] * my.dw[b]};
+        if (solid_wall)
+          scatter_add<Atomic>(node + nf::MixtureForceX + ax,
+                              -(snn * gw[ax] - snt * gw[1 - ax]) - w * (mS + mL) * gn);
+        if (liquid_wall)
+          scatter_add<Atomic>(node + nf::LiquidForceX + ax, Vnp * gw[ax] - w * mL * gn);
+      }
+  }
+}
+
+}  // namespace detail
 
 template <class ExecSpace, bool Atomic, class MemorySpace>
 void two_phase_p2g(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g,
                    TwoPhaseScatter<ExecSpace, Atomic>& scatter, const double gravity[2],
                    double liquid_density, double darcy_gravity, const Boundaries* walls = nullptr,
                    const Boundaries* liquid_walls = nullptr) {
-  namespace KE = Kokkos::Experimental;
-  if constexpr (GridScatter<ExecSpace, Atomic>::duplicated) {
-    for (auto* grid : {&g.solid, &g.liquid}) {
-      Kokkos::deep_copy(grid->mass, 0.0);
-      Kokkos::deep_copy(grid->momentum, 0.0);
-      Kokkos::deep_copy(grid->force, 0.0);
-    }
-    Kokkos::deep_copy(g.drag, 0.0);
-  }
-  for (auto* s : {&scatter.solid, &scatter.liquid}) {
-    s->mass.reset();
-    s->momentum.reset();
-    s->force.reset();
-  }
-  scatter.drag.reset();
-  auto& ms = scatter.solid.mass;
-  auto& ps = scatter.solid.momentum;
-  auto& fs = scatter.solid.force;
-  auto& ml = scatter.liquid.mass;
-  auto& pl = scatter.liquid.momentum;
-  auto& fl = scatter.liquid.force;
-  auto& dq = scatter.drag;
-  const auto s = p.solid;
+  namespace nf = node_field;
+  using S = TwoPhaseScatter<ExecSpace, Atomic>;
   const double ox = g.solid.origin[0], oy = g.solid.origin[1], dx = g.solid.dx;
   const double inv_dx = 1.0 / dx;
   const int nx = g.solid.nx;
   const double gx = gravity[0], gy = gravity[1], rhoLg = liquid_density * darcy_gravity;
   // Walls for the correction, relative to the grid origin: left, right, bottom, top.
-  const bool correct = walls != nullptr || liquid_walls != nullptr;
+  MirrorWalls mw;
+  mw.any = walls != nullptr || liquid_walls != nullptr;
   const Boundaries none;
   const Boundaries& sw = walls ? *walls : none;
   const Boundaries& lw = liquid_walls ? *liquid_walls : none;
-  const bool wall_on[4] = {sw.left.active, sw.right.active, sw.bottom.active, sw.top.active};
-  const bool liquid_on[4] = {lw.left.active, lw.right.active, lw.bottom.active, lw.top.active};
-  const double wall_at[4] = {(sw.left.active ? sw.left.position : lw.left.position) - ox,
-                              (sw.right.active ? sw.right.position : lw.right.position) - ox,
-                              (sw.bottom.active ? sw.bottom.position : lw.bottom.position) - oy,
-                              (sw.top.active ? sw.top.position : lw.top.position) - oy};
-  const double tol = 1e-9 * dx;
-  Kokkos::parallel_for(
-      "lsi::mpm::two_phase::p2g", Kokkos::RangePolicy<ExecSpace>(0, p.count),
-      KOKKOS_LAMBDA(const int q) {
-        auto ms_a = ms.access();
-        auto ps_a = ps.access();
-        auto fs_a = fs.access();
-        auto ml_a = ml.access();
-        auto pl_a = pl.access();
-        auto fl_a = fl.access();
-        auto dq_a = dq.access();
-        const double xp = s.position(q, 0) - ox, yp = s.position(q, 1) - oy;
-        const Stencil1D sx = quadratic_bspline(xp, inv_dx), sy = quadratic_bspline(yp, inv_dx);
-        const double mS = s.mass(q), mL = p.liquid_mass(q), V = s.volume(q);
-        // p + q: the artificial bulk viscosity acts like a pore pressure (pore_pressure_update.hpp)
-        const double n = p.porosity(q), pw = p.pore_pressure(q) + p.viscous_pressure(q);
-        const double vS[2] = {s.velocity(q, 0), s.velocity(q, 1)};
-        const double vL[2] = {p.liquid_velocity(q, 0), p.liquid_velocity(q, 1)};
-        // total stress times volume (tension positive)
-        const double Vs[3] = {V * (s.stress(q, 0) - pw), V * (s.stress(q, 1) - pw), V * s.stress(q, 2)};
-        const double Vnp = V * n * pw;
-        const double Q = V * n * n * rhoLg / p.conductivity(q);
-        const double fext[2] = {(mS + mL) * gx + p.traction(q, 0), (mS + mL) * gy + p.traction(q, 1)};
-        const double fLext[2] = {mL * gx, mL * gy};
-        for (int b = 0; b < 3; ++b) {
-          const double wy = sy.w[b], dwy = sy.dw[b], dyb = (sy.base + b) * dx - yp;
-          const int row = sx.base + nx * (sy.base + b);
-          for (int a = 0; a < 3; ++a) {
-            const int node = row + a;
-            const double w = sx.w[a] * wy, dxa = (sx.base + a) * dx - xp;
-            const double gw[2] = {sx.dw[a] * wy, sx.w[a] * dwy};
-            ms_a(node) += w * mS;
-            ml_a(node) += w * mL;
-            dq_a(node) += w * Q;
-            for (int r = 0; r < 2; ++r) {
-              ps_a(node, r) += w * mS * (vS[r] + s.affine(q, r, 0) * dxa + s.affine(q, r, 1) * dyb);
-              pl_a(node, r) += w * mL * (vL[r] + p.liquid_affine(q, r, 0) * dxa +
-                                         p.liquid_affine(q, r, 1) * dyb);
-              fl_a(node, r) += Vnp * gw[r] + w * fLext[r];
-            }
-            fs_a(node, 0) += -(Vs[0] * gw[0] + Vs[2] * gw[1]) + w * fext[0];
-            fs_a(node, 1) += -(Vs[2] * gw[0] + Vs[1] * gw[1]) + w * fext[1];
-          }
-        }
-        if (!correct) return;
-        // Mirror images across the walls (see the file comment). Wall k: axis a (0: x, 1: y),
-        // position c, inward sign s (+1: the material is on the side of larger coordinates).
-        for (int k = 0; k < 4; ++k) {
-          const bool solid_wall = wall_on[k], liquid_wall = liquid_on[k];
-          if (!solid_wall && !liquid_wall) continue;
-          const int ax = k < 2 ? 0 : 1;
-          const double c = wall_at[k], sgn = (k == 0 || k == 2) ? 1.0 : -1.0;
-          const double pos[2] = {xp, yp};
-          const double dist = sgn * (pos[ax] - c);   // > 0 inside
-          if (!(dist > 0.0 && dist < 1.5 * dx)) continue;
-          double mpos[2] = {xp, yp};
-          mpos[ax] = 2.0 * c - pos[ax];
-          const Stencil1D mx = quadratic_bspline(mpos[0], inv_dx), my = quadratic_bspline(mpos[1], inv_dx);
-          // Normal force of the image: -V (sigma_nn d_n w - sigma_nt d_t w) - w m g_n (mixture),
-          // V n p d_n w - w m_L g_n (liquid).
-          const double snn = Vs[ax == 0 ? 0 : 1], snt = Vs[2];
-          const double gn = ax == 0 ? gx : gy;
-          for (int b = 0; b < 3; ++b)
-            for (int a = 0; a < 3; ++a) {
-              const int ni[2] = {mx.base + a, my.base + b};
-              if (!(sgn * (ni[ax] * dx - c) > tol)) continue;   // free nodes only
-              const int node = ni[0] + nx * ni[1];
-              const double w = mx.w[a] * my.w[b];
-              const double gw[2] = {mx.dw[a] * my.w[b], mx.w[a] * my.dw[b]};
-              if (solid_wall)
-                fs_a(node, ax) += -(snn * gw[ax] - snt * gw[1 - ax]) - w * (mS + mL) * gn;
-              if (liquid_wall) fl_a(node, ax) += Vnp * gw[ax] - w * mL * gn;
-            }
-        }
+  const Wall* ws[4] = {&sw.left, &sw.right, &sw.bottom, &sw.top};
+  const Wall* wl[4] = {&lw.left, &lw.right, &lw.bottom, &lw.top};
+  for (int k = 0; k < 4; ++k) {
+    mw.solid[k] = ws[k]->active;
+    mw.liquid[k] = wl[k]->active;
+    mw.at[k] = (ws[k]->active ? ws[k]->position : wl[k]->position) - (k < 2 ? ox : oy);
+  }
+  const NodeBox touched = lsi::mpm::detail::scatter_points(
+      scatter, p.solid.position, p.count, ox, oy, inv_dx,
+      KOKKOS_LAMBDA(const int q, double* buf, int& bi, int& bj) {
+        detail::two_phase_p2g_point<S::atomic>(p, q, buf, ox, oy, dx, inv_dx, nx, gx, gy, rhoLg,
+                                               mw, bi, bj);
       });
-  auto gms = g.solid.mass;
-  auto gps = g.solid.momentum;
-  auto gfs = g.solid.force;
-  auto gml = g.liquid.mass;
-  auto gpl = g.liquid.momentum;
-  auto gfl = g.liquid.force;
-  auto gdq = g.drag;
-  KE::contribute(gms, ms);
-  KE::contribute(gps, ps);
-  KE::contribute(gfs, fs);
-  KE::contribute(gml, ml);
-  KE::contribute(gpl, pl);
-  KE::contribute(gfl, fl);
-  KE::contribute(gdq, dq);
+  const auto S_ = g.solid;
+  const auto L_ = g.liquid;
+  const auto drag = g.drag;
+  const P2GBoxes boxes = lsi::mpm::detail::gather_nodes(
+      scatter, touched, g.solid.whole(), g.solid.dirty_box(), nx,
+      KOKKOS_LAMBDA(const int n, const double* acc) {
+        S_.mass(n) = acc[nf::SolidMass];
+        S_.momentum(n, 0) = acc[nf::SolidMomentumX];
+        S_.momentum(n, 1) = acc[nf::SolidMomentumY];
+        S_.force(n, 0) = acc[nf::MixtureForceX];
+        S_.force(n, 1) = acc[nf::MixtureForceY];
+        L_.mass(n) = acc[nf::LiquidMass];
+        L_.momentum(n, 0) = acc[nf::LiquidMomentumX];
+        L_.momentum(n, 1) = acc[nf::LiquidMomentumY];
+        L_.force(n, 0) = acc[nf::LiquidForceX];
+        L_.force(n, 1) = acc[nf::LiquidForceY];
+        drag(n) = acc[nf::Drag];
+      });
+  for (const auto* grid : {&g.solid, &g.liquid}) {
+    grid->set_mass_box(boxes.mass);
+    grid->set_dirty_box(boxes.dirty);
+  }
 }
 
 }  // namespace lsi::mpm::two_phase

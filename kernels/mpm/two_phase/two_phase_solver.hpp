@@ -5,10 +5,12 @@
 //   -> grid update: liquid first, solid from the mixture; explicit or semi-implicit drag; walls
 //      for both phases (two_phase_grid_update.hpp)
 //   [-> barrier contact of both phases (the liquid without friction) -> barrier motion]
-//   -> G2P of both phases, points move with the solid, health (two_phase_g2p.hpp)
-//   -> effective stress: the single-phase stress update on the skeleton (stress_update.hpp:
-//      Jaumann + linear elastic / Mohr-Coulomb, volume)
-//   -> pore pressure and porosity (pore_pressure_update.hpp)
+//   -> one pass over the points (two_phase_g2p.hpp, two_phase_g2p_update):
+//      G2P of both phases, points move with the solid, health
+//      -> effective stress: the single-phase per-point stress update on the skeleton
+//         (stress_update.hpp: Jaumann + linear elastic / Mohr-Coulomb, volume)
+//      -> pore pressure and porosity (pore_pressure_update.hpp; a pass of its own when the
+//         free-surface drainage is on) -> the time-step limits of the next step
 // Status and describe() are the single-phase ones (solver.hpp).
 #pragma once
 #include <Kokkos_Core.hpp>
@@ -43,7 +45,7 @@ struct TwoPhaseSettings {
   double darcy_gravity = 9.81;
   Drag drag = Drag::Explicit;         // explicit (the paper; permeability limit on dt) or
                                       // semi-implicit per node (no permeability limit)
-  bool atomic_scatter = false;        // P2G with atomics instead of duplicated ScatterViews
+  bool atomic_scatter = false;        // P2G with atomics instead of per-thread buffers (p2g.hpp)
   // Mirror-image wall correction of P2G (two_phase_p2g.hpp): removes the +15 % boundary layer of
   // stress and pore pressure next to walls the material rests on. Off by default (the
   // single-phase solver has no such correction); on in the column tests.
@@ -78,8 +80,8 @@ class TwoPhaseSolver {
             throw std::invalid_argument("two-phase wall correction: walls must lie on grid lines");
         }
     }
-    if (settings_.atomic_scatter) atomic_scatter_ = TwoPhaseScatter<ExecSpace, true>(grid_);
-    else duplicated_scatter_ = TwoPhaseScatter<ExecSpace, false>(grid_);
+    if (settings_.atomic_scatter) atomic_scatter_ = TwoPhaseScatter<ExecSpace, true>(grid_.solid);
+    else duplicated_scatter_ = TwoPhaseScatter<ExecSpace, false>(grid_.solid);
     Kokkos::View<PreparedMaterial*, Mem> table("two_phase_materials", materials.size());
     auto host = Kokkos::create_mirror_view(table);
     for (size_t i = 0; i < materials.size(); ++i) {
@@ -102,9 +104,14 @@ class TwoPhaseSolver {
 
   // Advances one step. Returns Running, or the reason the run must stop.
   Status step() {
-    limits_ = two_phase_time_step_limits<ExecSpace>(
-        particles_, materials_, liquid_, settings_.darcy_gravity, settings_.bulk_viscosity_linear,
-        settings_.bulk_viscosity_quadratic, grid_.dx());
+    // The limits of the points as they are now: left by the last step's fused G2P, or computed.
+    if (next_limits_current_)
+      limits_ = next_limits_;
+    else
+      limits_ = two_phase_time_step_limits<ExecSpace>(
+          particles_, materials_, liquid_, settings_.darcy_gravity,
+          settings_.bulk_viscosity_linear, settings_.bulk_viscosity_quadratic, grid_.dx());
+    next_limits_current_ = false;
     dt_ = two_phase_time_step(grid_.dx(), limits_, max_speed_, settings_.drag == Drag::Explicit,
                               settings_.courant, settings_.max_time_step);
     if (!(dt_ >= settings_.min_time_step)) return status_ = Status::TimeStepCollapse;
@@ -124,14 +131,30 @@ class TwoPhaseSolver {
     wall_force_[0] = gu.wall_force[0];
     wall_force_[1] = gu.wall_force[1];
     if (barrier_.active()) barrier_step();
-    const TwoPhaseG2PReport r = two_phase_g2p<ExecSpace>(particles_, grid_, dt_, cw, cl);
+    // G2P, the effective stress and (unless the free-surface drainage needs every point's new
+    // volume first) the pore pressure and the next step's limits in one pass.
+    TwoPhasePointWork work;
+    work.plastic = plastic_;
+    work.pore_pressure = !(settings_.free_surface_fill > 0.0);
+    work.pore.bulk_modulus = work.time_step.liquid_bulk_modulus = liquid_.bulk_modulus;
+    work.pore.density = work.time_step.liquid_density = liquid_.density;
+    work.pore.c1 = work.time_step.c1 = settings_.bulk_viscosity_linear;
+    work.pore.c2 = work.time_step.c2 = settings_.bulk_viscosity_quadratic;
+    work.pore.length = work.time_step.cell_size = grid_.dx();
+    work.time_step.darcy_gravity = settings_.darcy_gravity;
+    const TwoPhaseG2PReport r =
+        two_phase_g2p_update<ExecSpace>(particles_, grid_, dt_, materials_, work, cw, cl);
     load_work_ += r.load_work;
-    if (plastic_) stress_update<ExecSpace, true>(particles_.solid, materials_, dt_);
-    else stress_update<ExecSpace, false>(particles_.solid, materials_, dt_);
-    viscous_ += pore_pressure_update<ExecSpace>(
-        particles_, grid_, liquid_, dt_, materials_,
-        BulkViscosity{settings_.bulk_viscosity_linear, settings_.bulk_viscosity_quadratic},
-        settings_.free_surface_fill);
+    if (work.pore_pressure) {
+      viscous_ += r.viscous_work;
+      next_limits_ = r.limits;
+      next_limits_current_ = true;
+    } else {
+      viscous_ += pore_pressure_update<ExecSpace>(
+          particles_, grid_, liquid_, dt_, materials_,
+          BulkViscosity{settings_.bulk_viscosity_linear, settings_.bulk_viscosity_quadratic},
+          settings_.free_surface_fill);
+    }
     if (settings_.cell_pore_pressure)
       viscous_ += project_pore_pressure<ExecSpace>(particles_, grid_, liquid_.bulk_modulus);
     time_ += dt_;
@@ -172,6 +195,11 @@ class TwoPhaseSolver {
                          std::abs(e.seepage_potential) + std::abs(e.load_potential) + 1e-300;
     return (e.total() - initial_.total()) / scale;
   }
+
+  // Code that changes the points' porosity, conductivity, material or volumetric rate between
+  // steps must call this: the next step then recomputes the time-step limits instead of taking
+  // those the last step's G2P left.
+  void points_changed() { next_limits_current_ = false; }
 
   // The rigid barrier (barrier_coupling.hpp): attach before the first step.
   void attach_barrier(const Barrier& b) { barrier_.attach(b); }
@@ -224,7 +252,9 @@ class TwoPhaseSolver {
   TwoPhaseScatter<ExecSpace, true> atomic_scatter_;
   TwoPhaseScatter<ExecSpace, false> duplicated_scatter_;
   double user_max_dt_;
-  TimeStepLimits limits_;
+  TimeStepLimits limits_;          // of the last step
+  TimeStepLimits next_limits_;     // of the points as they are, when next_limits_current_
+  bool next_limits_current_ = false;
   double max_speed_ = 0.0, dt_ = 0.0, time_ = 0.0;
   double boundary_ = 0.0, drag_ = 0.0, seepage_work_ = 0.0, load_work_ = 0.0, viscous_ = 0.0;
   double wall_force_[2] = {0.0, 0.0};

@@ -23,6 +23,7 @@
 #pragma once
 #include <Kokkos_Core.hpp>
 #include <algorithm>
+#include <cmath>
 
 #include "kernels/common/math.hpp"
 #include "kernels/mpm/constitutive/material.hpp"
@@ -30,16 +31,28 @@
 
 namespace lsi::mpm::two_phase {
 
-// Wave speed of a saturated point (see above), m/s. M: constrained modulus of the skeleton.
-KOKKOS_INLINE_FUNCTION double saturated_wave_speed(double M, double rho_S, double n, double rho_L,
-                                                   double K_L) {
-  const double mS = (1.0 - n) * rho_S, mL = n * rho_L, rho_m = mS + mL;
-  const double cu2 = (M + K_L / n) / rho_m;
-  const double a = (M + (1.0 - n) * (1.0 - n) * K_L / n) / mS, d = n * K_L / mL;
-  const double b2 = (1.0 - n) * K_L * (1.0 - n) * K_L / (mS * mL);
-  const double half_tr = 0.5 * (a + d), det = a * d - b2;
+// Squared wave speed of a saturated point (see above), m^2/s^2. M: constrained modulus of the
+// skeleton. With the wave matrix per unit mass, A = diag(m_S, m_L)^-1 K,
+//   a = A_SS = (M + (1-n)^2 K_L / n) / m_S,   d = A_LL = K_L / rho_L,
+//   det A = det K / (m_S m_L) = M K_L / (m_S rho_L)     (the (1-n)^2 K_L^2 / n terms cancel)
+// and c_f^2 = a/2 + d/2 + sqrt((a/2 + d/2)^2 - det A); three divisions (the time-step limits
+// evaluate it for every point every step).
+KOKKOS_FORCEINLINE_FUNCTION double saturated_wave_speed_squared(double M, double rho_S, double n,
+                                                                double rho_L, double K_L) {
+  const double inv_n = 1.0 / n, mS = (1.0 - n) * rho_S, inv_mS = 1.0 / mS;
+  const double rho_m = mS + n * rho_L;
+  const double cu2 = (M + K_L * inv_n) / rho_m;
+  const double d = K_L / rho_L;
+  const double a = (M + (1.0 - n) * (1.0 - n) * K_L * inv_n) * inv_mS;
+  const double half_tr = 0.5 * (a + d), det = d * M * inv_mS;
   const double cf2 = half_tr + math::sqrt(math::max(half_tr * half_tr - det, 0.0));
-  return math::sqrt(math::max(cu2, cf2));
+  return math::max(cu2, cf2);
+}
+
+// Wave speed of a saturated point (see above), m/s.
+KOKKOS_FORCEINLINE_FUNCTION double saturated_wave_speed(double M, double rho_S, double n,
+                                                        double rho_L, double K_L) {
+  return math::sqrt(saturated_wave_speed_squared(M, rho_S, n, rho_L, K_L));
 }
 
 // Permeability limit of the explicit drag (see above), s.
@@ -50,10 +63,42 @@ KOKKOS_INLINE_FUNCTION double permeability_time_step(double k, double rho_S, dou
 }
 
 struct TimeStepLimits {
-  double wave_speed = 0.0;                 // m/s, largest over the points (with the bulk
+  double wave_speed = 0.0;                 // m/s, largest over the points (0: none; with the bulk
                                            // viscosity's share, see below)
   double permeability_dt = 1e300;          // s, smallest over the points (explicit drag only)
 };
+
+// Constants of the per-point limits: the liquid, the g of the conductivity, the bulk viscosity.
+struct TimeStepConstants {
+  double liquid_density = 1000.0, liquid_bulk_modulus = 2.2e9, darcy_gravity = 9.81;
+  double c1 = 0.0, c2 = 0.0, cell_size = 0.0;
+};
+
+// Point q's squared wave speed and permeability step, folded into the running max c2 (m^2/s^2:
+// one square root for all the points, after the reduction) and min dtk.
+template <class MemorySpace>
+KOKKOS_FORCEINLINE_FUNCTION void point_time_step_limits(const TwoPhaseParticles<MemorySpace>& p,
+                                                        const int q, const PreparedMaterial& m,
+                                                        const TimeStepConstants& k, double& c2,
+                                                        double& dtk) {
+  const double M = m.lame_lambda + 2.0 * m.shear_modulus, rho_S = m.material.density;
+  const double n = p.porosity(q);
+  double cq2 = saturated_wave_speed_squared(M, rho_S, n, k.liquid_density, k.liquid_bulk_modulus);
+  // Artificial bulk viscosity (pore_pressure_update.hpp) of a compressing point: as
+  // explicit impact codes, the speed c becomes sqrt(c^2 + Qv^2) + Qv with the viscous
+  // speed Qv = c1 c + c2 l |D| (von Neumann-Richtmyer / Landshoff).
+  const double D = p.volumetric_rate(q);
+  if (D < 0.0 && (k.c1 > 0.0 || k.c2 > 0.0)) {
+    const double cq = math::sqrt(cq2);
+    const double Qv = k.c1 * cq - k.c2 * k.cell_size * D;
+    const double cv = math::sqrt(cq2 + Qv * Qv) + Qv;
+    cq2 = cv * cv;
+  }
+  const double tq =
+      permeability_time_step(p.conductivity(q), rho_S, n, k.liquid_density, k.darcy_gravity);
+  if (cq2 > c2) c2 = cq2;
+  if (tq < dtk) dtk = tq;
+}
 
 template <class ExecSpace, class MemorySpace>
 TimeStepLimits two_phase_time_step_limits(
@@ -62,29 +107,16 @@ TimeStepLimits two_phase_time_step_limits(
     double darcy_gravity, double viscosity_linear = 0.0, double viscosity_quadratic = 0.0,
     double cell_size = 0.0) {
   const auto s = p.solid;
-  const double rho_L = liquid.density, K_L = liquid.bulk_modulus, g = darcy_gravity;
-  const double c1 = viscosity_linear, c2 = viscosity_quadratic, l = cell_size;
+  const TimeStepConstants k{liquid.density, liquid.bulk_modulus, darcy_gravity,
+                            viscosity_linear, viscosity_quadratic, cell_size};
   TimeStepLimits lim;
   Kokkos::parallel_reduce(
       "lsi::mpm::two_phase::time_step_limits", Kokkos::RangePolicy<ExecSpace>(0, p.count),
-      KOKKOS_LAMBDA(const int q, double& c, double& dtk) {
-        const PreparedMaterial& m = materials(s.material(q));
-        const double M = m.lame_lambda + 2.0 * m.shear_modulus, rho_S = m.material.density;
-        const double n = p.porosity(q);
-        double cq = saturated_wave_speed(M, rho_S, n, rho_L, K_L);
-        // Artificial bulk viscosity (pore_pressure_update.hpp) of a compressing point: as
-        // explicit impact codes, the speed c becomes sqrt(c^2 + Qv^2) + Qv with the viscous
-        // speed Qv = c1 c + c2 l |D| (von Neumann-Richtmyer / Landshoff).
-        const double D = p.volumetric_rate(q);
-        if (D < 0.0 && (c1 > 0.0 || c2 > 0.0)) {
-          const double Qv = c1 * cq - c2 * l * D;
-          cq = math::sqrt(cq * cq + Qv * Qv) + Qv;
-        }
-        const double tq = permeability_time_step(p.conductivity(q), rho_S, n, rho_L, g);
-        if (cq > c) c = cq;
-        if (tq < dtk) dtk = tq;
+      KOKKOS_LAMBDA(const int q, double& c2, double& dtk) {
+        point_time_step_limits(p, q, materials(s.material(q)), k, c2, dtk);
       },
       Kokkos::Max<double>(lim.wave_speed), Kokkos::Min<double>(lim.permeability_dt));
+  lim.wave_speed = lim.wave_speed > 0.0 ? std::sqrt(lim.wave_speed) : 0.0;   // from c^2
   return lim;
 }
 

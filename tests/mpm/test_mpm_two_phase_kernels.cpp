@@ -1,0 +1,284 @@
+// The two-phase step's kernels against each other (kernels/mpm/two_phase/): the solver runs the
+// fast forms, these tests check that they compute what the plain forms compute.
+// 1. P2G (two_phase_p2g.hpp): the per-thread buffers ("duplicated", the host default) and one
+//    buffer with atomic additions (what a GPU runs) give the same 11 nodal fields and the same
+//    rectangle of touched nodes, with the mirror-image wall correction on (its contributions go
+//    to nodes beside a wall).
+// 2. The fused point pass (two_phase_g2p.hpp, two_phase_g2p_update: G2P, effective stress, pore
+//    pressure, next step's limits in one pass) leaves every point field, the viscous work and the
+//    time-step limits as the separate kernels do (two_phase_g2p, stress_update,
+//    pore_pressure_update, two_phase_time_step_limits), with Mohr-Coulomb and the bulk viscosity
+//    on so that every branch of the fused pass runs.
+// Both on a saturated Mohr-Coulomb column that has collapsed for 20 steps (nonzero velocities of
+// both phases, APIC matrices, yielding, compressing points).
+// 3. The wave speed of the time step (two_phase_time_step.hpp, saturated_wave_speed, written with
+//    three divisions) against the largest eigenvalue of the 2 x 2 wave problem computed by Eigen
+//    from the stiffness and mass matrices themselves.
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "kernels/mpm/two_phase/two_phase_builder.hpp"
+#include "kernels/mpm/two_phase/two_phase_solver.hpp"
+#include "support/backends.hpp"
+
+namespace {
+using namespace lsi::mpm;
+using namespace lsi::mpm::two_phase;
+
+constexpr double kG = 9.81;
+
+template <class Exec>
+class MpmTwoPhaseKernels : public ::testing::Test {};
+TYPED_TEST_SUITE(MpmTwoPhaseKernels, lsi::test::Backends);
+
+template <class Exec>
+struct CollapsingColumn {
+  using Mem = typename Exec::memory_space;
+  Material skeleton;
+  Liquid liquid;
+  Boundaries walls;
+  TwoPhaseSettings settings;
+  TwoPhaseGrid<Mem> grid;
+  TwoPhaseParticles<Mem> particles;
+
+  CollapsingColumn() {
+    skeleton.model = Material::Model::MohrCoulomb;
+    skeleton.density = 2650;
+    skeleton.young_modulus = 1e7;
+    skeleton.poisson_ratio = 0.3;
+    skeleton.friction_angle = 30.0 * 3.14159265358979323846 / 180.0;
+    liquid.bulk_modulus = 3e7;
+    const double dx = 0.05, lo[2] = {0, 0}, hi[2] = {3, 2};
+    walls.left = {true, 0.1, 0.0};
+    walls.bottom = {true, 0.1, 0.0};
+    grid = TwoPhaseGrid<Mem>(lo, hi, dx);
+    TwoPhaseBodySpec body;
+    body.polygon = {{{0.1, 0.1}}, {{0.6, 0.1}}, {{0.6, 1.1}}, {{0.1, 1.1}}};
+    body.porosity = 0.4;
+    body.hydraulic_conductivity = 1e-4;
+    body.geostatic_k0 = 0.3;
+    body.surface_y = 1.1;
+    body.gravity = kG;
+    particles = build_two_phase_particles<Mem>({body}, {skeleton}, liquid, lo, dx);
+    settings.courant = 0.5;
+    settings.drag = Drag::SemiImplicit;
+    settings.wall_correction = true;
+    settings.bulk_viscosity_linear = 0.06;
+    settings.bulk_viscosity_quadratic = 1.5;
+  }
+};
+
+// A deep copy of every point field.
+template <class Mem>
+TwoPhaseParticles<Mem> copy_of(const TwoPhaseParticles<Mem>& a) {
+  TwoPhaseParticles<Mem> b(a.count);
+  const auto& s = a.solid;
+  auto& t = b.solid;
+  Kokkos::deep_copy(t.position, s.position);
+  Kokkos::deep_copy(t.velocity, s.velocity);
+  Kokkos::deep_copy(t.affine, s.affine);
+  Kokkos::deep_copy(t.velocity_gradient, s.velocity_gradient);
+  Kokkos::deep_copy(t.stress, s.stress);
+  Kokkos::deep_copy(t.mass, s.mass);
+  Kokkos::deep_copy(t.volume, s.volume);
+  Kokkos::deep_copy(t.volume0, s.volume0);
+  Kokkos::deep_copy(t.plastic_work, s.plastic_work);
+  Kokkos::deep_copy(t.deviatoric_strain, s.deviatoric_strain);
+  Kokkos::deep_copy(t.material, s.material);
+  Kokkos::deep_copy(b.liquid_velocity, a.liquid_velocity);
+  Kokkos::deep_copy(b.liquid_affine, a.liquid_affine);
+  Kokkos::deep_copy(b.liquid_divergence, a.liquid_divergence);
+  Kokkos::deep_copy(b.liquid_mass, a.liquid_mass);
+  Kokkos::deep_copy(b.porosity, a.porosity);
+  Kokkos::deep_copy(b.pore_pressure, a.pore_pressure);
+  Kokkos::deep_copy(b.conductivity, a.conductivity);
+  Kokkos::deep_copy(b.traction, a.traction);
+  Kokkos::deep_copy(b.volumetric_rate, a.volumetric_rate);
+  Kokkos::deep_copy(b.viscous_pressure, a.viscous_pressure);
+  return b;
+}
+
+// Every value of View a and b, flattened, on the host.
+template <class View>
+std::vector<double> values(const View& v) {
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), v);
+  std::vector<double> out(h.data(), h.data() + h.span());
+  return out;
+}
+
+// max |a - b| / max |a| (0 when a is all zeros and b equals it).
+double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  double scale = 0.0, diff = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    scale = std::max(scale, std::fabs(a[i]));
+    diff = std::max(diff, std::fabs(a[i] - b[i]));
+  }
+  return scale > 0.0 ? diff / scale : diff;
+}
+
+TYPED_TEST(MpmTwoPhaseKernels, AtomicAndBufferedP2GGiveTheSameGrid) {
+  using Exec = TypeParam;
+  using Mem = typename Exec::memory_space;
+  CollapsingColumn<Exec> c;
+  TwoPhaseSolver<Exec> solver(c.grid, c.particles, {c.skeleton}, c.liquid, c.walls, c.settings);
+  for (int i = 0; i < 20; ++i) ASSERT_EQ(solver.step(), Status::Running);
+
+  const double lo[2] = {0, 0}, hi[2] = {3, 2};
+  TwoPhaseGrid<Mem> buffered_grid(lo, hi, c.grid.dx()), atomic_grid(lo, hi, c.grid.dx());
+  TwoPhaseScatter<Exec, false> buffered(buffered_grid.solid);
+  TwoPhaseScatter<Exec, true> atomic(atomic_grid.solid);
+  const double* g = c.settings.gravity;
+  two_phase_p2g(c.particles, buffered_grid, buffered, g, c.liquid.density, kG, &c.walls, &c.walls);
+  two_phase_p2g(c.particles, atomic_grid, atomic, g, c.liquid.density, kG, &c.walls, &c.walls);
+
+  for (const auto* grid : {&buffered_grid.liquid, &atomic_grid.solid, &atomic_grid.liquid}) {
+    const NodeBox a = buffered_grid.solid.mass_box(), b = grid->mass_box();
+    EXPECT_EQ(a.i0, b.i0);
+    EXPECT_EQ(a.i1, b.i1);
+    EXPECT_EQ(a.j0, b.j0);
+    EXPECT_EQ(a.j1, b.j1);
+    EXPECT_FALSE(a.empty());
+  }
+  struct Field {
+    std::string name;
+    std::vector<double> buffered, atomic;
+  };
+  const std::vector<Field> fields = {
+      {"solid mass", values(buffered_grid.solid.mass), values(atomic_grid.solid.mass)},
+      {"solid momentum", values(buffered_grid.solid.momentum), values(atomic_grid.solid.momentum)},
+      {"mixture force", values(buffered_grid.solid.force), values(atomic_grid.solid.force)},
+      {"liquid mass", values(buffered_grid.liquid.mass), values(atomic_grid.liquid.mass)},
+      {"liquid momentum", values(buffered_grid.liquid.momentum),
+       values(atomic_grid.liquid.momentum)},
+      {"liquid force", values(buffered_grid.liquid.force), values(atomic_grid.liquid.force)},
+      {"drag", values(buffered_grid.drag), values(atomic_grid.drag)}};
+  for (const Field& f : fields) {
+    double largest = 0.0;
+    for (double v : f.buffered) largest = std::max(largest, std::fabs(v));
+    EXPECT_GT(largest, 0.0) << f.name;   // every field has content (the column moves)
+    // The same terms added in another order: round-off of a few additions, 1e-12 of the
+    // largest nodal value.
+    EXPECT_LT(relative_difference(f.buffered, f.atomic), 1e-12) << f.name;
+  }
+}
+
+TYPED_TEST(MpmTwoPhaseKernels, FusedPointPassMatchesTheSeparateKernels) {
+  using Exec = TypeParam;
+  using Mem = typename Exec::memory_space;
+  CollapsingColumn<Exec> c;
+  TwoPhaseSolver<Exec> solver(c.grid, c.particles, {c.skeleton}, c.liquid, c.walls, c.settings);
+  for (int i = 0; i < 20; ++i) ASSERT_EQ(solver.step(), Status::Running);
+  // The grid as the solver left it (the last step's P2G and grid update): both paths read it.
+  const double dt = solver.time_step();
+  TwoPhaseParticles<Mem> separate = copy_of(c.particles), fused = copy_of(c.particles);
+
+  Kokkos::View<PreparedMaterial*, Mem> table("materials", 1);
+  auto host = Kokkos::create_mirror_view(table);
+  host(0) = PreparedMaterial(c.skeleton);
+  Kokkos::deep_copy(table, host);
+  const Kokkos::View<const PreparedMaterial*, Mem> materials = table;
+  const BulkViscosity viscosity{c.settings.bulk_viscosity_linear,
+                                c.settings.bulk_viscosity_quadratic};
+  const double dx = c.grid.dx();
+
+  const TwoPhaseG2PReport a = two_phase_g2p<Exec>(separate, c.grid, dt, &c.walls, &c.walls);
+  stress_update<Exec, true>(separate.solid, materials, dt);
+  const double viscous_a =
+      pore_pressure_update<Exec>(separate, c.grid, c.liquid, dt, materials, viscosity);
+  const TimeStepLimits limits_a = two_phase_time_step_limits<Exec>(
+      separate, materials, c.liquid, kG, viscosity.linear, viscosity.quadratic, dx);
+
+  TwoPhasePointWork work;
+  work.plastic = true;
+  work.pore_pressure = true;
+  work.pore = {c.liquid.bulk_modulus, c.liquid.density, viscosity.linear, viscosity.quadratic, dx};
+  work.time_step.liquid_density = c.liquid.density;
+  work.time_step.liquid_bulk_modulus = c.liquid.bulk_modulus;
+  work.time_step.darcy_gravity = kG;
+  work.time_step.c1 = viscosity.linear;
+  work.time_step.c2 = viscosity.quadratic;
+  work.time_step.cell_size = dx;
+  const TwoPhaseG2PReport b =
+      two_phase_g2p_update<Exec>(fused, c.grid, dt, materials, work, &c.walls, &c.walls);
+
+  // The same operations on each point in the same order; only the compiler's contraction of
+  // a * b + c into fused multiply-adds may differ between the two inlining contexts: 1e-12 of
+  // each field's largest value (a wrong sign or a missing term shows as O(1)).
+  struct Field {
+    std::string name;
+    std::vector<double> separate, fused;
+  };
+  const auto& s = separate.solid;
+  const auto& f = fused.solid;
+  const std::vector<Field> fields = {
+      {"position", values(s.position), values(f.position)},
+      {"solid velocity", values(s.velocity), values(f.velocity)},
+      {"solid affine", values(s.affine), values(f.affine)},
+      {"velocity gradient", values(s.velocity_gradient), values(f.velocity_gradient)},
+      {"effective stress", values(s.stress), values(f.stress)},
+      {"volume", values(s.volume), values(f.volume)},
+      {"plastic work", values(s.plastic_work), values(f.plastic_work)},
+      {"deviatoric strain", values(s.deviatoric_strain), values(f.deviatoric_strain)},
+      {"liquid velocity", values(separate.liquid_velocity), values(fused.liquid_velocity)},
+      {"liquid affine", values(separate.liquid_affine), values(fused.liquid_affine)},
+      {"liquid divergence", values(separate.liquid_divergence), values(fused.liquid_divergence)},
+      {"porosity", values(separate.porosity), values(fused.porosity)},
+      {"pore pressure", values(separate.pore_pressure), values(fused.pore_pressure)},
+      {"volumetric rate", values(separate.volumetric_rate), values(fused.volumetric_rate)},
+      {"viscous pressure", values(separate.viscous_pressure), values(fused.viscous_pressure)}};
+  for (const Field& field : fields)
+    EXPECT_LT(relative_difference(field.separate, field.fused), 1e-12) << field.name;
+  // The column yields and compresses somewhere: the plastic and viscous branches ran.
+  double plastic = 0.0, viscous_pressure = 0.0;
+  for (double v : fields[6].fused) plastic = std::max(plastic, v);
+  for (double v : fields[14].fused) viscous_pressure = std::max(viscous_pressure, v);
+  EXPECT_GT(plastic, 0.0);
+  EXPECT_GT(viscous_pressure, 0.0);
+
+  EXPECT_EQ(a.health.non_finite, b.health.non_finite);
+  EXPECT_EQ(a.health.outside, b.health.outside);
+  EXPECT_NEAR(a.health.max_speed, b.health.max_speed, 1e-12 * a.health.max_speed);
+  EXPECT_NEAR(a.load_work, b.load_work, 1e-12 * std::fabs(a.load_work) + 1e-300);
+  // The viscous work is a sum over the points: their order differs between the two reductions.
+  EXPECT_NEAR(viscous_a, b.viscous_work, 1e-9 * std::fabs(viscous_a));
+  EXPECT_NE(viscous_a, 0.0);
+  EXPECT_NEAR(limits_a.wave_speed, b.limits.wave_speed, 1e-12 * limits_a.wave_speed);
+  EXPECT_NEAR(limits_a.permeability_dt, b.limits.permeability_dt,
+              1e-12 * limits_a.permeability_dt);
+}
+
+TEST(SaturatedWaveSpeed, IsTheFastestWaveOfTheTwoPhases) {
+  // Per unit volume: masses m_S = (1-n) rho_S, m_L = n rho_L; stiffness (sigma' = M eps_S,
+  // p = -(K_L/n)((1-n) eps_S + n eps_L)) K = [[M + (1-n)^2 K_L/n, (1-n) K_L], [(1-n) K_L, n K_L]].
+  // The undrained speed sqrt((M + K_L/n) / rho_m) is a Rayleigh quotient of the same problem, so
+  // the speed is the largest root; the soft and stiff ends of the stability matrix included.
+  const double rho_S = 2650.0, rho_L = 1000.0;
+  int cases = 0;
+  for (double M : {1e5, 1e7, 1.35e9})
+    for (double K_L : {2e6, 3e7, 2.2e9})
+      for (double n : {0.05, 0.2, 0.4, 0.6, 0.95}) {
+        const double mS = (1 - n) * rho_S, mL = n * rho_L;
+        Eigen::Matrix2d K;
+        K << M + (1 - n) * (1 - n) * K_L / n, (1 - n) * K_L, (1 - n) * K_L, n * K_L;
+        const Eigen::Vector2d inv_sqrt_m(1 / std::sqrt(mS), 1 / std::sqrt(mL));
+        // symmetric form m^-1/2 K m^-1/2: the same eigenvalues c^2, computed stably
+        const Eigen::Matrix2d A = inv_sqrt_m.asDiagonal() * K * inv_sqrt_m.asDiagonal();
+        const double c_max = std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(A)
+                                           .eigenvalues()
+                                           .maxCoeff());
+        // Both are a few roundings of the same numbers: 1e-12 relative.
+        EXPECT_NEAR(saturated_wave_speed(M, rho_S, n, rho_L, K_L), c_max, 1e-12 * c_max)
+            << "M " << M << " K_L " << K_L << " n " << n;
+        ++cases;
+      }
+  EXPECT_EQ(cases, 45);
+  // The example of the file comment: M = 1e7 Pa, K_L = 2.2e9 Pa, n = 0.4: c_f = 1857 m/s.
+  EXPECT_NEAR(saturated_wave_speed(1e7, rho_S, 0.4, rho_L, 2.2e9), 1857.0, 0.5);
+}
+
+}  // namespace
