@@ -338,10 +338,7 @@ void bm_twophase_kernel(benchmark::State& state, int n, TpKernel k) {
   tp::TwoPhasePointWork fused;   // as the solver: Mohr-Coulomb, pore pressure, next limits
   fused.plastic = true;
   fused.pore_pressure = true;
-  fused.pore.bulk_modulus = fused.time_step.liquid_bulk_modulus = c.s.liquid.bulk_modulus;
-  fused.pore.density = fused.time_step.liquid_density = c.s.liquid.density;
-  fused.pore.length = fused.time_step.cell_size = g.dx();
-  fused.time_step.darcy_gravity = kG;
+  fused.constants = {c.s.liquid.density, c.s.liquid.bulk_modulus, kG, 0.0, 0.0, g.dx()};
   for (auto _ : state) {
     switch (k) {
       case TpKernel::P2G:

@@ -45,6 +45,7 @@ struct CollapsingColumn {
   TwoPhaseSettings settings;
   TwoPhaseGrid<Mem> grid;
   TwoPhaseParticles<Mem> particles;
+  double lo[2] = {0.0, 0.0}, hi[2] = {3.0, 2.0};   // the grid, m
 
   CollapsingColumn() {
     skeleton.model = Material::Model::MohrCoulomb;
@@ -53,7 +54,7 @@ struct CollapsingColumn {
     skeleton.poisson_ratio = 0.3;
     skeleton.friction_angle = 30.0 * 3.14159265358979323846 / 180.0;
     liquid.bulk_modulus = 3e7;
-    const double dx = 0.05, lo[2] = {0, 0}, hi[2] = {3, 2};
+    const double dx = 0.05;
     walls.left = {true, 0.1, 0.0};
     walls.bottom = {true, 0.1, 0.0};
     grid = TwoPhaseGrid<Mem>(lo, hi, dx);
@@ -128,8 +129,7 @@ TYPED_TEST(MpmTwoPhaseKernels, AtomicAndBufferedP2GGiveTheSameGrid) {
   TwoPhaseSolver<Exec> solver(c.grid, c.particles, {c.skeleton}, c.liquid, c.walls, c.settings);
   for (int i = 0; i < 20; ++i) ASSERT_EQ(solver.step(), Status::Running);
 
-  const double lo[2] = {0, 0}, hi[2] = {3, 2};
-  TwoPhaseGrid<Mem> buffered_grid(lo, hi, c.grid.dx()), atomic_grid(lo, hi, c.grid.dx());
+  TwoPhaseGrid<Mem> buffered_grid(c.lo, c.hi, c.grid.dx()), atomic_grid(c.lo, c.hi, c.grid.dx());
   TwoPhaseScatter<Exec, false> buffered(buffered_grid.solid);
   TwoPhaseScatter<Exec, true> atomic(atomic_grid.solid);
   const double* g = c.settings.gravity;
@@ -196,13 +196,8 @@ TYPED_TEST(MpmTwoPhaseKernels, FusedPointPassMatchesTheSeparateKernels) {
   TwoPhasePointWork work;
   work.plastic = true;
   work.pore_pressure = true;
-  work.pore = {c.liquid.bulk_modulus, c.liquid.density, viscosity.linear, viscosity.quadratic, dx};
-  work.time_step.liquid_density = c.liquid.density;
-  work.time_step.liquid_bulk_modulus = c.liquid.bulk_modulus;
-  work.time_step.darcy_gravity = kG;
-  work.time_step.c1 = viscosity.linear;
-  work.time_step.c2 = viscosity.quadratic;
-  work.time_step.cell_size = dx;
+  work.constants = {c.liquid.density, c.liquid.bulk_modulus, kG,
+                    viscosity.linear, viscosity.quadratic, dx};
   const TwoPhaseG2PReport b =
       two_phase_g2p_update<Exec>(fused, c.grid, dt, materials, work, &c.walls, &c.walls);
 

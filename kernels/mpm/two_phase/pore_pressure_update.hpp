@@ -109,31 +109,24 @@ double project_pore_pressure(const TwoPhaseParticles<MemorySpace>& p, const TwoP
   return drop;
 }
 
-// The pore pressure, porosity and viscous pressure of point q from D = volumetric_rate(q) (set by
-// the caller) and the solid velocity gradient L of the step; V = volume(q) must already be the
-// end-of-step volume (stress_update.hpp). Returns the work of the bulk viscosity, J/m (0 when it
-// is off). Shared by pore_pressure_update() and the fused two-phase G2P (two_phase_g2p.hpp).
+// D = (1 - n) tr(L_S) + n div(v_L) (see the file comment).
 KOKKOS_FORCEINLINE_FUNCTION double mixture_volumetric_rate(double n, double trace_L_solid,
                                                           double liquid_divergence) {
   return (1.0 - n) * trace_L_solid + n * liquid_divergence;
 }
 
-struct PorePressureConstants {
-  double bulk_modulus = 2.2e9;   // K_L, Pa
-  double density = 1000.0;       // rho_L, kg/m^3
-  double c1 = 0.0, c2 = 0.0;     // bulk viscosity (BulkViscosity), 0, 0: off
-  double length = 0.0;           // l of the viscosity (the cell size), m
-  KOKKOS_INLINE_FUNCTION bool viscous() const { return c1 > 0.0 || c2 > 0.0; }
-};
-
+// The pore pressure, porosity and viscous pressure of point q from D = volumetric_rate(q) (set by
+// the caller) and the solid velocity gradient L of the step; V = volume(q) must already be the
+// end-of-step volume (stress_update.hpp). Returns the work of the bulk viscosity, J/m (0 when it
+// is off). Shared by pore_pressure_update() and the fused two-phase G2P (two_phase_g2p.hpp).
 template <class MemorySpace>
 KOKKOS_FORCEINLINE_FUNCTION double update_point_pore_pressure(
     const TwoPhaseParticles<MemorySpace>& p, const int q, const PreparedMaterial& m,
-    const PorePressureConstants& k, const double Lxx, const double Lxy, const double Lyx,
+    const TwoPhaseConstants& k, const double Lxx, const double Lxy, const double Lyx,
     const double Lyy, const double dt) {
   const auto& s = p.solid;
   const double n = p.porosity(q), d = p.volumetric_rate(q);
-  p.pore_pressure(q) -= k.bulk_modulus / n * d * dt;
+  p.pore_pressure(q) -= k.liquid_bulk_modulus / n * d * dt;
   const double J = (1.0 + Lxx * dt) * (1.0 + Lyy * dt) - Lxy * Lyx * dt * dt;
   const double n1 = 1.0 - (1.0 - n) / J;
   p.porosity(q) = n1;
@@ -141,9 +134,10 @@ KOKKOS_FORCEINLINE_FUNCTION double update_point_pore_pressure(
   const double V = s.volume(q);
   const double dissipated = -p.viscous_pressure(q) * d * V * dt;
   const double M = m.lame_lambda + 2.0 * m.shear_modulus;
-  const double c = saturated_wave_speed(M, m.material.density, n1, k.density, k.bulk_modulus);
+  const double c =
+      saturated_wave_speed(M, m.material.density, n1, k.liquid_density, k.liquid_bulk_modulus);
   const double rho_m = (s.mass(q) + p.liquid_mass(q)) / V;
-  p.viscous_pressure(q) = bulk_viscous_pressure(rho_m, c, k.length, d, k.c1, k.c2);
+  p.viscous_pressure(q) = bulk_viscous_pressure(rho_m, c, k.cell_size, d, k.c1, k.c2);
   return dissipated;
 }
 
@@ -171,7 +165,12 @@ double pore_pressure_update(const TwoPhaseParticles<MemorySpace>& p, const TwoPh
   const double ox = g.solid.origin[0], oy = g.solid.origin[1], inv_dx = 1.0 / g.solid.dx;
   const double inv_cell = inv_dx * inv_dx, fill_min = free_surface_fill;
   const int nx = g.solid.nx;
-  const PorePressureConstants k{K_L, rho_L, viscosity.linear, viscosity.quadratic, g.dx()};
+  TwoPhaseConstants k;
+  k.liquid_density = rho_L;
+  k.liquid_bulk_modulus = K_L;
+  k.c1 = viscosity.linear;
+  k.c2 = viscosity.quadratic;
+  k.cell_size = g.dx();
   double dissipated = 0.0;
   Kokkos::parallel_reduce(
       "lsi::mpm::two_phase::pore_pressure_update", Kokkos::RangePolicy<ExecSpace>(0, p.count),

@@ -47,8 +47,7 @@ struct TwoPhaseG2PReport {
 struct TwoPhasePointWork {
   bool plastic = false;         // the stress update with Mohr-Coulomb (a kernel of its own)
   bool pore_pressure = false;   // pore pressure, porosity and the next step's limits
-  PorePressureConstants pore;
-  TimeStepConstants time_step;
+  TwoPhaseConstants constants;  // of the pore pressure and the limits
 };
 
 // The corrected walls of the ghost reads (see the file comment).
@@ -71,8 +70,7 @@ TwoPhaseG2PReport two_phase_g2p_impl(
   const double xmax = (S.nx - 2) * dx, ymax = (S.ny - 2) * dx;
   const int nx = S.nx;
   const bool pore = work.pore_pressure;
-  const PorePressureConstants kp = work.pore;
-  const TimeStepConstants kt = work.time_step;
+  const TwoPhaseConstants kc = work.constants;
   double vmax = 0.0, load = 0.0, viscous = 0.0, cmax = 0.0, dtk = 1e300;
   int bad = 0, out = 0;
   Kokkos::parallel_reduce(
@@ -85,8 +83,7 @@ TwoPhaseG2PReport two_phase_g2p_impl(
         [[maybe_unused]] const auto& mats = materials;
         [[maybe_unused]] const GhostWalls& ghost = gw;
         [[maybe_unused]] const bool fuse_pore = pore;
-        [[maybe_unused]] const PorePressureConstants& pore_k = kp;
-        [[maybe_unused]] const TimeStepConstants& step_k = kt;
+        [[maybe_unused]] const TwoPhaseConstants& constants = kc;
         const auto& grid_s = S;
         const auto& grid_l = L;
         const double xp = s.position(q, 0) - ox, yp = s.position(q, 1) - oy;
@@ -178,9 +175,9 @@ TwoPhaseG2PReport two_phase_g2p_impl(
           update_point_stress<Stress == G2PStress::Plastic>(s, q, m, LS[0][0], LS[0][1],
                                                             LS[1][0], LS[1][1], dt);
           if (fuse_pore) {
-            visc += update_point_pore_pressure(p, q, m, pore_k, LS[0][0], LS[0][1], LS[1][0],
+            visc += update_point_pore_pressure(p, q, m, constants, LS[0][0], LS[0][1], LS[1][0],
                                                LS[1][1], dt);
-            point_time_step_limits(p, q, m, step_k, cm, tk);
+            point_time_step_limits(p, q, m, constants, cm, tk);
           }
         }
         const double s2 = vS[0] * vS[0] + vS[1] * vS[1], l2 = vL[0] * vL[0] + vL[1] * vL[1];

@@ -136,12 +136,12 @@ class TwoPhaseSolver {
     TwoPhasePointWork work;
     work.plastic = plastic_;
     work.pore_pressure = !(settings_.free_surface_fill > 0.0);
-    work.pore.bulk_modulus = work.time_step.liquid_bulk_modulus = liquid_.bulk_modulus;
-    work.pore.density = work.time_step.liquid_density = liquid_.density;
-    work.pore.c1 = work.time_step.c1 = settings_.bulk_viscosity_linear;
-    work.pore.c2 = work.time_step.c2 = settings_.bulk_viscosity_quadratic;
-    work.pore.length = work.time_step.cell_size = grid_.dx();
-    work.time_step.darcy_gravity = settings_.darcy_gravity;
+    work.constants = {liquid_.density,
+                      liquid_.bulk_modulus,
+                      settings_.darcy_gravity,
+                      settings_.bulk_viscosity_linear,
+                      settings_.bulk_viscosity_quadratic,
+                      grid_.dx()};
     const TwoPhaseG2PReport r =
         two_phase_g2p_update<ExecSpace>(particles_, grid_, dt_, materials_, work, cw, cl);
     load_work_ += r.load_work;

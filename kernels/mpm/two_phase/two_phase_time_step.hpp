@@ -68,10 +68,16 @@ struct TimeStepLimits {
   double permeability_dt = 1e300;          // s, smallest over the points (explicit drag only)
 };
 
-// Constants of the per-point limits: the liquid, the g of the conductivity, the bulk viscosity.
-struct TimeStepConstants {
-  double liquid_density = 1000.0, liquid_bulk_modulus = 2.2e9, darcy_gravity = 9.81;
-  double c1 = 0.0, c2 = 0.0, cell_size = 0.0;
+// The constants of the per-point updates of a two-phase step (the time-step limits here, the pore
+// pressure in pore_pressure_update.hpp): the liquid, the g of the conductivity, the bulk
+// viscosity and its length l (the cell size).
+struct TwoPhaseConstants {
+  double liquid_density = 1000.0;        // rho_L, kg/m^3
+  double liquid_bulk_modulus = 2.2e9;    // K_L, Pa
+  double darcy_gravity = 9.81;           // m/s^2
+  double c1 = 0.0, c2 = 0.0;             // bulk viscosity (BulkViscosity), 0, 0: off
+  double cell_size = 0.0;                // m
+  KOKKOS_INLINE_FUNCTION bool viscous() const { return c1 > 0.0 || c2 > 0.0; }
 };
 
 // Point q's squared wave speed and permeability step, folded into the running max c2 (m^2/s^2:
@@ -79,7 +85,7 @@ struct TimeStepConstants {
 template <class MemorySpace>
 KOKKOS_FORCEINLINE_FUNCTION void point_time_step_limits(const TwoPhaseParticles<MemorySpace>& p,
                                                         const int q, const PreparedMaterial& m,
-                                                        const TimeStepConstants& k, double& c2,
+                                                        const TwoPhaseConstants& k, double& c2,
                                                         double& dtk) {
   const double M = m.lame_lambda + 2.0 * m.shear_modulus, rho_S = m.material.density;
   const double n = p.porosity(q);
@@ -88,7 +94,7 @@ KOKKOS_FORCEINLINE_FUNCTION void point_time_step_limits(const TwoPhaseParticles<
   // explicit impact codes, the speed c becomes sqrt(c^2 + Qv^2) + Qv with the viscous
   // speed Qv = c1 c + c2 l |D| (von Neumann-Richtmyer / Landshoff).
   const double D = p.volumetric_rate(q);
-  if (D < 0.0 && (k.c1 > 0.0 || k.c2 > 0.0)) {
+  if (D < 0.0 && k.viscous()) {
     const double cq = math::sqrt(cq2);
     const double Qv = k.c1 * cq - k.c2 * k.cell_size * D;
     const double cv = math::sqrt(cq2 + Qv * Qv) + Qv;
@@ -107,7 +113,7 @@ TimeStepLimits two_phase_time_step_limits(
     double darcy_gravity, double viscosity_linear = 0.0, double viscosity_quadratic = 0.0,
     double cell_size = 0.0) {
   const auto s = p.solid;
-  const TimeStepConstants k{liquid.density, liquid.bulk_modulus, darcy_gravity,
+  const TwoPhaseConstants k{liquid.density, liquid.bulk_modulus, darcy_gravity,
                             viscosity_linear, viscosity_quadratic, cell_size};
   TimeStepLimits lim;
   Kokkos::parallel_reduce(
