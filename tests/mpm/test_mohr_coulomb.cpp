@@ -594,6 +594,34 @@ TEST(MohrCoulombReturn, InPlanePrincipalDirectionsPreserved) {
   std::printf("[measured] in-plane direction: %d checked, max angle change %.2e rad\n", checked, worst);
 }
 
+// (f2) Ties in the principal order. The return sorts s_zz among the in-plane pair a >= b (three
+// cases from two comparisons; an exact tie keeps the in-plane value first). A plastic trial with
+// a tied pair returns to the edge where the pair stays equal (the main plane would pull the two
+// apart in the wrong order), so the result must not depend on how the tie was broken: it is
+// continuous from both sides. Exact ties: with s_xy = 0 and representable halves, a = s_xx and
+// b = s_yy exactly. Tolerance 1e-8 of the stress scale: the 1e-6 Pa offset times the slope of the
+// return (of order 1), far above round-off (1e-16 of 9e4 Pa).
+TEST(MohrCoulombReturn, PrincipalTiesReturnContinuously) {
+  const Material m = mc(30.0, 10.0, 5e3);
+  const double sxx = -1.0e4, syy = -9.0e4;   // a = -1e4, b = -9e4 (f > 0: plastic)
+  auto ret = [&](double szz) {
+    std::array<double, 4> s{sxx, syy, 0.0, szz};
+    mohr_coulomb_return(m, s.data());
+    return s;
+  };
+  for (const double tie : {sxx, syy}) {
+    const std::array<double, 4> at = ret(tie), below = ret(tie - 1e-6), above = ret(tie + 1e-6);
+    ASSERT_NE(at[0], sxx);   // it did return
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_NEAR(at[k], below[k], 1e-8 * 9e4) << "tie at " << tie << ", component " << k;
+      EXPECT_NEAR(at[k], above[k], 1e-8 * 9e4) << "tie at " << tie << ", component " << k;
+    }
+    // On the edge: the tied pair (s_zz and the in-plane value it ties) stays equal.
+    const double in_plane = tie == sxx ? at[0] : at[1];
+    EXPECT_NEAR(at[3], in_plane, 1e-12 * 9e4) << "tie at " << tie;
+  }
+}
+
 // (g) Jaumann rotation under a rigid spin (L antisymmetric, L_xy = -omega, L_yx = omega, spin
 // w = (L_xy - L_yx)/2 = -omega): per step, the trace is unchanged to round-off and the von Mises
 // stress to O(dt^2) (forward Euler of a rotation grows the deviatoric radius by

@@ -33,7 +33,8 @@ struct Material {
 };
 
 // A material with the constants the kernels need every step computed once (moduli, and the
-// trigonometric functions of the Mohr-Coulomb angles).
+// trigonometric functions of the Mohr-Coulomb angles and the constants of its return mapping,
+// constitutive/mohr_coulomb.hpp).
 struct PreparedMaterial {
   Material material;
   double shear_modulus = 0.0, lame_lambda = 0.0;
@@ -41,6 +42,13 @@ struct PreparedMaterial {
   // Cohesionless Mohr-Coulomb with no tensile strength: a point of it at zero stress that has
   // expanded is disconnected (stress_update.hpp).
   bool disconnects = false;
+  // The return mapping's constants (mohr_coulomb.hpp; SI units): the apex c cot(phi) (1e300
+  // without friction), the cap of the principal stresses min(tension cut-off, apex), 1 / E, and
+  // the elastic products of the yield and flow directions: A = n_f . D n_g of the main plane and
+  // 1 / A, and B and 1 / (A^2 - B^2) of the two edges (upper: s1 = s2, lower: s2 = s3).
+  double apex = 1e300, principal_cap = 1e300, inverse_young = 0.0;
+  double main_plane = 0.0, inverse_main = 0.0, edge_upper = 0.0, edge_lower = 0.0;
+  double inverse_det_upper = 0.0, inverse_det_lower = 0.0;
 
   PreparedMaterial() = default;
   KOKKOS_INLINE_FUNCTION explicit PreparedMaterial(const Material& m)
@@ -51,7 +59,19 @@ struct PreparedMaterial {
         cos_phi(math::cos(m.friction_angle)),
         sin_psi(math::sin(m.dilatancy_angle)),
         disconnects(m.model == Material::Model::MohrCoulomb && m.cohesion == 0.0 &&
-                    m.tension_cutoff <= 0.0) {}
+                    m.tension_cutoff <= 0.0) {
+    const double G = shear_modulus, L = lame_lambda, sphi = sin_phi, spsi = sin_psi;
+    apex = sphi > 0.0 ? m.cohesion * cos_phi / sphi : 1e300;
+    principal_cap = math::min(m.tension_cutoff, apex);
+    inverse_young = 1.0 / m.young_modulus;
+    const double A = 4.0 * L * sphi * spsi + 4.0 * G * (1.0 + sphi * spsi);
+    main_plane = A;
+    edge_upper = 4.0 * L * sphi * spsi + 2.0 * G * (1.0 - sphi) * (1.0 - spsi);
+    edge_lower = 4.0 * L * sphi * spsi + 2.0 * G * (1.0 + sphi) * (1.0 + spsi);
+    inverse_main = 1.0 / A;
+    inverse_det_upper = 1.0 / (A * A - edge_upper * edge_upper);
+    inverse_det_lower = 1.0 / (A * A - edge_lower * edge_lower);
+  }
 };
 
 }  // namespace lsi::mpm

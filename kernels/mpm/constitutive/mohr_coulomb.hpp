@@ -13,47 +13,24 @@
 
 namespace lsi::mpm {
 
-namespace detail {
-// In-plane principal decomposition of (sxx, syy, sxy): centre, radius, cos(2 theta), sin(2 theta).
-struct InPlane {
-  double centre, radius, c2, s2;
-};
-KOKKOS_INLINE_FUNCTION InPlane in_plane(const double s[4]) {
-  InPlane p;
-  p.centre = 0.5 * (s[0] + s[1]);
-  const double h = 0.5 * (s[0] - s[1]);
-  p.radius = math::sqrt(h * h + s[2] * s[2]);
-  if (p.radius > 0.0) {
-    p.c2 = h / p.radius;
-    p.s2 = s[2] / p.radius;
-  } else {
-    p.c2 = 1.0;
-    p.s2 = 0.0;
-  }
-  return p;
-}
-}  // namespace detail
-
+// The material's constants of the return (A, B, the apex, the cap, 1/E and the reciprocals that
+// replace its divisions) are computed once per material (PreparedMaterial, material.hpp): on the
+// common path (a main-plane return) the function divides once, to write the stress back.
 KOKKOS_INLINE_FUNCTION double mohr_coulomb_return(const PreparedMaterial& pm, double s[4]) {
-  const Material& m = pm.material;
-  const detail::InPlane ip = detail::in_plane(s);
-  // Principal values: in-plane major (0), in-plane minor (1), out-of-plane (2); sorted order.
-  double p[3] = {ip.centre + ip.radius, ip.centre - ip.radius, s[3]};
-  int order[3] = {0, 1, 2};
-  for (int a = 0; a < 2; ++a)
-    for (int b = 0; b < 2 - a; ++b)
-      if (p[order[b]] < p[order[b + 1]]) {
-        const int t = order[b];
-        order[b] = order[b + 1];
-        order[b + 1] = t;
-      }
-  const double trial[3] = {p[order[0]], p[order[1]], p[order[2]]};   // s1 >= s2 >= s3
+  // Principal values: in-plane major a >= minor b (centre +- radius) and out-of-plane z = s_zz.
+  const double centre = 0.5 * (s[0] + s[1]), h = 0.5 * (s[0] - s[1]);
+  const double radius = math::sqrt(h * h + s[2] * s[2]);
+  const double a = centre + radius, b = centre - radius, z = s[3];
+  // Where z sits in the order s1 >= s2 >= s3: 0 (first), 1 or 2; ties keep the in-plane value
+  // first (a stable sort of a, b, z).
+  const int kz = z > b ? (z > a ? 0 : 1) : 2;
+  const double trial[3] = {kz == 0 ? z : a, kz == 0 ? a : (kz == 1 ? z : b), kz == 2 ? z : b};
   double r[3] = {trial[0], trial[1], trial[2]};
 
   const double sphi = pm.sin_phi, cphi = pm.cos_phi, spsi = pm.sin_psi;
-  const double c = m.cohesion;
+  const double c = pm.material.cohesion;
   const double G = pm.shear_modulus, L = pm.lame_lambda;
-  auto f_planes = [&](double a, double b) { return (a - b) + (a + b) * sphi - 2.0 * c * cphi; };
+  auto f_planes = [&](double p, double q) { return (p - q) + (p + q) * sphi - 2.0 * c * cphi; };
   const double scale = math::fabs(trial[0]) + math::fabs(trial[2]) + c + 1e-300;
   const double f = f_planes(trial[0], trial[2]);
   bool plastic = false;
@@ -62,55 +39,58 @@ KOKKOS_INLINE_FUNCTION double mohr_coulomb_return(const PreparedMaterial& pm, do
     // D n for the three planes' flow directions (principal space).
     const double ls = 2.0 * L * spsi;
     const double Dna[3] = {ls + 2.0 * G * (1.0 + spsi), ls, ls + 2.0 * G * (-1.0 + spsi)};
-    const double Dnb[3] = {ls, ls + 2.0 * G * (1.0 + spsi), ls + 2.0 * G * (-1.0 + spsi)};
-    const double Dnc[3] = {ls + 2.0 * G * (1.0 + spsi), ls + 2.0 * G * (-1.0 + spsi), ls};
-    const double A = 4.0 * L * sphi * spsi + 4.0 * G * (1.0 + sphi * spsi);
-    // Main plane.
-    double dg = f / A;
+    // Main plane: dg = f / A.
+    const double dg = f * pm.inverse_main;
     for (int i = 0; i < 3; ++i) r[i] = trial[i] - dg * Dna[i];
     bool ok = r[0] >= r[1] && r[1] >= r[2];
     if (!ok) {
       // Edge: s1 = s2 (planes a, b) if s2 came out above s1, else s2 = s3 (planes a, c).
       const bool upper = r[1] > r[0];
       const double fb = upper ? f_planes(trial[1], trial[2]) : f_planes(trial[0], trial[1]);
-      const double B = 4.0 * L * sphi * spsi +
-                       (upper ? 2.0 * G * (1.0 - sphi) * (1.0 - spsi)
-                              : 2.0 * G * (1.0 + sphi) * (1.0 + spsi));
-      const double det = A * A - B * B;
-      const double da = (A * f - B * fb) / det, db = (A * fb - B * f) / det;
-      const double* Dn2 = upper ? Dnb : Dnc;
+      const double A = pm.main_plane, B = upper ? pm.edge_upper : pm.edge_lower;
+      const double inv_det = upper ? pm.inverse_det_upper : pm.inverse_det_lower;
+      const double da = (A * f - B * fb) * inv_det, db = (A * fb - B * f) * inv_det;
+      const double Dn2[3] = {upper ? ls : ls + 2.0 * G * (1.0 + spsi),
+                             upper ? ls + 2.0 * G * (1.0 + spsi) : ls + 2.0 * G * (-1.0 + spsi),
+                             upper ? ls + 2.0 * G * (-1.0 + spsi) : ls};
       for (int i = 0; i < 3; ++i) r[i] = trial[i] - da * Dna[i] - db * Dn2[i];
       ok = da >= 0.0 && db >= 0.0 && r[0] >= r[1] - 1e-12 * scale &&
            r[1] >= r[2] - 1e-12 * scale;
     }
-    const double apex = sphi > 0.0 ? c * cphi / sphi : 1e300;
-    if (!ok || (r[0] + r[1] + r[2]) / 3.0 > apex) {
-      r[0] = r[1] = r[2] = apex;
-    }
+    if (!ok || (r[0] + r[1] + r[2]) / 3.0 > pm.apex) r[0] = r[1] = r[2] = pm.apex;
   }
   // Tension cut-off (never above the apex of the cone).
-  const double cutoff = math::min(m.tension_cutoff, sphi > 0.0 ? c * cphi / sphi : 1e300);
+  const double cap = pm.principal_cap;
   for (int i = 0; i < 3; ++i) {
-    if (r[i] > cutoff) {
-      r[i] = cutoff;
+    if (r[i] > cap) {
+      r[i] = cap;
       plastic = true;
     }
   }
   if (!plastic) return 0.0;
   // Plastic strain increment C^-1 (trial - returned) and its work with the returned stress.
-  const double E = m.young_modulus, nu = m.poisson_ratio;
+  const double nu = pm.material.poisson_ratio;
   const double d[3] = {trial[0] - r[0], trial[1] - r[1], trial[2] - r[2]};
   const double trd = d[0] + d[1] + d[2];
   double work = 0.0;
-  for (int i = 0; i < 3; ++i) work += r[i] * ((1.0 + nu) * d[i] - nu * trd) / E;
-  // Back to components: the in-plane pair keeps its principal directions.
-  double back[3];
-  for (int k = 0; k < 3; ++k) back[order[k]] = r[k];
-  const double centre = 0.5 * (back[0] + back[1]), radius = 0.5 * (back[0] - back[1]);
-  s[0] = centre + radius * ip.c2;
-  s[1] = centre - radius * ip.c2;
-  s[2] = radius * ip.s2;
-  s[3] = back[2];
+  for (int i = 0; i < 3; ++i) work += r[i] * ((1.0 + nu) * d[i] - nu * trd);
+  work *= pm.inverse_young;
+  // Back to components: the in-plane pair keeps its principal directions (those of the trial:
+  // cos 2 theta = h / radius, sin 2 theta = s_xy / radius).
+  const double ra = kz == 0 ? r[1] : r[0], rb = kz == 2 ? r[1] : r[2];
+  const double rz = r[kz];
+  const double centre_r = 0.5 * (ra + rb), radius_r = 0.5 * (ra - rb);
+  if (radius > 0.0) {
+    const double k = radius_r / radius;
+    s[0] = centre_r + k * h;
+    s[1] = centre_r - k * h;
+    s[2] = k * s[2];
+  } else {
+    s[0] = centre_r + radius_r;
+    s[1] = centre_r - radius_r;
+    s[2] = 0.0;
+  }
+  s[3] = rz;
   return work;
 }
 
