@@ -202,6 +202,18 @@ P2GBoxes gather_nodes(S& scatter, NodeBox touched, const NodeBox& whole,
   return {touched, region};
 }
 
+// The APIC momentum w (m v + m C (x_i - x_p)) of the nodes of stencil row b, separable:
+// wx_a P + wxd_a Q with P = wy (m v + m C_.y dy_b) and Q = wy m C_.x (wy: the row's weight, dyb:
+// its offset y_b - y_p; mv = m v, mC = m C). Used per phase by both P2Gs.
+KOKKOS_FORCEINLINE_FUNCTION void apic_row_factors(const double wy, const double dyb,
+                                                  const double mv[2], const double mC[2][2],
+                                                  double P[2], double Q[2]) {
+  P[0] = wy * (mv[0] + mC[0][1] * dyb);
+  P[1] = wy * (mv[1] + mC[1][1] * dyb);
+  Q[0] = wy * mC[0][0];
+  Q[1] = wy * mC[1][0];
+}
+
 // The 3 x 3 node contributions of point q into the interleaved buffer `buf`; returns the first
 // node of the stencil in (bi, bj) (for the touched-node rectangle).
 template <bool Atomic, class MemorySpace>
@@ -228,8 +240,8 @@ KOKKOS_FORCEINLINE_FUNCTION void p2g_point(const Particles<MemorySpace>& p, cons
   offset_weights(sx, xp, dx, wxd);
   for (int b = 0; b < 3; ++b) {
     const double wy = sy.w[b], dwy = sy.dw[b], dyb = (sy.base + b) * dx - yp;
-    const double P[2] = {wy * (mv[0] + mC[0][1] * dyb), wy * (mv[1] + mC[1][1] * dyb)};
-    const double Q[2] = {wy * mC[0][0], wy * mC[1][0]};
+    double P[2], Q[2];
+    apic_row_factors(wy, dyb, mv, mC, P, Q);
     const double F1[2] = {-Vs[0] * wy, -Vs[2] * wy};
     const double F0[2] = {-Vs[2] * dwy + wy * m * gx, -Vs[1] * dwy + wy * m * gy};
     double* row = buf + F * (sx.base + nx * (sy.base + b));

@@ -38,7 +38,8 @@ KOKKOS_INLINE_FUNCTION double mohr_coulomb_return(const PreparedMaterial& pm, do
     plastic = true;
     // D n for the three planes' flow directions (principal space).
     const double ls = 2.0 * L * spsi;
-    const double Dna[3] = {ls + 2.0 * G * (1.0 + spsi), ls, ls + 2.0 * G * (-1.0 + spsi)};
+    const double up = ls + 2.0 * G * (1.0 + spsi), down = ls + 2.0 * G * (-1.0 + spsi);
+    const double Dna[3] = {up, ls, down};
     // Main plane: dg = f / A.
     const double dg = f * pm.inverse_main;
     for (int i = 0; i < 3; ++i) r[i] = trial[i] - dg * Dna[i];
@@ -50,9 +51,8 @@ KOKKOS_INLINE_FUNCTION double mohr_coulomb_return(const PreparedMaterial& pm, do
       const double A = pm.main_plane, B = upper ? pm.edge_upper : pm.edge_lower;
       const double inv_det = upper ? pm.inverse_det_upper : pm.inverse_det_lower;
       const double da = (A * f - B * fb) * inv_det, db = (A * fb - B * f) * inv_det;
-      const double Dn2[3] = {upper ? ls : ls + 2.0 * G * (1.0 + spsi),
-                             upper ? ls + 2.0 * G * (1.0 + spsi) : ls + 2.0 * G * (-1.0 + spsi),
-                             upper ? ls + 2.0 * G * (-1.0 + spsi) : ls};
+      // D n of the second plane: b (s1 = s2 side) for the upper edge, c for the lower.
+      const double Dn2[3] = {upper ? ls : up, upper ? up : down, upper ? down : ls};
       for (int i = 0; i < 3; ++i) r[i] = trial[i] - da * Dna[i] - db * Dn2[i];
       ok = da >= 0.0 && db >= 0.0 && r[0] >= r[1] - 1e-12 * scale &&
            r[1] >= r[2] - 1e-12 * scale;

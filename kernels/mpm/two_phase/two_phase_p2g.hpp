@@ -95,10 +95,9 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_p2g_point(
   offset_weights(sx, xp, dx, wxd);
   for (int b = 0; b < 3; ++b) {
     const double wy = sy.w[b], dwy = sy.dw[b], dyb = (sy.base + b) * dx - yp;
-    const double PS[2] = {wy * (mvS[0] + mCS[0][1] * dyb), wy * (mvS[1] + mCS[1][1] * dyb)};
-    const double QS[2] = {wy * mCS[0][0], wy * mCS[1][0]};
-    const double PL[2] = {wy * (mvL[0] + mCL[0][1] * dyb), wy * (mvL[1] + mCL[1][1] * dyb)};
-    const double QL[2] = {wy * mCL[0][0], wy * mCL[1][0]};
+    double PS[2], QS[2], PL[2], QL[2];
+    lsi::mpm::detail::apic_row_factors(wy, dyb, mvS, mCS, PS, QS);
+    lsi::mpm::detail::apic_row_factors(wy, dyb, mvL, mCL, PL, QL);
     // mixture: -(Vs . grad w) + w fext;  liquid: Vnp grad w + w fLext
     const double FS1[2] = {-Vs[0] * wy, -Vs[2] * wy};
     const double FS0[2] = {-Vs[2] * dwy + wy * fext[0], -Vs[1] * dwy + wy * fext[1]};
