@@ -143,11 +143,11 @@ TEST(SceneReference, AllNineFilesParseWithTheStudyValues) {
       EXPECT_TRUE(s.methods.empirical.has_value());
       EXPECT_TRUE(s.methods.analytical.has_value());
       EXPECT_FALSE(s.methods.literature.has_value());
-      // The MPM column of the study: dry, PIC, 16 cells through the thickness (docs/mpm.md).
+      // The MPM column of the study: dry, APIC, 16 cells through the thickness (docs/mpm.md).
       ASSERT_TRUE(s.methods.mpm.has_value());
       EXPECT_DOUBLE_EQ(s.methods.mpm->at("cell_size_m").get<double>(), s.landslide.thickness_m / 16);
       EXPECT_EQ(s.methods.mpm->at("phases"), "dry");
-      EXPECT_EQ(s.methods.mpm->at("transfer"), "pic");
+      EXPECT_EQ(s.methods.mpm->at("transfer"), "apic");
       EXPECT_EQ(s.source.at("name"), name);
       ++parsed;
     }
