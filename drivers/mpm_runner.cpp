@@ -199,6 +199,10 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
         o.overtopped);
     add("retained_volume", "m^2", "volume of material upstream of the upstream crest corner",
         o.total - o.overtopped);
+    add("barrier_interior_volume", "m^2",
+        "volume of the material points whose centre lies inside the barrier (contact leak)",
+        mpm::barrier_interior_volume<Exec>(solid_points(solver), c.barrier->shape,
+                                           motion.displacement));
     add("barrier_friction_work", "J/m", "work dissipated by the barrier's base friction",
         motion.friction_work);
     add("barrier_kinetic_energy", "J/m", "kinetic energy of the barrier",
@@ -273,6 +277,10 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
   if (c.barrier && r.series.count("face_pore_pressure_max")) {
     const auto& v = r.series.at("face_pore_pressure_max").values;
     r.extra["face_pore_pressure_max_pa"] = *std::max_element(v.begin(), v.end());
+  }
+  if (c.barrier && r.series.count("barrier_interior_volume")) {
+    const auto& v = r.series.at("barrier_interior_volume").values;
+    r.extra["barrier_interior_volume_max_m2"] = *std::max_element(v.begin(), v.end());
   }
   r.extra["particles"] = particle_count;
   r.extra["steps"] = static_cast<double>(solver.steps());

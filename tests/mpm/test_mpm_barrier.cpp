@@ -6,7 +6,8 @@
 //    (kernels/closed_form/rigid_block_response.hpp);
 //  * the contact of an elastic block with a fixed barrier (barrier_contact.hpp) against
 //    one-dimensional wave theory and momentum conservation;
-//  * a free, frictionless barrier hit by the block: momentum of block + barrier conserved.
+//  * a free, frictionless barrier hit by the block: momentum of block + barrier conserved;
+//  * the volume of points inside the barrier (overtopping.hpp, the contact-leak diagnostic).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "kernels/closed_form/rigid_block_response.hpp"
+#include "kernels/mpm/overtopping.hpp"
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
 #include "support/backends.hpp"
@@ -233,6 +235,49 @@ TYPED_TEST(MpmBarrier, FreeBarrierConservesMomentum) {
               r.momentum_change, r.barrier_momentum);
   EXPECT_GT(r.barrier_momentum, 0.3 * block_mass * 2.0);   // it did push the barrier
   EXPECT_NEAR(r.barrier_momentum / r.momentum_change, 1.0, 1e-9);
+}
+
+// Points placed around a trapezoid (H 4, B 2, b 1 m, face 80 deg, toe at x = 1 m), at rest and
+// displaced 0.5 m downstream: those whose centre is inside count with their initial volume; those
+// upstream of the face, above the crest, beyond the back face or on the base do not. Each point
+// has its own V0 (a power of 2), so the sum says exactly which counted: exact equality.
+TYPED_TEST(MpmBarrier, InteriorVolumeCountsThePointsInsideTheDisplacedBarrier) {
+  using Mem = typename TypeParam::memory_space;
+  const double beta = 80.0 * kPi / 180.0, run = 4.0 / std::tan(beta);   // the face's run, 0.705 m
+  const BarrierShape shape(1.0, 0.0, 4.0, 2.0, 1.0, beta);
+  const double shift = 0.5, toe = 1.0 + shift;   // the displaced toe
+  // Face x at y = 2: toe + run / 2; back face x at y: toe + 2 - y (2 - 1.705) / 4.
+  struct P {
+    double x, y;
+    bool inside_displaced, inside_at_rest;
+  };
+  const P pts[] = {
+      {toe + 1.0, 2.0, true, true},                // mid-barrier
+      {toe + run / 2 + 0.01, 2.0, true, true},     // 1 cm behind the displaced face
+      {toe + run / 2 - 0.01, 2.0, false, true},    // 1 cm in front of it
+      {toe + run + 0.4, 3.99, true, true},         // 1 cm below the crest
+      {toe + run + 0.4, 4.01, false, false},       // 1 cm above it
+      {toe + 1.9, 0.05, true, false},              // near the displaced heel, inside
+      {toe + 2.01, 0.05, false, false},            // beyond the heel
+      {toe + 1.0, 0.0, false, false},              // on the base: the base wall's
+      {1.0 + run / 2 + 0.2, 2.0, false, true},     // behind the face at rest, in front once displaced
+  };
+  const int n = sizeof(pts) / sizeof(pts[0]);
+  Particles<Mem> p(n);
+  auto pos = Kokkos::create_mirror_view(p.position);
+  auto v0 = Kokkos::create_mirror_view(p.volume0);
+  double displaced = 0.0, at_rest = 0.0;
+  for (int q = 0; q < n; ++q) {
+    pos(q, 0) = pts[q].x;
+    pos(q, 1) = pts[q].y;
+    v0(q) = std::ldexp(1.0, -q);
+    if (pts[q].inside_displaced) displaced += v0(q);
+    if (pts[q].inside_at_rest) at_rest += v0(q);
+  }
+  Kokkos::deep_copy(p.position, pos);
+  Kokkos::deep_copy(p.volume0, v0);
+  EXPECT_EQ(barrier_interior_volume<TypeParam>(p, shape, shift), displaced);
+  EXPECT_EQ(barrier_interior_volume<TypeParam>(p, shape, 0.0), at_rest);
 }
 
 }  // namespace

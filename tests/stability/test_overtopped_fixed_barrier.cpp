@@ -89,6 +89,14 @@ TEST(OvertoppedFixedBarrier, RunsToItsEndCleanly) {
   EXPECT_NEAR(overtopped + retained, 50.0, 1e-9 * 50.0);
   EXPECT_GT(overtopped, 0.5);
   EXPECT_GT(retained, 40.0);
+  // The grid contact leaks: points creep into the barrier (docs/mpm.md, "Known limitations").
+  // Measured at most 1.42 m^2 inside at once (58 points, 2.8 % of the flow); 2 m^2 (4 %) catches
+  // a contact that leaks more, and the volume must be positive: the diagnostic sees the leak.
+  const auto& interior = r.series.at("barrier_interior_volume").values;
+  const double interior_max = *std::max_element(interior.begin(), interior.end());
+  std::cout << "[ overtopping ] largest volume inside the barrier " << interior_max << " m^2\n";
+  EXPECT_GT(interior_max, 0.0);
+  EXPECT_LT(interior_max, 2.0);
 }
 
 }  // namespace
