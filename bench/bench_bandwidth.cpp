@@ -32,6 +32,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <string>
+#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
 
 namespace {
 

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "kernels/closed_form/batch.hpp"
+#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
 
 namespace {
 using namespace lsi;

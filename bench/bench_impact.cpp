@@ -78,6 +78,7 @@
 #include "kernels/mpm/solver.hpp"
 #include "kernels/mpm/two_phase/two_phase_builder.hpp"
 #include "kernels/mpm/two_phase/two_phase_solver.hpp"
+#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
 
 namespace {
 using namespace lsi;

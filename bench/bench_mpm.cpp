@@ -46,6 +46,7 @@
 
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
+#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
 
 namespace {
 using namespace lsi::mpm;

@@ -29,6 +29,7 @@
 #include "drivers/sweep_table.hpp"
 #include "kernels/closed_form/batch.hpp"
 #include "sweeps/closed_form_sweep.hpp"
+#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
 
 namespace {
 using namespace lsi;

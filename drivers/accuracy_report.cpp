@@ -13,6 +13,7 @@
 #include "drivers/json_fields.hpp"
 #include "drivers/scene.hpp"
 #include "drivers/time_call.hpp"
+#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
 
 namespace lsi {
 namespace {

@@ -12,12 +12,10 @@
 #include <set>
 #include <stdexcept>
 #include <utility>
+#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
 
 #ifndef LSI_VERSION
 #define LSI_VERSION "unknown"
-#endif
-#ifndef LSI_GIT_REVISION
-#define LSI_GIT_REVISION "unknown"
 #endif
 
 namespace lsi {

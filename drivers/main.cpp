@@ -23,6 +23,7 @@
 #include "drivers/scene.hpp"
 #include "drivers/subcommand.hpp"
 #include "drivers/text_file.hpp"
+#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
 
 namespace {
 

@@ -39,6 +39,7 @@
 #include "drivers/sweep_runner.hpp"
 #include "drivers/sweep_report.hpp"
 #include "drivers/sweep_table.hpp"
+#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
 
 namespace {
 namespace fs = std::filesystem;

@@ -6,12 +6,10 @@
 #include <stdexcept>
 
 #include "drivers/hdf5_io.hpp"
+#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
 
 #ifndef LSI_VERSION
 #define LSI_VERSION "unknown"
-#endif
-#ifndef LSI_GIT_REVISION
-#define LSI_GIT_REVISION "unknown"
 #endif
 
 namespace lsi {

@@ -49,6 +49,17 @@ TEST(Cli, VersionAndHelp) {
   const Outcome v = run("--version");
   EXPECT_EQ(v.code, 0);
   EXPECT_NE(v.out.find("lsi " LSI_VERSION), std::string::npos) << v.out;
+  // The revision is that of the sources as built (cmake/git_revision.cmake regenerates it at every
+  // build), not of the last configure: the checkout's HEAD, "-dirty" when tracked files differ.
+  const std::string git = "git -C " + source_dir.string();
+  const Outcome head = lsi::testing::run_command(git + " rev-parse --short=12 HEAD 2>/dev/null");
+  if (head.code == 0 && !head.out.empty()) {
+    const Outcome changes =
+        lsi::testing::run_command(git + " status --porcelain --untracked-files=no 2>/dev/null");
+    const std::string revision = head.out.substr(0, head.out.find('\n')) +
+                                 (changes.out.empty() ? std::string(")") : std::string("-dirty)"));
+    EXPECT_NE(v.out.find("(" + revision), std::string::npos) << v.out << " expected " << revision;
+  }
   for (const char* sub : {"run", "design", "compare"}) {
     const Outcome h = run(std::string(sub) + " --help");
     EXPECT_EQ(h.code, 0) << sub;
