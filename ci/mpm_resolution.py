@@ -2,7 +2,8 @@
 """Resolution study of the MPM impact (issue 4): runs reference scenes at several cell sizes
 (cells through the landslide's thickness) and tabulates peak force, impact duration, final
 displacement, steps and solver time, so that the default resolution of scenes/reference/ can be
-chosen and justified (docs/mpm.md, "Reference study resolution").
+chosen and justified (docs/mpm.md, "Reference study resolution"); also the lowest energy
+residual of each run and the largest volume of points inside the barrier (the contact's leak).
 
 usage: ci/mpm_resolution.py [--cells 4 8 16] [--phases saturated] [--drag semi-implicit]
                             [--out results/mpm_resolution] SCENE.json ...
@@ -12,6 +13,8 @@ import json
 import os
 import subprocess
 import sys
+
+import h5py
 
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -55,16 +58,21 @@ def main():
                 print(r.stdout, r.stderr, file=sys.stderr)
                 sys.exit(r.returncode)
             m = json.loads(r.stdout)["mpm"]
+            # From the histories: the lowest energy residual (numerical losses show as < 0).
+            with h5py.File(os.path.join(a.out, s["name"] + ".h5"), "r") as hf:
+                m["energy_residual_min"] = float(hf["mpm/energy_residual"][:].min())
             if r.returncode == 3:
                 print("%-6s %3d cells/h: %s" % (scene["name"], n, r.stderr.strip()), flush=True)
                 rows.append((scene["name"], n, h / n, m))
                 continue
             rows.append((scene["name"], n, h / n, m))
             print("%-6s %3d cells/h  dx %.4f m: peak %.1f kN/m, duration %.2f s, displacement "
-                  "%s m, %d points, %d steps, %.1f s" % (
+                  "%s m, %d points, %d steps, %.1f s, residual min %.3f, inside the barrier "
+                  "at most %.3f m^2" % (
                       scene["name"], n, h / n, m["peak_force"] / 1e3, m["impact_duration"],
                       "%.3f" % m["final_displacement"] if m.get("final_displacement") is not None
-                      else "never stops", m["particles"], m["steps"], m["solver_seconds"]),
+                      else "never stops", m["particles"], m["steps"], m["solver_seconds"],
+                      m["energy_residual_min"], m.get("barrier_interior_volume_max_m2", 0.0)),
                   flush=True)
     with open(os.path.join(a.out, "resolution.json"), "w") as f:
         json.dump([{"scene": s, "cells_per_thickness": n, "cell_size_m": dx, "mpm": m}
