@@ -1,9 +1,10 @@
 // The fastest reference flow, saturated, against the earth barrier: scenes/reference/L3-B3.json
-// (3 m at 12.5 m/s, 60 deg face, free barrier) with the two-phase landslide at h / 4. An earlier
-// version of the solver stopped this scene with "a material point left the grid" at t = 4.5 s
-// (docs/two_phase.md, "Impacts"): a splash along the face fell behind the barrier and was thrown
-// off the grid. It now runs to its end; this test keeps it so, with the balances that must hold
-// whatever the splash does.
+// (3 m at 12.5 m/s, 60 deg face, free barrier) with the two-phase landslide at h / 4. With a
+// smooth downstream wall and no top wall this scene stopped with "a material point left the
+// grid" at t = 4.5 s (docs/two_phase.md, "Impacts"): a splash along the face fell behind the
+// barrier and was thrown off the grid. The impact domain's no-slip catch walls (downstream and
+// on top) catch it; this test keeps the scene running to its end, with the balances that must
+// hold whatever the splash does.
 #include <gtest/gtest.h>
 
 #include <algorithm>
