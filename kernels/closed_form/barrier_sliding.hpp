@@ -47,55 +47,62 @@ struct BarrierMotion {
   }
 };
 
+// Written without branches: every phase is computed and the answer selected, so that the batched
+// models (batch.hpp) vectorise over samples. Lanes of a phase that does not apply may hold
+// infinities (e.g. t* = g'/k1 with k1 = 0); they are never selected.
 KOKKOS_INLINE_FUNCTION BarrierMotion barrier_motion(const ForcePulse& p, const SlidingBlock& b) {
+  const double g_friction = b.base_friction * gravity;          // g' = g tan(delta_b)
+  // Moves only if the peak drive beats friction.
+  const bool moves = (b.drive > 0.0) & (b.acceleration(p.peak) > 0.0);
+  const double k1 = b.drive * p.peak / (b.mass * p.rise_time);
+  const double start_time = g_friction / k1;                      // t*
+  const double uA = p.rise_time - start_time;
+  const double v_T1 = 0.5 * k1 * uA * uA;
+  const double x_T1 = k1 * uA * uA * uA / 6.0;
+  const double a1 = k1 * uA;                                      // = acceleration at T1
+  const double dT = p.duration - p.rise_time;
+  const double sB = b.drive * (p.residual - p.peak) / (b.mass * dT);
+  const double uStop = first_stop(v_T1, a1, sB, dT);
+  const bool stops_before_T2 = uStop >= 0.0;                      // friction stops it before T2
+  const double x_stop = x_T1 + v_T1 * uStop + 0.5 * a1 * uStop * uStop +
+                        sB * uStop * uStop * uStop / 6.0;
+  const double v_T2 = v_T1 + a1 * dT + 0.5 * sB * dT * dT;
+  const double x_T2 = x_T1 + v_T1 * dT + 0.5 * a1 * dT * dT + sB * dT * dT * dT / 6.0;
+  const double aC = b.acceleration(p.residual);
+  const bool decelerates = aC < 0.0;                              // after T2: to rest, or never
+  const double stop_C = decelerates ? p.duration - v_T2 / aC : math::infinity();
+  const double x_C = decelerates ? x_T2 - 0.5 * v_T2 * v_T2 / aC : math::infinity();
+
   BarrierMotion m;
   m.T1 = p.rise_time;
   m.T2 = p.duration;
-  const double g_friction = b.base_friction * gravity;          // g' = g tan(delta_b)
-  // Moves only if the peak drive beats friction.
-  if (!(b.drive > 0.0) || !(b.acceleration(p.peak) > 0.0)) return m;
-  m.moves = true;
-  m.k1 = b.drive * p.peak / (b.mass * p.rise_time);
-  m.start_time = g_friction / m.k1;                               // t*
-  const double uA = p.rise_time - m.start_time;
-  m.v_T1 = 0.5 * m.k1 * uA * uA;
-  m.x_T1 = m.k1 * uA * uA * uA / 6.0;
-  m.a1 = m.k1 * uA;                                               // = acceleration at T1
-  const double dT = p.duration - p.rise_time;
-  m.sB = b.drive * (p.residual - p.peak) / (b.mass * dT);
-  const double uStop = first_stop(m.v_T1, m.a1, m.sB, dT);
-  if (uStop >= 0.0) {                                             // friction stops it before T2
-    m.stop_time = p.rise_time + uStop;
-    m.final_displacement = m.x_T1 + m.v_T1 * uStop + 0.5 * m.a1 * uStop * uStop +
-                           m.sB * uStop * uStop * uStop / 6.0;
-    m.v_T2 = 0.0;
-    m.x_T2 = m.final_displacement;
-    return m;
-  }
-  m.v_T2 = m.v_T1 + m.a1 * dT + 0.5 * m.sB * dT * dT;
-  m.x_T2 = m.x_T1 + m.v_T1 * dT + 0.5 * m.a1 * dT * dT + m.sB * dT * dT * dT / 6.0;
-  m.aC = b.acceleration(p.residual);
-  if (m.aC < 0.0) {                                               // decelerates to rest
-    m.stop_time = p.duration - m.v_T2 / m.aC;
-    m.final_displacement = m.x_T2 - 0.5 * m.v_T2 * m.v_T2 / m.aC;
-  } else {                                                        // no friction left: never stops
-    m.stop_time = math::infinity();
-    m.final_displacement = math::infinity();
-  }
+  m.moves = moves;
+  m.k1 = moves ? k1 : 0.0;
+  m.start_time = moves ? start_time : 0.0;
+  m.v_T1 = moves ? v_T1 : 0.0;
+  m.x_T1 = moves ? x_T1 : 0.0;
+  m.a1 = moves ? a1 : 0.0;
+  m.sB = moves ? sB : 0.0;
+  m.v_T2 = moves & !stops_before_T2 ? v_T2 : 0.0;
+  m.x_T2 = !moves ? 0.0 : stops_before_T2 ? x_stop : x_T2;
+  m.aC = moves & !stops_before_T2 ? aC : 0.0;
+  m.stop_time = !moves ? 0.0 : stops_before_T2 ? p.rise_time + uStop : stop_C;
+  m.final_displacement = !moves ? 0.0 : stops_before_T2 ? x_stop : x_C;
   return m;
 }
 
 // Final displacement of a barrier of the given mass (+infinity: fixed, no motion) under a pulse
-// normal to a face at angle face_angle (rad), no face shear: what sweeps and the inverse design
-// need, without the time histories.
+// normal to a face at angle face_angle (rad, in [0, pi/2]), no face shear: what sweeps and the
+// inverse design need, without the time histories. Branch-free like barrier_motion().
 KOKKOS_INLINE_FUNCTION double final_displacement_under(const ForcePulse& pulse, double barrier_mass,
                                                        double base_friction, double face_angle) {
-  if (!math::isfinite(barrier_mass)) return 0.0;
+  const bool fixed = !math::isfinite(barrier_mass);
   SlidingBlock block;
-  block.mass = barrier_mass;
+  block.mass = fixed ? 1.0 : barrier_mass;
   block.base_friction = base_friction;
   block.drive = resolve_face_force(face_angle).sliding_drive(base_friction);
-  return barrier_motion(pulse, block).final_displacement;
+  const double x = barrier_motion(pulse, block).final_displacement;
+  return fixed ? 0.0 : x;
 }
 
 }  // namespace lsi

@@ -22,26 +22,26 @@ struct SlidingBlock {
 
 // Smallest root u in (0, u_max] of v + a u + s u^2 / 2 = 0 at which v turns from positive to
 // zero, for v >= 0; returns a negative number when there is none. Numerically stable form.
+// Written without branches (every case is computed, the answer selected) so that the batched
+// models vectorise over samples; a case that does not apply may divide by zero in its own lane,
+// harmlessly (IEEE infinities, never selected). `&` and `|` on the comparisons, not `&&` and `||`:
+// a short circuit is a branch.
 KOKKOS_INLINE_FUNCTION double first_stop(double v, double a, double s, double u_max) {
-  if (v <= 0.0) {   // at rest: it stays at rest unless the acceleration is (or turns) positive
-    return (a < 0.0 || (a == 0.0 && s <= 0.0)) ? 0.0 : -1.0;
-  }
-  double best = -1.0;
-  if (s == 0.0) {
-    if (a < 0.0) best = -v / a;
-  } else {
-    const double disc = a * a - 2.0 * s * v;
-    if (disc >= 0.0) {
-      const double sq = math::sqrt(disc);
-      const double q = -0.5 * (a + (a >= 0.0 ? sq : -sq));   // roots q/(s/2) and v/q
-      const double r1 = (q != 0.0) ? q / (0.5 * s) : -1.0;
-      const double r2 = (q != 0.0) ? v / q : -1.0;
-      for (double r : {r1, r2}) {
-        if (r > 0.0 && (best < 0.0 || r < best)) best = r;
-      }
-    }
-  }
-  return (best > 0.0 && best <= u_max) ? best : -1.0;
+  // At rest (v <= 0): it stays at rest unless the acceleration is (or turns) positive.
+  const double at_rest = ((a < 0.0) | ((a == 0.0) & (s <= 0.0))) ? 0.0 : -1.0;
+  // Each candidate root below is +infinity where it does not exist.
+  // s = 0: constant acceleration.
+  const double linear = a < 0.0 ? -v / a : math::infinity();
+  // s != 0: the smaller positive root of the quadratic, q/(s/2) or v/q. With no real root the
+  // square root is NaN, and so are q and both roots: every comparison with a NaN is false.
+  const double sq = math::sqrt(a * a - 2.0 * s * v);
+  const double q = -0.5 * (a + (a >= 0.0 ? sq : -sq));
+  const double r1 = q / (0.5 * s), r2 = v / q;   // q = 0: r1 = 0 (no stop) and r2 = infinity
+  const double root1 = r1 > 0.0 ? r1 : math::infinity();
+  const double root2 = r2 > 0.0 ? r2 : math::infinity();
+  const double best = s == 0.0 ? linear : math::min(root1, root2);
+  const double sliding = best <= u_max ? best : -1.0;
+  return v <= 0.0 ? at_rest : sliding;
 }
 
 }  // namespace lsi
