@@ -3,7 +3,9 @@
 (cells through the landslide's thickness) and tabulates peak force, impact duration, final
 displacement, steps and solver time, so that the default resolution of scenes/reference/ can be
 chosen and justified (docs/mpm.md, "Reference study resolution"); also the lowest energy
-residual of each run and the largest volume of points inside the barrier (the contact's leak).
+residual of each run and the largest volume of points inside the barrier (the contact's leak),
+and, with --set transfer_dissipation=true, the energy lost in the grid transfers and the
+residual it leaves unexplained (docs/mpm.md, "Energy lost in the transfers").
 
 usage: ci/mpm_resolution.py [--cells 4 8 16] [--phases saturated] [--drag semi-implicit]
                             [--out results/mpm_resolution] SCENE.json ...
@@ -72,7 +74,11 @@ def main():
                       scene["name"], n, h / n, m["peak_force"] / 1e3, m["impact_duration"],
                       "%.3f" % m["final_displacement"] if m.get("final_displacement") is not None
                       else "never stops", m["particles"], m["steps"], m["solver_seconds"],
-                      m["energy_residual_min"], m.get("barrier_interior_volume_max_m2", 0.0)),
+                      m["energy_residual_min"], m.get("barrier_interior_volume_max_m2", 0.0))
+                  + (", transfer dissipation %.3f MJ/m, unexplained residual %.4f .. %.4f" % (
+                      m["transfer_dissipation_j_per_m"] / 1e6, m["energy_residual_unexplained_min"],
+                      m["energy_residual_unexplained_max"])
+                     if "transfer_dissipation_j_per_m" in m else ""),
                   flush=True)
     with open(os.path.join(a.out, "resolution.json"), "w") as f:
         json.dump([{"scene": s, "cells_per_thickness": n, "cell_size_m": dx, "mpm": m}

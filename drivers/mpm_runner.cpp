@@ -81,6 +81,20 @@ using SaturatedSolver = mpm::two_phase::TwoPhaseSolver<Exec>;
 
 using AddSeries = std::function<void(const char*, const char*, const char*, double)>;
 
+// With `transfer_dissipation` on: the kinetic energy lost in the grid transfers and the residual
+// it leaves unexplained (kernels/mpm/transfer_dissipation.hpp).
+template <class SolverT, class Report>
+void add_transfer_dissipation(const SolverT& sv, const Report& e, const AddSeries& add) {
+  if (!sv.settings().track_transfer_dissipation) return;
+  add("transfer_dissipation", "J/m",
+      "kinetic energy lost in the transfers between points and grid (accumulated)",
+      sv.transfer_dissipation());
+  add("energy_residual_unexplained", "1",
+      "energy_residual with the transfer dissipation booked: (total - initial total + transfer "
+      "dissipation) / the same scale",
+      sv.energy_residual_unexplained(e));
+}
+
 // The energy histories of each kind of solver.
 double add_energies(const DrySolver& sv, const AddSeries& add) {
   const mpm::EnergyReport e = sv.energy();
@@ -94,6 +108,7 @@ double add_energies(const DrySolver& sv, const AddSeries& add) {
       "(total energy - initial total) / (largest kinetic + elastic + dissipated + "
       "|potential change|)",
       sv.energy_residual(e));
+  add_transfer_dissipation(sv, e, add);
   return e.kinetic;
 }
 
@@ -114,6 +129,7 @@ double add_energies(const SaturatedSolver& sv, const AddSeries& add) {
       "(total energy - initial total) / (largest kinetic + stored + dissipated + |potential "
       "change|)",
       sv.energy_residual(e));
+  add_transfer_dissipation(sv, e, add);
   return e.kinetic();
 }
 
@@ -282,6 +298,12 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
     const auto& v = r.series.at("barrier_interior_volume").values;
     r.extra["barrier_interior_volume_max_m2"] = *std::max_element(v.begin(), v.end());
   }
+  if (r.series.count("transfer_dissipation")) {
+    r.extra["transfer_dissipation_j_per_m"] = r.series.at("transfer_dissipation").values.back();
+    const auto& u = r.series.at("energy_residual_unexplained").values;
+    r.extra["energy_residual_unexplained_min"] = *std::min_element(u.begin(), u.end());
+    r.extra["energy_residual_unexplained_max"] = *std::max_element(u.begin(), u.end());
+  }
   r.extra["particles"] = particle_count;
   r.extra["steps"] = static_cast<double>(solver.steps());
   r.extra["end_time"] = solver.time();
@@ -322,6 +344,7 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
     s.flip_ratio = c.settings.flip_ratio;
     s.atomic_scatter = c.settings.atomic_scatter;
     s.small_mass_fraction = c.settings.small_mass_fraction;
+    s.track_transfer_dissipation = c.settings.transfer_dissipation;
     DrySolver solver(grid, particles, c.materials, c.walls, s);
     if (c.barrier) solver.attach_barrier(*c.barrier);
     drive(c, solver, particles.count, out);
@@ -352,6 +375,7 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
   s.gravity[1] = c.gravity[1];
   s.drag = c.two_phase->drag;
   s.atomic_scatter = c.settings.atomic_scatter;
+  s.track_transfer_dissipation = c.settings.transfer_dissipation;
   // The pore liquid does not penetrate the walls (impermeable) and slides along them freely.
   mpm::Boundaries liquid_walls = c.walls;
   for (mpm::Wall* w : {&liquid_walls.left, &liquid_walls.right, &liquid_walls.bottom, &liquid_walls.top})

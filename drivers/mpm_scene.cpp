@@ -26,7 +26,7 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
   std::vector<std::string> keys = {"cell_size_m", "particles_per_cell", "courant", "end_time_s",
                                    "max_time_step_s", "output_interval_s", "transfer",
                                    "flip_ratio", "scatter", "snapshot_interval_s",
-                                   "small_mass_fraction"};
+                                   "small_mass_fraction", "transfer_dissipation"};
   if (impact) keys.insert(keys.end(), {"base_friction", "phases", "drag"});
   const jf::ObjectReader r(block, path, keys);
   MpmSettings s;
@@ -78,6 +78,7 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
       r.number_or("small_mass_fraction", impact ? 1e-3 : 0.0, jf::interval('[', 0, 0.1, ']'));
   s.atomic_scatter = r.choice("scatter", {"duplicated", "atomic"}, std::string("duplicated")) == "atomic";
   s.snapshot_interval_s = r.optional_number("snapshot_interval_s", jf::greater_than(0, "s")).value_or(0.0);
+  s.transfer_dissipation = r.boolean_or("transfer_dissipation", false);
   return s;
 }
 

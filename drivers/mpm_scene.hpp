@@ -30,6 +30,7 @@ struct MpmSettings {
   bool atomic_scatter = false;        // "scatter": "duplicated" or "atomic"
   double small_mass_fraction = 0.0;   // dry solver: nodes below this x lightest point: no force
   double snapshot_interval_s = 0.0;   // particle snapshots every this many seconds; 0 = none
+  bool transfer_dissipation = false;  // account the energy lost in the grid transfers
   // Impact scenes only (a landslide scene with `methods.mpm`):
   double base_friction = 0.0;         // Coulomb coefficient of the base under the flow (paper: 0)
   bool saturated = true;              // "phases": "saturated" (two-phase, the paper) or "dry"

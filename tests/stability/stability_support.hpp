@@ -24,6 +24,26 @@ inline json patched(json base, const std::string& patch) {
 
 inline Scene scene_of(const json& j) { return parse_scene(j); }
 
+// scenes/reference/L3-B3.json (3 m at 12.5 m/s, 60 deg earth barrier, free) at h / 4, the
+// landslide saturated (the default phases) or, with `"phases": "dry"` patched in, dry.
+inline json fast_flow_on_earth_barrier_h4() {
+  return json::parse(R"({
+    "name": "L3-B3-h4",
+    "landslide": {
+      "thickness_m": 3.0, "velocity_m_s": 12.5, "density_kg_m3": 1800,
+      "shape": {"kind": "front-body-tail", "body_squares": 4},
+      "material": {"porosity": 0.5, "friction_angle_deg": 20, "cohesion_kpa": 0,
+                   "young_modulus_mpa": 2, "poisson_ratio": 0.25,
+                   "hydraulic_conductivity_m_s": 0.0001, "liquid_bulk_modulus_mpa": 30,
+                   "liquid_viscosity_kpa_s": 1e-06}
+    },
+    "barrier": {"height_m": 5, "base_width_m": 6, "top_width_m": 2, "face_angle_deg": 60,
+                "density_kg_m3": 2000, "base_friction": 0.5, "face_friction": 0.3,
+                "fixed": false},
+    "methods": {"mpm": {"cell_size_m": 0.75}}
+  })");
+}
+
 // True when every value is finite.
 inline bool all_finite(const std::vector<double>& v, size_t* first_bad = nullptr) {
   for (size_t i = 0; i < v.size(); ++i)

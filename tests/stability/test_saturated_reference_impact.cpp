@@ -20,20 +20,7 @@ namespace {
 using namespace lsi::stability;
 
 // scenes/reference/L3-B3.json, saturated (the default phases), h / 4 (the study runs h / 16).
-const json kScene = json::parse(R"({
-  "name": "L3-B3-saturated-h4",
-  "landslide": {
-    "thickness_m": 3.0, "velocity_m_s": 12.5, "density_kg_m3": 1800,
-    "shape": {"kind": "front-body-tail", "body_squares": 4},
-    "material": {"porosity": 0.5, "friction_angle_deg": 20, "cohesion_kpa": 0,
-                 "young_modulus_mpa": 2, "poisson_ratio": 0.25,
-                 "hydraulic_conductivity_m_s": 0.0001, "liquid_bulk_modulus_mpa": 30,
-                 "liquid_viscosity_kpa_s": 1e-06}
-  },
-  "barrier": {"height_m": 5, "base_width_m": 6, "top_width_m": 2, "face_angle_deg": 60,
-              "density_kg_m3": 2000, "base_friction": 0.5, "face_friction": 0.3, "fixed": false},
-  "methods": {"mpm": {"cell_size_m": 0.75}}
-})");
+const json kScene = fast_flow_on_earth_barrier_h4();
 
 TEST(SaturatedReferenceImpact, FastFlowAgainstTheEarthBarrierRunsToItsEnd) {
   const lsi::MpmCase mc = lsi::impact_case(scene_of(kScene));
@@ -59,7 +46,8 @@ TEST(SaturatedReferenceImpact, FastFlowAgainstTheEarthBarrierRunsToItsEnd) {
   // No energy created: +5 % is the stability matrix's bound (test_mpm_stability_matrix.cpp, ten
   // times tighter than the solver's stop); measured 0.0. Numerical dissipation is not
   // instability, but more than the matrix's -30 % would no longer represent the impact: measured
-  // -16.8 % (the saturated runs lose more than the dry ones, about -3 %: docs/two_phase.md).
+  // -16.8 % (the saturated runs lose more than the dry ones, about -3 %, in the grid transfers:
+  // test_transfer_dissipation_impact.cpp, docs/mpm.md "Energy lost in the transfers").
   EXPECT_LT(res_max, 0.05);
   EXPECT_GT(res_min, -0.30);
   // The free barrier is pushed and stops: base friction 0.5 under a 40 t/m barrier (measured

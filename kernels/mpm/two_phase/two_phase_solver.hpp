@@ -24,6 +24,7 @@
 #include "kernels/mpm/boundary.hpp"
 #include "kernels/mpm/solver.hpp"
 #include "kernels/mpm/stress_update.hpp"
+#include "kernels/mpm/transfer_dissipation.hpp"
 #include "kernels/mpm/two_phase/pore_pressure_update.hpp"
 #include "kernels/mpm/two_phase/two_phase_energy.hpp"
 #include "kernels/mpm/two_phase/two_phase_g2p.hpp"
@@ -57,6 +58,9 @@ struct TwoPhaseSettings {
   double bulk_viscosity_quadratic = 0.0;   // c2
   double free_surface_fill = 0.0;          // points whose neighbourhood fill is below: p = q = 0
   bool cell_pore_pressure = false;         // p projected to its cell's mean every step
+  // Account the kinetic energy lost in the grid transfers of both phases
+  // (transfer_dissipation.hpp): eight reductions a step, off by default.
+  bool track_transfer_dissipation = false;
 };
 
 template <class ExecSpace>
@@ -117,12 +121,15 @@ class TwoPhaseSolver {
     if (!(dt_ >= settings_.min_time_step)) return status_ = Status::TimeStepCollapse;
     const Boundaries* cw = settings_.wall_correction ? &walls_ : nullptr;
     const Boundaries* cl = settings_.wall_correction ? &liquid_walls_ : nullptr;
+    const bool track = settings_.track_transfer_dissipation;
+    if (track) transfer_.points_before = points_kinetic_energy();
     if (settings_.atomic_scatter)
       two_phase_p2g(particles_, grid_, atomic_scatter_, settings_.gravity, liquid_.density,
                     settings_.darcy_gravity, cw, cl);
     else
       two_phase_p2g(particles_, grid_, duplicated_scatter_, settings_.gravity, liquid_.density,
                     settings_.darcy_gravity, cw, cl);
+    if (track) transfer_.grid_after_p2g = grid_kinetic_energy(GridState::AfterP2G);
     const GridUpdateReport gu = two_phase_grid_update<ExecSpace>(
         grid_, walls_, liquid_walls_, dt_, settings_.gravity, settings_.drag);
     boundary_ += gu.wall_dissipation;
@@ -131,6 +138,7 @@ class TwoPhaseSolver {
     wall_force_[0] = gu.wall_force[0];
     wall_force_[1] = gu.wall_force[1];
     if (barrier_.active()) barrier_step();
+    if (track) transfer_.grid_after_update = grid_kinetic_energy(GridState::AfterUpdate);
     // G2P, the effective stress and (unless the free-surface drainage needs every point's new
     // volume first) the pore pressure and the next step's limits in one pass.
     TwoPhasePointWork work;
@@ -157,6 +165,7 @@ class TwoPhaseSolver {
     }
     if (settings_.cell_pore_pressure)
       viscous_ += project_pore_pressure<ExecSpace>(particles_, grid_, liquid_.bulk_modulus);
+    if (track) transfer_.close_step(points_kinetic_energy());
     time_ += dt_;
     ++steps_;
     max_speed_ = r.health.max_speed;
@@ -190,10 +199,14 @@ class TwoPhaseSolver {
   // (total(t) - total(0)) relative to the largest kinetic + stored energy seen plus the
   // dissipated work and the change of the potentials (as Solver::energy_residual).
   double energy_residual(const TwoPhaseEnergyReport& e) const {
-    const double scale = max_mechanical_ + std::abs(e.plastic) + std::abs(e.boundary) +
-                         std::abs(e.drag) + std::abs(e.viscous) + std::abs(e.potential - initial_.potential) +
-                         std::abs(e.seepage_potential) + std::abs(e.load_potential) + 1e-300;
-    return (e.total() - initial_.total()) / scale;
+    return (e.total() - initial_.total()) / energy_scale(e);
+  }
+  // Kinetic energy lost in the grid transfers of both phases since the start (J/m; 0 unless
+  // TwoPhaseSettings::track_transfer_dissipation), and the residual left once it is booked
+  // (as Solver::energy_residual_unexplained).
+  double transfer_dissipation() const { return transfer_.accumulated; }
+  double energy_residual_unexplained(const TwoPhaseEnergyReport& e) const {
+    return (e.total() - initial_.total() + transfer_.accumulated) / energy_scale(e);
   }
 
   // Code that changes the points' porosity, conductivity, material or volumetric rate between
@@ -237,6 +250,20 @@ class TwoPhaseSolver {
     boundary_ += barrier_.apply(both, dt_);
   }
 
+  double energy_scale(const TwoPhaseEnergyReport& e) const {
+    return max_mechanical_ + std::abs(e.plastic) + std::abs(e.boundary) + std::abs(e.drag) +
+           std::abs(e.viscous) + std::abs(e.potential - initial_.potential) +
+           std::abs(e.seepage_potential) + std::abs(e.load_potential) + 1e-300;
+  }
+  // Kinetic energies of both phases, of the points and of the grid (transfer_dissipation.hpp).
+  double points_kinetic_energy() const {
+    return mpm::points_kinetic_energy<ExecSpace>(particles_.solid.mass, particles_.solid.velocity) +
+           mpm::points_kinetic_energy<ExecSpace>(particles_.liquid_mass, particles_.liquid_velocity);
+  }
+  double grid_kinetic_energy(GridState state) const {
+    return mpm::grid_kinetic_energy<ExecSpace>(grid_.solid, state) +
+           mpm::grid_kinetic_energy<ExecSpace>(grid_.liquid, state);
+  }
   bool energy_grew() {
     const TwoPhaseEnergyReport e = energy();
     max_mechanical_ = std::max(max_mechanical_, e.kinetic() + e.elastic + e.liquid);
@@ -262,6 +289,7 @@ class TwoPhaseSolver {
   bool plastic_ = false;
 
   BarrierCoupling barrier_;
+  TransferDissipation transfer_;
   Status status_ = Status::Running;
   TwoPhaseEnergyReport initial_;
   double max_mechanical_ = 0.0;
