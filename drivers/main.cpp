@@ -19,6 +19,7 @@
 #include "drivers/mpm_runner.hpp"
 #include "drivers/mpm_snapshots.hpp"
 #include "drivers/mpm_scene.hpp"
+#include "drivers/openmp_wait_policy.hpp"
 #include "drivers/report.hpp"
 #include "drivers/scene.hpp"
 #include "drivers/subcommand.hpp"
@@ -138,12 +139,12 @@ void check_format(const std::string& f) {
 
 int main(int argc, char** argv) {
 #ifdef __linux__
-  // OpenMP threads that sleep when idle: with the default (spinning) policy an MPM run on cores
-  // shared with any other work was 10-40 times slower on the 2-core development machine (an
-  // impact scene: 28 s instead of 1.6 s). The OpenMP runtime reads the variable when it loads,
-  // before main, so it is set here and the program restarts itself once; a user's own setting
-  // (e.g. OMP_WAIT_POLICY=active on a dedicated machine) is kept.
-  if (!std::getenv("OMP_WAIT_POLICY") && setenv("OMP_WAIT_POLICY", "passive", 1) == 0)
+  // OpenMP threads that spin briefly, then sleep (drivers/openmp_wait_policy.hpp: with the
+  // default, unlimited spinning, an MPM run on cores shared with any other work was 10-40 times
+  // slower on the 2-core development machine). The OpenMP runtime reads the variables when it
+  // loads, before main, so they are set here and the program restarts itself once; a user's own
+  // setting (e.g. OMP_WAIT_POLICY=active on a dedicated machine) is kept.
+  if (lsi::set_openmp_wait_defaults())
     execv("/proc/self/exe", argv);   // returns only on failure: then run as we are
 #endif
   CLI::App app{"lsi: landslide-structure interaction. Empirical (Di Perna et al. 2022) and "

@@ -34,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "drivers/openmp_wait_policy.hpp"
 #include "drivers/scene.hpp"
 #include "drivers/study.hpp"
 #include "drivers/sweep_runner.hpp"
@@ -247,15 +248,15 @@ int run(const Args& args, int rank, int size) {
 
 int main(int argc, char** argv) {
 #ifdef __linux__
-  // OpenMP threads that sleep when idle (see drivers/main.cpp: spinning threads were 10-40 times
-  // slower on a shared 2-core machine). libgomp reads OMP_WAIT_POLICY when it loads, before
-  // main, so setting it here only takes effect through a restart. Restarting is safe before
+  // OpenMP threads that spin briefly, then sleep (drivers/openmp_wait_policy.hpp: unlimited
+  // spinning was 10-40 times slower on a shared 2-core machine). libgomp reads the variables when
+  // it loads, before main, so setting them here only takes effect through a restart. Restarting is safe before
   // MPI_Init (it is what `mpirun ... env VAR=value lsi-mpi` does; the process keeps its id and
   // its environment) and not after it, so it happens here, first. `mpirun -x
   // OMP_WAIT_POLICY=passive` sets it for every rank without the restart.
   // The executable is named by its own path, not /proc/self/exe, so that ps and top show the
   // ranks as lsi-mpi.
-  if (!std::getenv("OMP_WAIT_POLICY") && setenv("OMP_WAIT_POLICY", "passive", 1) == 0) {
+  if (lsi::set_openmp_wait_defaults()) {
     std::error_code ec;
     const fs::path self = fs::read_symlink("/proc/self/exe", ec);
     execv(ec ? "/proc/self/exe" : self.c_str(), argv);   // returns only on failure: run as we are
