@@ -9,6 +9,7 @@
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
 #include "support/backends.hpp"
+#include "support/falling_block.hpp"
 
 namespace {
 using namespace lsi::mpm;
@@ -19,21 +20,13 @@ TYPED_TEST_SUITE(MpmFreeFall, lsi::test::Backends);
 
 TYPED_TEST(MpmFreeFall, VelocityAndPositionAreExact) {
   using Exec = TypeParam;
-  using Mem = typename Exec::memory_space;
-  Material m;
-  m.density = 2000;
-  m.young_modulus = 1e7;
-  m.poisson_ratio = 0.3;
-  const double lo[2] = {0, 0}, hi[2] = {4, 12}, dx = 0.25;
-  Grid<Mem> grid(lo, hi, dx);
-  BodySpec body;
-  body.polygon = {{{1.0, 9.0}}, {{3.0, 9.0}}, {{3.0, 11.0}}, {{1.0, 11.0}}};
-  auto particles = build_particles<Mem>({body}, {m}, lo, dx);
+  lsi::test::FallingBlock<Exec> block;
+  auto& particles = block.particles;
   auto y0 = Kokkos::create_mirror(Kokkos::HostSpace(), particles.position);   // a real copy
   Kokkos::deep_copy(y0, particles.position);
   Settings s;
   s.courant = 0.5;
-  Solver<Exec> solver(grid, particles, {m}, Boundaries{}, s);
+  Solver<Exec> solver = block.solver(s);
   const double t_end = 1.0;
   ASSERT_EQ(solver.run(t_end, t_end), Status::Finished);
   auto x = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), particles.position);

@@ -5,9 +5,9 @@
 
 #include <cmath>
 
-#include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
 #include "support/backends.hpp"
+#include "support/falling_block.hpp"
 
 namespace {
 using namespace lsi::mpm;
@@ -18,21 +18,11 @@ TYPED_TEST_SUITE(MpmTransferDissipation, lsi::test::Backends);
 
 template <class Exec>
 Solver<Exec> falling_block(Transfer transfer, bool track) {
-  using Mem = typename Exec::memory_space;
-  Material m;
-  m.density = 2000;
-  m.young_modulus = 1e7;
-  m.poisson_ratio = 0.3;
-  const double lo[2] = {0, 0}, hi[2] = {4, 12}, dx = 0.25;
-  Grid<Mem> grid(lo, hi, dx);
-  BodySpec body;
-  body.polygon = {{{1.0, 9.0}}, {{3.0, 9.0}}, {{3.0, 11.0}}, {{1.0, 11.0}}};
-  auto particles = build_particles<Mem>({body}, {m}, lo, dx);
   Settings s;
   s.transfer = transfer;
   s.flip_ratio = 0.0;   // plain PIC when FlipPic
   s.track_transfer_dissipation = track;
-  return Solver<Exec>(grid, particles, {m}, Boundaries{}, s);
+  return lsi::test::FallingBlock<Exec>().solver(s);
 }
 
 TYPED_TEST(MpmTransferDissipation, UniformMotionLosesNothingInTheTransfers) {
