@@ -250,9 +250,9 @@ int main(int argc, char** argv) {
 #ifdef __linux__
   // OpenMP threads that spin briefly, then sleep (drivers/openmp_wait_policy.hpp: unlimited
   // spinning was 10-40 times slower on a shared 2-core machine). libgomp reads the variables when
-  // it loads, before main, so setting them here only takes effect through a restart. Restarting is safe before
-  // MPI_Init (it is what `mpirun ... env VAR=value lsi-mpi` does; the process keeps its id and
-  // its environment) and not after it, so it happens here, first. `mpirun -x
+  // it loads, before main, so setting them here only takes effect through a restart. Restarting
+  // is safe before MPI_Init (it is what `mpirun ... env VAR=value lsi-mpi` does; the process
+  // keeps its id and its environment) and not after it, so it happens here, first. `mpirun -x
   // OMP_WAIT_POLICY=passive` sets it for every rank without the restart.
   // The executable is named by its own path, not /proc/self/exe, so that ps and top show the
   // ranks as lsi-mpi.

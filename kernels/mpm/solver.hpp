@@ -42,7 +42,7 @@ struct Settings {
   // force (grid_update.hpp: the small-mass instability at the edge of the B-spline support).
   // 0: off (momentum conserved to round-off); 1e-3 stabilises violent splashing flows.
   double small_mass_fraction = 0.0;
-  // Account the kinetic energy lost in the grid transfers (transfer_dissipation.hpp): four
+  // Account the kinetic energy lost in the grid transfers (transfer_dissipation.hpp): three
   // reductions a step, off by default.
   bool track_transfer_dissipation = false;
 };
@@ -83,7 +83,7 @@ class Solver {
                            settings_.max_time_step);
     if (!(dt_ >= settings_.min_time_step)) return status_ = Status::TimeStepCollapse;
     const bool track = settings_.track_transfer_dissipation;
-    if (track)
+    if (track && !transfer_.points_before_current)
       transfer_.points_before =
           points_kinetic_energy<ExecSpace>(particles_.mass, particles_.velocity);
     if (settings_.atomic_scatter) p2g(particles_, grid_, atomic_scatter_, settings_.gravity);

@@ -1,5 +1,5 @@
 // Kinetic energy lost in the transfers between the points and the grid: the numerical
-// dissipation of MPM that no constitutive term books, measured step by step (optional: four
+// dissipation of MPM that no constitutive term books, measured step by step (optional: three
 // reductions a step, off unless a scene asks for it).
 //
 // In a step the points' kinetic energy K_p goes to the grid by P2G (grid kinetic energy from the
@@ -59,13 +59,17 @@ double grid_kinetic_energy(const Grid<MemorySpace>& g, GridState state) {
 
 // The running account of one solver: the solver records the three kinetic energies of a step
 // (points before P2G, grid after P2G, grid after the update and the contacts) and closes the
-// step with the points' kinetic energy after G2P.
+// step with the points' kinetic energy after G2P, which is also the next step's "points before"
+// (nothing changes the points' velocities between steps), so that it is reduced once a step.
 struct TransferDissipation {
   double accumulated = 0.0;   // J/m, since the start of the run
   double points_before = 0.0, grid_after_p2g = 0.0, grid_after_update = 0.0;
+  bool points_before_current = false;   // points_before left by the last step
 
   void close_step(double points_after) {
     accumulated += (points_before - grid_after_p2g) + (grid_after_update - points_after);
+    points_before = points_after;
+    points_before_current = true;
   }
 };
 

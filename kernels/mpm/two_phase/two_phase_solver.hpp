@@ -59,7 +59,7 @@ struct TwoPhaseSettings {
   double free_surface_fill = 0.0;          // points whose neighbourhood fill is below: p = q = 0
   bool cell_pore_pressure = false;         // p projected to its cell's mean every step
   // Account the kinetic energy lost in the grid transfers of both phases
-  // (transfer_dissipation.hpp): eight reductions a step, off by default.
+  // (transfer_dissipation.hpp): six reductions a step, off by default.
   bool track_transfer_dissipation = false;
 };
 
@@ -122,7 +122,8 @@ class TwoPhaseSolver {
     const Boundaries* cw = settings_.wall_correction ? &walls_ : nullptr;
     const Boundaries* cl = settings_.wall_correction ? &liquid_walls_ : nullptr;
     const bool track = settings_.track_transfer_dissipation;
-    if (track) transfer_.points_before = points_kinetic_energy();
+    if (track && !transfer_.points_before_current)
+      transfer_.points_before = points_kinetic_energy();
     if (settings_.atomic_scatter)
       two_phase_p2g(particles_, grid_, atomic_scatter_, settings_.gravity, liquid_.density,
                     settings_.darcy_gravity, cw, cl);
@@ -212,7 +213,10 @@ class TwoPhaseSolver {
   // Code that changes the points' porosity, conductivity, material or volumetric rate between
   // steps must call this: the next step then recomputes the time-step limits instead of taking
   // those the last step's G2P left.
-  void points_changed() { next_limits_current_ = false; }
+  void points_changed() {
+    next_limits_current_ = false;
+    transfer_.points_before_current = false;
+  }
 
   // The rigid barrier (barrier_coupling.hpp): attach before the first step.
   void attach_barrier(const Barrier& b) { barrier_.attach(b); }
@@ -257,8 +261,9 @@ class TwoPhaseSolver {
   }
   // Kinetic energies of both phases, of the points and of the grid (transfer_dissipation.hpp).
   double points_kinetic_energy() const {
-    return mpm::points_kinetic_energy<ExecSpace>(particles_.solid.mass, particles_.solid.velocity) +
-           mpm::points_kinetic_energy<ExecSpace>(particles_.liquid_mass, particles_.liquid_velocity);
+    const auto& p = particles_;
+    return mpm::points_kinetic_energy<ExecSpace>(p.solid.mass, p.solid.velocity) +
+           mpm::points_kinetic_energy<ExecSpace>(p.liquid_mass, p.liquid_velocity);
   }
   double grid_kinetic_energy(GridState state) const {
     return mpm::grid_kinetic_energy<ExecSpace>(grid_.solid, state) +
