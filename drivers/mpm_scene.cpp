@@ -145,7 +145,7 @@ MpmCase parse_mpm_case(const nlohmann::json& scene) {
     const jf::ObjectReader r(value, m.path_of("materials") + "." + name,
                              {"model", "density_kg_m3", "young_modulus_mpa", "poisson_ratio",
                               "friction_angle_deg", "dilatancy_angle_deg", "cohesion_kpa",
-                              "tension_cutoff_kpa"});
+                              "tension_cutoff_kpa", "inertial_friction"});
     mpm::Material mat;
     const std::string model = r.choice("model", {"linear-elastic", "mohr-coulomb"});
     mat.model = model == "mohr-coulomb" ? mpm::Material::Model::MohrCoulomb
@@ -161,8 +161,26 @@ MpmCase parse_mpm_case(const nlohmann::json& scene) {
       mat.cohesion = 1e3 * r.number_or("cohesion_kpa", 0.0, pascal_range(0, true, 1e3, "kPa"));
       mat.tension_cutoff =
           1e3 * r.number_or("tension_cutoff_kpa", 0.0, pascal_range(0, true, 1e3, "kPa"));
+      // mu(I) (kernels/mpm/constitutive/inertial_friction.hpp): friction_angle_deg is then the
+      // static angle phi_s, the limit angle phi_2 is reached at large inertial numbers.
+      if (auto f = r.optional_object("inertial_friction",
+                                     {"limit_friction_angle_deg", "reference_inertial_number",
+                                      "grain_diameter_mm", "grain_density_kg_m3"})) {
+        mat.limit_friction_angle =
+            deg * f->number("limit_friction_angle_deg", jf::interval('[', 0, 90, ')'));
+        if (mat.limit_friction_angle < mat.friction_angle)
+          f->fail_at("limit_friction_angle_deg",
+                     "must not be below friction_angle_deg (" +
+                         jf::format_number(mat.friction_angle / deg) +
+                         ", the static angle): friction rises with the inertial number");
+        mat.reference_inertial_number =
+            f->number("reference_inertial_number", jf::greater_than(0));
+        mat.grain_diameter = 1e-3 * f->number("grain_diameter_mm", jf::greater_than(0, "mm"));
+        mat.grain_density = f->number("grain_density_kg_m3", jf::greater_than(0, "kg/m^3"));
+      }
     } else {
-      for (const char* k : {"friction_angle_deg", "dilatancy_angle_deg", "cohesion_kpa", "tension_cutoff_kpa"})
+      for (const char* k : {"friction_angle_deg", "dilatancy_angle_deg", "cohesion_kpa",
+                            "tension_cutoff_kpa", "inertial_friction"})
         if (r.has(k)) r.fail_at(k, "only used by \"model\": \"mohr-coulomb\"");
     }
     c.material_names.push_back(name);

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "drivers/mpm_scene.hpp"
 #include "drivers/scene.hpp"
 
 namespace {
@@ -45,11 +46,12 @@ json without(json j, const std::string& pointer) {
   return j;
 }
 
-// The InputError message of parse_scene(j); fails the test when nothing (or something else) is
-// thrown, and checks the message is one line.
-std::string error_of(const json& j) {
+// The InputError message of parse(j) (parse_scene for error_of); fails the test when nothing
+// (or something else) is thrown, and checks the message is one line.
+template <class Parse>
+std::string input_error_of(const Parse& parse, const json& j) {
   try {
-    (void)lsi::parse_scene(j);
+    parse(j);
   } catch (const InputError& e) {
     const std::string m = e.what();
     EXPECT_EQ(m.find('\n'), std::string::npos) << "message is not one line: " << m;
@@ -57,6 +59,10 @@ std::string error_of(const json& j) {
   }
   ADD_FAILURE() << "no InputError for " << j.dump();
   return "<no error>";
+}
+
+std::string error_of(const json& j) {
+  return input_error_of([](const json& x) { (void)lsi::parse_scene(x); }, j);
 }
 
 std::string load_error_of(const std::string& path) {
@@ -679,6 +685,69 @@ TEST(SceneLoad, TopLevelMustBeAnObject) {
 TEST(SceneLoad, ValidationErrorsComeThrough) {
   const TempFile f(with(base_scene(), "/landslide/thickness_m", -3).dump());
   EXPECT_EQ(load_error_of(f.path()), "landslide.thickness_m = -3: must be > 0 (m)");
+}
+
+// ---- MPM verification scenes (mpm_case): the mu(I) friction of a Mohr-Coulomb material ----
+
+json granular_case() {
+  return json::parse(R"({"name": "beads", "mpm_case": {
+      "domain_m": {"x": [0, 1], "y": [0, 0.5]},
+      "walls": {"bottom": {"position_m": 0.05, "no_slip": true}},
+      "materials": {"beads": {"model": "mohr-coulomb", "density_kg_m3": 1470,
+                              "young_modulus_mpa": 0.2, "poisson_ratio": 0.3,
+                              "friction_angle_deg": 22.5,
+                              "inertial_friction": {"limit_friction_angle_deg": 40,
+                                                    "reference_inertial_number": 0.279,
+                                                    "grain_diameter_mm": 0.5,
+                                                    "grain_density_kg_m3": 2450}}},
+      "bodies": [{"material": "beads", "polygon_m": [[0.1, 0.05], [0.3, 0.05], [0.3, 0.15], [0.1, 0.15]]}]},
+    "methods": {"mpm": {"cell_size_m": 0.01, "end_time_s": 0.1}}})");
+}
+
+std::string mpm_case_error_of(const json& j) {
+  return input_error_of([](const json& x) { (void)lsi::parse_mpm_case(x); }, j);
+}
+
+TEST(MpmCaseParse, InertialFrictionInSiUnits) {
+  const lsi::MpmCase c = lsi::parse_mpm_case(granular_case());
+  ASSERT_EQ(c.materials.size(), 1u);
+  const auto& m = c.materials[0];
+  const double deg = 3.14159265358979323846 / 180;
+  EXPECT_TRUE(m.rate_dependent());
+  EXPECT_DOUBLE_EQ(m.friction_angle, 22.5 * deg);   // the static angle
+  EXPECT_DOUBLE_EQ(m.limit_friction_angle, 40 * deg);
+  EXPECT_DOUBLE_EQ(m.reference_inertial_number, 0.279);
+  EXPECT_DOUBLE_EQ(m.grain_diameter, 0.5e-3);
+  EXPECT_DOUBLE_EQ(m.grain_density, 2450);
+  // Without the block the material is rate-independent.
+  const lsi::MpmCase plain = lsi::parse_mpm_case(
+      without(granular_case(), "/mpm_case/materials/beads/inertial_friction"));
+  EXPECT_FALSE(plain.materials[0].rate_dependent());
+}
+
+TEST(MpmCaseErrors, InertialFrictionNamesTheFieldValueAndRange) {
+  const std::string f = "/mpm_case/materials/beads/inertial_friction/";
+  EXPECT_CONTAINS(mpm_case_error_of(with(granular_case(), f + "limit_friction_angle_deg", 20)),
+                  "mpm_case.materials.beads.inertial_friction.limit_friction_angle_deg = 20: "
+                  "must not be below friction_angle_deg (22.5");
+  EXPECT_CONTAINS(mpm_case_error_of(with(granular_case(), f + "reference_inertial_number", 0)),
+                  "mpm_case.materials.beads.inertial_friction.reference_inertial_number = 0: must "
+                  "be > 0");
+  EXPECT_CONTAINS(mpm_case_error_of(with(granular_case(), f + "grain_diameter_mm", -0.5)),
+                  "mpm_case.materials.beads.inertial_friction.grain_diameter_mm = -0.5: must be > 0");
+  EXPECT_CONTAINS(mpm_case_error_of(with(granular_case(), f + "grain_density_kg_m3", "2450")),
+                  "mpm_case.materials.beads.inertial_friction.grain_density_kg_m3");
+  EXPECT_CONTAINS(mpm_case_error_of(without(granular_case(), f + "grain_density_kg_m3")),
+                  "grain_density_kg_m3");
+  EXPECT_CONTAINS(mpm_case_error_of(with(granular_case(), f + "grain_size_mm", 1)),
+                  "mpm_case.materials.beads.inertial_friction.grain_size_mm: unknown key");
+  // Only a Mohr-Coulomb material has a friction angle to make rate-dependent.
+  json elastic = granular_case();
+  auto& beads = elastic["mpm_case"]["materials"]["beads"];
+  beads["model"] = "linear-elastic";
+  beads.erase("friction_angle_deg");
+  EXPECT_CONTAINS(mpm_case_error_of(elastic), "mpm_case.materials.beads.inertial_friction");
+  EXPECT_CONTAINS(mpm_case_error_of(elastic), "mohr-coulomb");
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #pragma once
 #include <Kokkos_Core.hpp>
 
+#include "kernels/mpm/constitutive/inertial_friction.hpp"
 #include "kernels/mpm/constitutive/jaumann.hpp"
 #include "kernels/mpm/constitutive/linear_elastic.hpp"
 #include "kernels/mpm/constitutive/mohr_coulomb.hpp"
@@ -45,8 +46,14 @@ KOKKOS_FORCEINLINE_FUNCTION void update_point_stress(const Particles<MemorySpace
   jaumann_rotate(s, 0.5 * (Lxy - Lyx), dt);
   elastic_increment(m, de, s);
   if constexpr (WithPlasticity) {
-    if (m.material.model == Material::Model::MohrCoulomb && !clearly_elastic(m, s))
+    if (m.rate_dependent) {
+      // mu(I): the friction angle of this point and step (constitutive/inertial_friction.hpp).
+      const PreparedMaterial mi =
+          at_inertial_state(m, shear_rate(Lxx, Lyy, 0.5 * (Lxy + Lyx)), -0.5 * (s[0] + s[1]));
+      if (!clearly_elastic(mi, s)) p.plastic_work(q) += p.volume(q) * mohr_coulomb_return(mi, s);
+    } else if (m.material.model == Material::Model::MohrCoulomb && !clearly_elastic(m, s)) {
       p.plastic_work(q) += p.volume(q) * mohr_coulomb_return(m, s);
+    }
   }
   for (int k = 0; k < 4; ++k) p.stress(q, k) = s[k];
   // Volume: J of the step; equivalent deviatoric strain increment (plane strain).

@@ -15,6 +15,17 @@ struct Material {
   double dilatancy_angle = 0.0;     // psi, rad (non-associated when psi != phi)
   double cohesion = 0.0;            // c, Pa
   double tension_cutoff = 0.0;      // largest principal stress allowed, Pa (<= c cot(phi))
+  // Rate-dependent friction, mu(I) (optional; constitutive/inertial_friction.hpp): sin(phi) rises
+  // from sin(friction_angle) at rest to sin(limit_friction_angle) at large inertial numbers
+  // I = gamma_dot d / sqrt(p / rho_s). Off while reference_inertial_number is 0.
+  double limit_friction_angle = 0.0;       // phi_2, rad (>= friction_angle)
+  double reference_inertial_number = 0.0;  // I0 (> 0 switches mu(I) on)
+  double grain_diameter = 0.0;             // d, m
+  double grain_density = 0.0;              // rho_s, kg/m^3 (of the grains, not the bulk)
+
+  KOKKOS_INLINE_FUNCTION bool rate_dependent() const {
+    return model == Model::MohrCoulomb && reference_inertial_number > 0.0;
+  }
 
   KOKKOS_INLINE_FUNCTION double shear_modulus() const {
     return young_modulus / (2.0 * (1.0 + poisson_ratio));
@@ -50,20 +61,37 @@ struct PreparedMaterial {
   double main_plane = 0.0, inverse_main = 0.0, edge_upper = 0.0, edge_lower = 0.0;
   double inverse_det_upper = 0.0, inverse_det_lower = 0.0;
 
+  // mu(I) (Material::rate_dependent): sin(phi_2) - sin(phi_s) and d sqrt(rho_s), so that
+  // sin(phi) = sin_phi + inertial_rise I / (I0 + I) (constitutive/inertial_friction.hpp).
+  bool rate_dependent = false;
+  double inertial_rise = 0.0, inertial_length = 0.0;
+
   PreparedMaterial() = default;
   KOKKOS_INLINE_FUNCTION explicit PreparedMaterial(const Material& m)
       : material(m),
         shear_modulus(m.shear_modulus()),
         lame_lambda(m.lame_lambda()),
-        sin_phi(math::sin(m.friction_angle)),
-        cos_phi(math::cos(m.friction_angle)),
         sin_psi(math::sin(m.dilatancy_angle)),
         disconnects(m.model == Material::Model::MohrCoulomb && m.cohesion == 0.0 &&
-                    m.tension_cutoff <= 0.0) {
-    const double G = shear_modulus, L = lame_lambda, sphi = sin_phi, spsi = sin_psi;
-    apex = sphi > 0.0 ? m.cohesion * cos_phi / sphi : 1e300;
-    principal_cap = math::min(m.tension_cutoff, apex);
+                    m.tension_cutoff <= 0.0),
+        rate_dependent(m.rate_dependent()) {
     inverse_young = 1.0 / m.young_modulus;
+    set_friction(math::sin(m.friction_angle), math::cos(m.friction_angle));
+    if (rate_dependent) {
+      inertial_rise = math::sin(m.limit_friction_angle) - sin_phi;
+      inertial_length = m.grain_diameter * math::sqrt(m.grain_density);
+    }
+  }
+
+  // The constants that depend on the friction angle: set once for a rate-independent material,
+  // per point and step for mu(I) (whose angle never falls below the static one, so the
+  // dilatancy angle stays below it).
+  KOKKOS_INLINE_FUNCTION void set_friction(const double sphi, const double cphi) {
+    const double G = shear_modulus, L = lame_lambda, spsi = sin_psi;
+    sin_phi = sphi;
+    cos_phi = cphi;
+    apex = sphi > 0.0 ? material.cohesion * cphi / sphi : 1e300;
+    principal_cap = math::min(material.tension_cutoff, apex);
     const double A = 4.0 * L * sphi * spsi + 4.0 * G * (1.0 + sphi * spsi);
     main_plane = A;
     edge_upper = 4.0 * L * sphi * spsi + 2.0 * G * (1.0 - sphi) * (1.0 - spsi);

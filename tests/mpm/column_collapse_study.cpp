@@ -1,0 +1,73 @@
+// Reruns the granular column collapse of tests/mpm/test_mpm_column_collapse.cpp with other
+// settings: the resolution, sensitivity and mu(I) tables of docs/verification.md. Not a test
+// (nothing asserted); built beside the tests, run by hand. Serial backend (or the default host
+// space), as the test's a = 3 case.
+//
+//   column_collapse_study a cells_per_L0 [key=value ...]
+//     L0=1 (m)  phi=30 (deg)  base=tan(phi) (Coulomb mu; -1: no slip)  room=1.6
+//     mu_i=glass-beads  (Jop, Forterre & Pouliquen 2006: phi_s = asin(tan 20.9 deg) = 22.45,
+//                        phi_2 = asin(tan 32.76 deg) = 40.05 deg, I0 = 0.279, d = 0.5 mm,
+//                        rho_s = 2450 kg/m^3; sets phi to phi_s unless phi= is given after it)
+// e.g. the mu(I) row of docs/verification.md at 24 cells:
+//   column_collapse_study 3 24 L0=0.1 mu_i=glass-beads base=0.643 room=2.2
+#include <Kokkos_Core.hpp>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "support/column_collapse.hpp"
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: %s a cells_per_L0 [L0=.. phi=.. base=.. room=.. mu_i=glass-beads]\n",
+                 argv[0]);
+    return 2;
+  }
+  lsi::test::ColumnSpec spec;
+  spec.a = std::atof(argv[1]);
+  spec.cells_per_L0 = std::atoi(argv[2]);
+  constexpr double kPi = 3.14159265358979323846;
+  for (int i = 3; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const auto eq = arg.find('=');
+    const std::string key = arg.substr(0, eq);
+    const std::string value = eq == std::string::npos ? "" : arg.substr(eq + 1);
+    if (key == "L0") spec.L0 = std::atof(value.c_str());
+    else if (key == "phi") spec.friction_angle_deg = std::atof(value.c_str());
+    else if (key == "base") spec.base_friction = std::atof(value.c_str());
+    else if (key == "room") spec.room = std::atof(value.c_str());
+    else if (key == "mu_i" && value == "glass-beads") {
+      spec.friction_angle_deg = std::asin(std::tan(20.9 * kPi / 180)) * 180 / kPi;
+      spec.limit_friction_angle_deg = std::asin(std::tan(32.76 * kPi / 180)) * 180 / kPi;
+      spec.reference_inertial_number = 0.279;
+      spec.grain_diameter = 0.5e-3;
+      spec.grain_density = 2450;
+    } else {
+      std::fprintf(stderr, "unknown argument %s\n", argv[i]);
+      return 2;
+    }
+  }
+  if (!(spec.a > 0) || spec.cells_per_L0 < 2 || !(spec.L0 > 0) || !(spec.room > 1)) {
+    std::fprintf(stderr, "need a > 0, cells_per_L0 >= 2, L0 > 0, room > 1\n");
+    return 2;
+  }
+  Kokkos::initialize(argc, argv);
+  int code = 0;
+  {
+#ifdef KOKKOS_ENABLE_SERIAL
+    using Exec = Kokkos::Serial;
+#else
+    using Exec = Kokkos::DefaultHostExecutionSpace;
+#endif
+    const lsi::test::Collapse R = lsi::test::collapse<Exec>(spec);
+    std::printf("a = %g, %d cells per L0, L0 = %g m, phi = %.3f deg, base %g, mu(I) %s\n", spec.a,
+                spec.cells_per_L0, spec.L0, spec.friction_angle_deg, spec.base_friction,
+                spec.reference_inertial_number > 0 ? "on" : "off");
+    lsi::test::print(R, "Serial");
+    std::printf("room to the right wall: %.1f cells\n", R.right_room);
+    if (R.status != lsi::mpm::Status::Finished || R.right_room < 2) code = 1;
+  }
+  Kokkos::finalize();
+  return code;
+}
