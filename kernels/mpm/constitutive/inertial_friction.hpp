@@ -49,7 +49,7 @@ KOKKOS_INLINE_FUNCTION double inertial_fraction(const PreparedMaterial& pm, cons
   return den > 0.0 ? num / den : 0.0;
 }
 
-// The inertial number itself (for output and tests): infinite without pressure.
+// The inertial number itself (the tests check the law with it): infinite without pressure.
 KOKKOS_INLINE_FUNCTION double inertial_number(const PreparedMaterial& pm, const double gamma_dot,
                                               const double p) {
   return p > 0.0 ? gamma_dot * pm.inertial_length / math::sqrt(p) : 1e300;
