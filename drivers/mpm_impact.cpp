@@ -186,6 +186,7 @@ MpmCase impact_case(const Scene& scene) {
   m.dilatancy_angle = 0.0;
   m.cohesion = in_pascal(l.material.cohesion_kpa, 1e3, "cohesion_kpa", "kPa");
   m.tension_cutoff = 0.0;
+  if (l.material.inertial_friction) set_inertial_friction(*l.material.inertial_friction, m);
   c.materials = {m};
   c.material_names = {"landslide"};
 

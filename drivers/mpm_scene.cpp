@@ -82,6 +82,14 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
   return s;
 }
 
+void set_inertial_friction(const InertialFrictionInput& in, mpm::Material& m) {
+  constexpr double deg = 3.14159265358979323846 / 180.0;
+  m.limit_friction_angle = deg * in.limit_friction_angle_deg;
+  m.reference_inertial_number = in.reference_inertial_number;
+  m.grain_diameter = 1e-3 * in.grain_diameter_mm;
+  m.grain_density = in.grain_density_kg_m3;
+}
+
 bool is_mpm_case(const nlohmann::json& scene) {
   return scene.is_object() && scene.contains("mpm_case");
 }
@@ -154,30 +162,17 @@ MpmCase parse_mpm_case(const nlohmann::json& scene) {
     mat.young_modulus = 1e6 * r.number("young_modulus_mpa", pascal_range(0, false, 1e6, "MPa"));
     mat.poisson_ratio = r.number("poisson_ratio", jf::interval('(', -1, 0.5, ')'));
     if (mat.model == mpm::Material::Model::MohrCoulomb) {
-      mat.friction_angle = deg * r.number("friction_angle_deg", jf::interval('[', 0, 90, ')'));
+      const double friction_angle_deg = r.number("friction_angle_deg", jf::interval('[', 0, 90, ')'));
+      mat.friction_angle = deg * friction_angle_deg;
       mat.dilatancy_angle = deg * r.number_or("dilatancy_angle_deg", 0.0, jf::interval('[', 0, 90, ')'));
       if (mat.dilatancy_angle > mat.friction_angle)
         r.fail_at("dilatancy_angle_deg", "must not exceed friction_angle_deg");
       mat.cohesion = 1e3 * r.number_or("cohesion_kpa", 0.0, pascal_range(0, true, 1e3, "kPa"));
       mat.tension_cutoff =
           1e3 * r.number_or("tension_cutoff_kpa", 0.0, pascal_range(0, true, 1e3, "kPa"));
-      // mu(I) (kernels/mpm/constitutive/inertial_friction.hpp): friction_angle_deg is then the
-      // static angle phi_s, the limit angle phi_2 is reached at large inertial numbers.
-      if (auto f = r.optional_object("inertial_friction",
-                                     {"limit_friction_angle_deg", "reference_inertial_number",
-                                      "grain_diameter_mm", "grain_density_kg_m3"})) {
-        mat.limit_friction_angle =
-            deg * f->number("limit_friction_angle_deg", jf::interval('[', 0, 90, ')'));
-        if (mat.limit_friction_angle < mat.friction_angle)
-          f->fail_at("limit_friction_angle_deg",
-                     "must not be below friction_angle_deg (" +
-                         jf::format_number(mat.friction_angle / deg) +
-                         ", the static angle): friction rises with the inertial number");
-        mat.reference_inertial_number =
-            f->number("reference_inertial_number", jf::greater_than(0));
-        mat.grain_diameter = 1e-3 * f->number("grain_diameter_mm", jf::greater_than(0, "mm"));
-        mat.grain_density = f->number("grain_density_kg_m3", jf::greater_than(0, "kg/m^3"));
-      }
+      // mu(I): friction_angle_deg is then the static angle phi_s.
+      if (const auto f = parse_inertial_friction(r, friction_angle_deg))
+        set_inertial_friction(*f, mat);
     } else {
       for (const char* k : {"friction_angle_deg", "dilatancy_angle_deg", "cohesion_kpa",
                             "tension_cutoff_kpa", "inertial_friction"})

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "drivers/inertial_friction_input.hpp"
 #include "kernels/mpm/barrier.hpp"
 #include "kernels/mpm/boundary.hpp"
 #include "kernels/mpm/constitutive/material.hpp"
@@ -68,5 +69,7 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
 bool is_mpm_case(const nlohmann::json& scene);
 // Parses a whole verification scene {"name", "mpm_case", "methods": {"mpm": {...}}}.
 MpmCase parse_mpm_case(const nlohmann::json& scene);
+// Switches mu(I) on in a Mohr-Coulomb material (SI units; its friction angle is the static one).
+void set_inertial_friction(const InertialFrictionInput& in, mpm::Material& m);
 
 }  // namespace lsi

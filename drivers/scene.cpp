@@ -33,7 +33,7 @@ const std::vector<std::string> kShapeKeys = {"kind", "body_squares", "length_m"}
 const std::vector<std::string> kMaterialKeys = {
     "porosity",         "friction_angle_deg",         "cohesion_kpa",
     "young_modulus_mpa", "poisson_ratio",             "hydraulic_conductivity_m_s",
-    "liquid_bulk_modulus_mpa", "liquid_viscosity_kpa_s"};
+    "liquid_bulk_modulus_mpa", "liquid_viscosity_kpa_s", "inertial_friction"};
 const std::vector<std::string> kBarrierKeys = {
     "height_m",      "base_width_m",  "top_width_m",   "face_angle_deg", "density_kg_m3",
     "mass_kg_per_m", "base_friction", "face_friction", "fixed"};
@@ -79,6 +79,7 @@ LandslideMaterial parse_material(const ObjectReader& landslide) {
   m.porosity = r->number_or("porosity", m.porosity, interval('(', 0, 1, ')'));
   m.friction_angle_deg =
       r->number_or("friction_angle_deg", m.friction_angle_deg, interval('[', 0, 90, ')', "deg"));
+  m.inertial_friction = parse_inertial_friction(*r, m.friction_angle_deg);
   m.cohesion_kpa = r->number_or("cohesion_kpa", m.cohesion_kpa, at_least(0, "kPa"));
   m.young_modulus_mpa =
       r->number_or("young_modulus_mpa", m.young_modulus_mpa, greater_than(0, "MPa"));

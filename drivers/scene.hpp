@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "drivers/inertial_friction_input.hpp"
+
 namespace lsi {
 
 // Thrown for any invalid input. `what()` is one line naming the JSON path, the value and the
@@ -34,6 +36,8 @@ struct LandslideMaterial {
   double hydraulic_conductivity_m_s = 1e-4;
   double liquid_bulk_modulus_mpa = 30.0;
   double liquid_viscosity_kpa_s = 1e-6;
+  // mu(I) (optional): friction_angle_deg is then the static angle.
+  std::optional<InertialFrictionInput> inertial_friction;
 };
 
 struct SceneLandslide {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "drivers/mpm_impact.hpp"
 #include "drivers/mpm_scene.hpp"
 #include "drivers/scene.hpp"
 
@@ -458,6 +459,63 @@ TEST(SceneErrors, MaterialRanges) {
             "landslide.material.cohesion_kpa = -1: must be >= 0 (kPa)");
   EXPECT_EQ(error_of(with(base_scene(), "/landslide/material", {{"liquid_viscosity_kpa_s", 0}})),
             "landslide.material.liquid_viscosity_kpa_s = 0: must be > 0 (kPa s)");
+}
+
+// mu(I) in an impact scene's landslide: the same block as in an mpm_case material
+// (drivers/inertial_friction_input.hpp), carried into the MPM material in SI units.
+json landslide_with_inertial_friction() {
+  return with(with(base_scene(), "/landslide/material",
+                   {{"friction_angle_deg", 25},
+                    {"inertial_friction", {{"limit_friction_angle_deg", 38},
+                                           {"reference_inertial_number", 0.3},
+                                           {"grain_diameter_mm", 10},
+                                           {"grain_density_kg_m3", 2650}}}}),
+              "/methods/mpm", {{"cell_size_m", 0.5}, {"end_time_s", 1}});
+}
+
+TEST(SceneParse, LandslideInertialFrictionInSiUnits) {
+  const Scene s = lsi::parse_scene(landslide_with_inertial_friction());
+  ASSERT_TRUE(s.landslide.material.inertial_friction.has_value());
+  EXPECT_DOUBLE_EQ(s.landslide.material.inertial_friction->limit_friction_angle_deg, 38);
+  const lsi::MpmCase c = lsi::impact_case(s);
+  ASSERT_EQ(c.materials.size(), 1u);
+  const auto& m = c.materials[0];
+  const double deg = 3.14159265358979323846 / 180;
+  EXPECT_TRUE(m.rate_dependent());
+  EXPECT_DOUBLE_EQ(m.friction_angle, 25 * deg);   // the static angle
+  EXPECT_DOUBLE_EQ(m.limit_friction_angle, 38 * deg);
+  EXPECT_DOUBLE_EQ(m.reference_inertial_number, 0.3);
+  EXPECT_DOUBLE_EQ(m.grain_diameter, 10e-3);
+  EXPECT_DOUBLE_EQ(m.grain_density, 2650);
+  // Without the block (and in the reference scenes) the landslide is rate-independent.
+  const Scene plain = lsi::parse_scene(
+      without(landslide_with_inertial_friction(), "/landslide/material/inertial_friction"));
+  EXPECT_FALSE(plain.landslide.material.inertial_friction.has_value());
+  EXPECT_FALSE(lsi::impact_case(plain).materials[0].rate_dependent());
+}
+
+TEST(SceneErrors, LandslideInertialFrictionNamesTheFieldValueAndRange) {
+  const std::string f = "/landslide/material/inertial_friction/";
+  EXPECT_EQ(error_of(with(landslide_with_inertial_friction(), f + "limit_friction_angle_deg", 20)),
+            "landslide.material.inertial_friction.limit_friction_angle_deg = 20: must not be "
+            "below friction_angle_deg (25, the static angle): friction rises with the inertial "
+            "number");
+  // The default static angle (20 deg) when the material does not give one.
+  EXPECT_CONTAINS(error_of(without(with(landslide_with_inertial_friction(),
+                                        f + "limit_friction_angle_deg", 15),
+                                   "/landslide/material/friction_angle_deg")),
+                  "limit_friction_angle_deg = 15: must not be below friction_angle_deg (20,");
+  EXPECT_EQ(error_of(with(landslide_with_inertial_friction(), f + "limit_friction_angle_deg", 90)),
+            "landslide.material.inertial_friction.limit_friction_angle_deg = 90: must be in "
+            "[0, 90) (deg)");
+  EXPECT_EQ(error_of(with(landslide_with_inertial_friction(), f + "reference_inertial_number", -1)),
+            "landslide.material.inertial_friction.reference_inertial_number = -1: must be > 0");
+  EXPECT_EQ(error_of(with(landslide_with_inertial_friction(), f + "grain_diameter_mm", 0)),
+            "landslide.material.inertial_friction.grain_diameter_mm = 0: must be > 0 (mm)");
+  EXPECT_CONTAINS(error_of(without(landslide_with_inertial_friction(), f + "grain_density_kg_m3")),
+                  "landslide.material.inertial_friction.grain_density_kg_m3: missing");
+  EXPECT_CONTAINS(error_of(with(landslide_with_inertial_friction(), f + "grain_size_mm", 1)),
+                  "landslide.material.inertial_friction.grain_size_mm: unknown key");
 }
 
 TEST(SceneErrors, EmpiricalTauOutsideOpenUnitInterval) {

@@ -60,6 +60,14 @@ void check_landslide(const SceneLandslide& l) {
   positive("landslide.material.hydraulic_conductivity_m_s", m.hydraulic_conductivity_m_s);
   positive("landslide.material.liquid_bulk_modulus_mpa", m.liquid_bulk_modulus_mpa);
   positive("landslide.material.liquid_viscosity_kpa_s", m.liquid_viscosity_kpa_s);
+  if (const auto& f = m.inertial_friction) {
+    between("landslide.material.inertial_friction.limit_friction_angle_deg",
+            f->limit_friction_angle_deg, '[', m.friction_angle_deg, 90, ')');
+    positive("landslide.material.inertial_friction.reference_inertial_number",
+             f->reference_inertial_number);
+    positive("landslide.material.inertial_friction.grain_diameter_mm", f->grain_diameter_mm);
+    positive("landslide.material.inertial_friction.grain_density_kg_m3", f->grain_density_kg_m3);
+  }
   // What the closed forms read: L1,0, the cross-section and the mass per metre.
   positive("landslide equivalent length L1,0 (m)", l.equivalent_length_m());
   positive("landslide cross-section area (m^2)", l.area_m2());

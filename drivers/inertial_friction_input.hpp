@@ -1,0 +1,27 @@
+// The `inertial_friction` block of a Mohr-Coulomb material, in the scene's units: the mu(I)
+// rate-dependent friction of kernels/mpm/constitutive/inertial_friction.hpp. One block, one
+// parser, for the landslide of an impact scene (landslide.material) and the named materials of an
+// `mpm_case` (docs/scene_schema.md).
+#pragma once
+#include <optional>
+
+namespace lsi {
+
+namespace json_fields {
+class ObjectReader;
+}
+
+struct InertialFrictionInput {
+  double limit_friction_angle_deg = 0.0;    // phi_2, reached at large inertial numbers
+  double reference_inertial_number = 0.0;   // I0
+  double grain_diameter_mm = 0.0;           // d
+  double grain_density_kg_m3 = 0.0;         // rho_s, of the grains (not the bulk)
+};
+
+// Reads `material.inertial_friction` if present (all four keys required; unknown keys, values
+// out of range and a limit angle below `static_angle_deg`, the material's friction_angle_deg,
+// are InputErrors naming the field).
+std::optional<InertialFrictionInput> parse_inertial_friction(
+    const json_fields::ObjectReader& material, double static_angle_deg);
+
+}  // namespace lsi
