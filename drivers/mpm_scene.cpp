@@ -65,11 +65,8 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
   if (transfer != "flip" && r.has("flip_ratio")) {
     r.fail_at("flip_ratio", "only used with \"transfer\": \"flip\"");
   }
-  // The two-phase solver transfers both phases with APIC only (docs/two_phase.md) and has no
-  // small-mass threshold: a saturated scene asking for either would silently run without it.
-  if (impact && s.saturated && transfer != "apic")
-    r.fail_at("transfer", "only \"apic\" with \"phases\": \"saturated\" (the two-phase solver "
-                          "transfers with APIC only); use \"apic\", or \"phases\": \"dry\"");
+  // The two-phase solver has no small-mass threshold: a saturated scene asking for one would
+  // silently run without it.
   if (impact && s.saturated && r.has("small_mass_fraction"))
     r.fail_at("small_mass_fraction", "only used with \"phases\": \"dry\"");
   // Impact scenes (violent, splashing flows) default to the small-mass threshold; verification

@@ -468,11 +468,7 @@ TEST(Cli, MpmImpactErrorsNameTheField) {
       {R"({"cell_size_m": 0.1, "phases": "wet"})", "methods.mpm.phases"},
       {R"({"cell_size_m": 0.1, "phases": "dry", "drag": "explicit"})",
        "methods.mpm.drag = \"explicit\": only used with"},
-      // Saturated (the default phases): APIC only, no small-mass threshold.
-      {R"({"cell_size_m": 0.1, "transfer": "pic"})",
-       "methods.mpm.transfer = \"pic\": only \"apic\" with \"phases\": \"saturated\""},
-      {R"({"cell_size_m": 0.1, "phases": "saturated", "transfer": "flip"})",
-       "methods.mpm.transfer = \"flip\": only \"apic\""},
+      // Saturated (the default phases): no small-mass threshold.
       {R"({"cell_size_m": 0.1, "small_mass_fraction": 0.001})",
        "methods.mpm.small_mass_fraction = 0.001: only used with \"phases\": \"dry\""},
       {R"({"cell_size_m": 0.1, "base_friction": -1})", "methods.mpm.base_friction = -1"},

@@ -1,5 +1,8 @@
-// Two-phase grid to particle (APIC for both phases): solid and liquid velocities interpolated,
-// their affine matrices C = 4/dx^2 sum w v_i (x_i - x_p)^T, the solid velocity gradient
+// Two-phase grid to particle, APIC or a FLIP/PIC blend for both phases (TwoPhaseTransfer): with
+// APIC the solid and liquid velocities are interpolated and so are their affine matrices
+// C = 4/dx^2 sum w v_i (x_i - x_p)^T; with FLIP/PIC each velocity is
+// r (v_p + sum w (v_i - v_i,old)) + (1 - r) sum w v_i and the affine matrices stay zero (the
+// single-phase g2p.hpp's blend, per phase). Then the solid velocity gradient
 // L_S = sum v_S,i grad(w)^T (for the effective stress, the volume and the porosity), the liquid
 // divergence div v_L = sum v_L,i . grad(w) (for the pore pressure), and the position, which moves
 // with the SOLID: x += dt sum w (v_S,i_old + v_S,i) / 2 (trapezoidal, as the single-phase g2p).
@@ -43,6 +46,13 @@ struct TwoPhaseG2PReport {
   TimeStepLimits limits;       // of the points at the end of the step (pore pressure fused)
 };
 
+// The velocity transfer of both phases: APIC (flip_ratio unused) or the FLIP/PIC blend with
+// flip_ratio r in [0, 1] (1: FLIP, 0: PIC).
+struct TwoPhaseTransfer {
+  bool apic = true;
+  double flip_ratio = 0.0;
+};
+
 // What two_phase_g2p_impl does after the transfer of a point.
 struct TwoPhasePointWork {
   bool plastic = false;         // the stress update with Mohr-Coulomb (a kernel of its own)
@@ -57,10 +67,10 @@ struct GhostWalls {
   int index[4] = {0, 0, 0, 0};                     // node index of the wall line
 };
 
-template <class ExecSpace, bool Ghosts, G2PStress Stress, class MemorySpace>
+template <class ExecSpace, bool Ghosts, G2PStress Stress, bool Apic, class MemorySpace>
 TwoPhaseG2PReport two_phase_g2p_impl(
     const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g, double dt,
-    const GhostWalls& gw, const TwoPhasePointWork& work,
+    const GhostWalls& gw, const TwoPhasePointWork& work, double flip_ratio,
     const Kokkos::View<const PreparedMaterial*, MemorySpace>& materials = {}) {
   const auto s = p.solid;
   const auto S = g.solid;
@@ -71,6 +81,7 @@ TwoPhaseG2PReport two_phase_g2p_impl(
   const int nx = S.nx;
   const bool pore = work.pore_pressure;
   const TwoPhaseConstants kc = work.constants;
+  const double flip = flip_ratio, pic = 1.0 - flip_ratio;
   double vmax = 0.0, load = 0.0, viscous = 0.0, cmax = 0.0, dtk = 1e300;
   int bad = 0, out = 0;
   Kokkos::parallel_reduce(
@@ -84,6 +95,7 @@ TwoPhaseG2PReport two_phase_g2p_impl(
         [[maybe_unused]] const GhostWalls& ghost = gw;
         [[maybe_unused]] const bool fuse_pore = pore;
         [[maybe_unused]] const TwoPhaseConstants& constants = kc;
+        [[maybe_unused]] const double r_flip = flip, r_pic = pic;
         const auto& grid_s = S;
         const auto& grid_l = L;
         const double xp = s.position(q, 0) - ox, yp = s.position(q, 1) - oy;
@@ -95,14 +107,15 @@ TwoPhaseG2PReport two_phase_g2p_impl(
         double vS[2] = {0, 0}, vSm[2] = {0, 0}, CS[2][2] = {{0, 0}, {0, 0}},
                LS[2][2] = {{0, 0}, {0, 0}};
         double vL[2] = {0, 0}, CL[2][2] = {{0, 0}, {0, 0}}, divL = 0.0;
+        [[maybe_unused]] double vSo[2] = {0, 0}, vLo[2] = {0, 0};   // FLIP: old grid velocities
         for (int b = 0; b < 3; ++b) {   // rows outside: the inner loop walks contiguous nodes
           const double wy = sy.w[b], dwy = sy.dw[b], dyb = (sy.base + b) * dx - yp;
           const int row = sx.base + nx * (sy.base + b);
           double A0s[2] = {0, 0}, A1s[2] = {0, 0}, A2s[2] = {0, 0}, O0s[2] = {0, 0};
-          double A0l[2] = {0, 0}, A1l[2] = {0, 0}, A2l = 0.0;
+          double A0l[2] = {0, 0}, A1l[2] = {0, 0}, A2l = 0.0, O0l[2] = {0, 0};
           for (int a = 0; a < 3; ++a) {
             const int node = row + a;
-            double vs[2], vso[2], vl[2];
+            double vs[2], vso[2], vl[2], vlo[2] = {0, 0};
             if constexpr (Ghosts) {
               // Ghost nodes: for each phase, the mirror node across every corrected wall the
               // node lies beyond, and which components are reflected.
@@ -122,12 +135,16 @@ TwoPhaseG2PReport two_phase_g2p_impl(
                 vso[r] =
                     flip_s[r] ? -grid_s.velocity_old(ms_node, r) : grid_s.velocity_old(node, r);
                 vl[r] = flip_l[r] ? -grid_l.velocity(ml_node, r) : grid_l.velocity(node, r);
+                if constexpr (!Apic)
+                  vlo[r] = flip_l[r] ? -grid_l.velocity_old(ml_node, r)
+                                     : grid_l.velocity_old(node, r);
               }
             } else {
               for (int r = 0; r < 2; ++r) {
                 vs[r] = grid_s.velocity(node, r);
                 vso[r] = grid_s.velocity_old(node, r);
                 vl[r] = grid_l.velocity(node, r);
+                if constexpr (!Apic) vlo[r] = grid_l.velocity_old(node, r);
               }
             }
             for (int r = 0; r < 2; ++r) {
@@ -137,6 +154,7 @@ TwoPhaseG2PReport two_phase_g2p_impl(
               O0s[r] += wx[a] * vso[r];
               A0l[r] += wx[a] * vl[r];
               A1l[r] += wxd[a] * vl[r];
+              if constexpr (!Apic) O0l[r] += wx[a] * vlo[r];
             }
             A2l += dwx[a] * vl[0];
           }
@@ -148,18 +166,30 @@ TwoPhaseG2PReport two_phase_g2p_impl(
             LS[r][0] += wy * A2s[r];
             LS[r][1] += dwy * A0s[r];
             vL[r] += wy * A0l[r];
+            if constexpr (!Apic) {
+              vSo[r] += wy * O0s[r];
+              vLo[r] += wy * O0l[r];
+            }
             CL[r][0] += wy * A1l[r];
             CL[r][1] += wy * dyb * A0l[r];
           }
           divL += wy * A2l + dwy * A0l[1];
         }
         for (int r = 0; r < 2; ++r) {
-          s.velocity(q, r) = vS[r];
-          p.liquid_velocity(q, r) = vL[r];
+          if constexpr (Apic) {
+            s.velocity(q, r) = vS[r];
+            p.liquid_velocity(q, r) = vL[r];
+          } else {
+            s.velocity(q, r) = r_flip * (s.velocity(q, r) + vS[r] - vSo[r]) + r_pic * vS[r];
+            p.liquid_velocity(q, r) =
+                r_flip * (p.liquid_velocity(q, r) + vL[r] - vLo[r]) + r_pic * vL[r];
+          }
           s.position(q, r) += dt * vSm[r];
           for (int c = 0; c < 2; ++c) {
-            s.affine(q, r, c) = apic * CS[r][c];
-            p.liquid_affine(q, r, c) = apic * CL[r][c];
+            if constexpr (Apic) {   // FLIP/PIC: the affine matrices stay zero (as built)
+              s.affine(q, r, c) = apic * CS[r][c];
+              p.liquid_affine(q, r, c) = apic * CL[r][c];
+            }
             s.velocity_gradient(q, r, c) = LS[r][c];
           }
         }
@@ -223,17 +253,30 @@ inline GhostWalls ghost_walls(const Boundaries* walls, const Boundaries* liquid_
   return gw;
 }
 
+// The instantiation for the transfer: APIC, or the FLIP/PIC blend.
+template <class ExecSpace, bool Ghosts, G2PStress Stress, class MemorySpace>
+TwoPhaseG2PReport two_phase_g2p_transfer(
+    const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g, double dt,
+    const GhostWalls& gw, const TwoPhasePointWork& work, const TwoPhaseTransfer& transfer,
+    const Kokkos::View<const PreparedMaterial*, MemorySpace>& materials = {}) {
+  if (transfer.apic)
+    return two_phase_g2p_impl<ExecSpace, Ghosts, Stress, true>(p, g, dt, gw, work, 0.0, materials);
+  return two_phase_g2p_impl<ExecSpace, Ghosts, Stress, false>(p, g, dt, gw, work,
+                                                              transfer.flip_ratio, materials);
+}
+
 // G2P of both phases alone (the points' stress, pore pressure and porosity untouched).
 template <class ExecSpace, class MemorySpace>
 TwoPhaseG2PReport two_phase_g2p(const TwoPhaseParticles<MemorySpace>& p,
                                 const TwoPhaseGrid<MemorySpace>& g, double dt,
                                 const Boundaries* walls = nullptr,
-                                const Boundaries* liquid_walls = nullptr) {
+                                const Boundaries* liquid_walls = nullptr,
+                                const TwoPhaseTransfer& transfer = {}) {
   const GhostWalls gw = ghost_walls(walls, liquid_walls, g.solid.origin, 1.0 / g.dx());
   const TwoPhasePointWork none;
   if (walls != nullptr || liquid_walls != nullptr)
-    return two_phase_g2p_impl<ExecSpace, true, G2PStress::None>(p, g, dt, gw, none);
-  return two_phase_g2p_impl<ExecSpace, false, G2PStress::None>(p, g, dt, gw, none);
+    return two_phase_g2p_transfer<ExecSpace, true, G2PStress::None>(p, g, dt, gw, none, transfer);
+  return two_phase_g2p_transfer<ExecSpace, false, G2PStress::None>(p, g, dt, gw, none, transfer);
 }
 
 // G2P of both phases and the point updates that follow it (see the file comment): the effective
@@ -244,15 +287,18 @@ TwoPhaseG2PReport two_phase_g2p_update(
     const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g, double dt,
     const Kokkos::View<const PreparedMaterial*, MemorySpace>& materials,
     const TwoPhasePointWork& work, const Boundaries* walls = nullptr,
-    const Boundaries* liquid_walls = nullptr) {
+    const Boundaries* liquid_walls = nullptr, const TwoPhaseTransfer& transfer = {}) {
   const GhostWalls gw = ghost_walls(walls, liquid_walls, g.solid.origin, 1.0 / g.dx());
   const bool ghosts = walls != nullptr || liquid_walls != nullptr;
   constexpr G2PStress E = G2PStress::Elastic, P = G2PStress::Plastic;
+  const TwoPhaseTransfer& t = transfer;
   if (ghosts)
-    return work.plastic ? two_phase_g2p_impl<ExecSpace, true, P>(p, g, dt, gw, work, materials)
-                        : two_phase_g2p_impl<ExecSpace, true, E>(p, g, dt, gw, work, materials);
-  return work.plastic ? two_phase_g2p_impl<ExecSpace, false, P>(p, g, dt, gw, work, materials)
-                      : two_phase_g2p_impl<ExecSpace, false, E>(p, g, dt, gw, work, materials);
+    return work.plastic
+               ? two_phase_g2p_transfer<ExecSpace, true, P>(p, g, dt, gw, work, t, materials)
+               : two_phase_g2p_transfer<ExecSpace, true, E>(p, g, dt, gw, work, t, materials);
+  return work.plastic
+             ? two_phase_g2p_transfer<ExecSpace, false, P>(p, g, dt, gw, work, t, materials)
+             : two_phase_g2p_transfer<ExecSpace, false, E>(p, g, dt, gw, work, t, materials);
 }
 
 }  // namespace lsi::mpm::two_phase
