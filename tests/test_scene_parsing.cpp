@@ -492,6 +492,11 @@ TEST(SceneParse, LandslideInertialFrictionInSiUnits) {
       without(landslide_with_inertial_friction(), "/landslide/material/inertial_friction"));
   EXPECT_FALSE(plain.landslide.material.inertial_friction.has_value());
   EXPECT_FALSE(lsi::impact_case(plain).materials[0].rate_dependent());
+  // The shipped example (scenes/examples/impact-mu-i.json, docs/scene_schema.md) is rate-dependent.
+  const Scene example = lsi::load_scene((kScenes / "examples" / "impact-mu-i.json").string());
+  const auto mu_i = lsi::impact_case(example).materials[0];
+  EXPECT_TRUE(mu_i.rate_dependent());
+  EXPECT_DOUBLE_EQ(mu_i.grain_diameter, 10e-3);
 }
 
 TEST(SceneErrors, LandslideInertialFrictionNamesTheFieldValueAndRange) {
