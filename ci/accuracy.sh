@@ -3,7 +3,7 @@
 # with `lsi accuracy` (MPM series over cells per thickness, points per cell, Courant number, the
 # transfer schemes and the two drag updates; the closed forms timed on the same scene) and draws
 # the work-precision and convergence diagrams. Writes results/accuracy/: accuracy.md (tables),
-# accuracy.json, *.png, runs/ (each run's histories and record). About 2-3 minutes on 2 cores.
+# accuracy.json, *.png, runs/ (each run's histories and record). About 3-4 minutes on 2 cores.
 # Finished runs are kept: a killed study continues where it stopped; delete results/accuracy to
 # start afresh (docs/accuracy.md).
 # usage: ci/accuracy.sh [STUDY.json]

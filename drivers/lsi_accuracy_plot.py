@@ -68,14 +68,18 @@ def plot_output(rep, output, out_dir):
             continue
         pts.sort(key=lambda p: -p[0])  # coarse to fine
         label = s["name"] + (" (reference)" if s["reference"] else "")
-        style = markers[len(ax.lines) % len(markers)] + "-"
-        ax.loglog([p[1] for p in pts], [p[2] for p in pts], style, label=label)
-        axc.loglog([p[0] for p in pts], [p[2] for p in pts], style, label=label)
+        # 20 distinct colours (the default cycle repeats after 10 series), markers cycling on
+        # their own: every series of the study keeps its own look.
+        k = len(ax.lines)
+        style = dict(marker=markers[k % len(markers)], linestyle="-", color=plt.cm.tab20(k % 20))
+        ax.loglog([p[1] for p in pts], [p[2] for p in pts], label=label, **style)
+        axc.loglog([p[0] for p in pts], [p[2] for p in pts], label=label, **style)
         hs += [p[0] for p in pts]
-    for c in rep["closed_forms"]:
+    for i, c in enumerate(rep["closed_forms"]):
         e = abs(number(c["errors"].get(output, "nan")))
         if usable(e):
             ax.loglog([c["seconds_per_evaluation"]], [e], "X", markersize=11,
+                      color=("black", "dimgray", "darkgray")[i % 3],
                       label="%s (closed form)" % c["method"])
     if not ax.lines:
         plt.close(fig)
