@@ -83,9 +83,9 @@ KOKKOS_INLINE_FUNCTION BarrierMotion barrier_motion(const ForcePulse& p, const S
   m.x_T1 = moves ? x_T1 : 0.0;
   m.a1 = moves ? a1 : 0.0;
   m.sB = moves ? sB : 0.0;
-  m.v_T2 = moves & !stops_before_T2 ? v_T2 : 0.0;
+  m.v_T2 = (moves & !stops_before_T2) ? v_T2 : 0.0;
   m.x_T2 = !moves ? 0.0 : stops_before_T2 ? x_stop : x_T2;
-  m.aC = moves & !stops_before_T2 ? aC : 0.0;
+  m.aC = (moves & !stops_before_T2) ? aC : 0.0;
   m.stop_time = !moves ? 0.0 : stops_before_T2 ? p.rise_time + uStop : stop_C;
   m.final_displacement = !moves ? 0.0 : stops_before_T2 ? x_stop : x_C;
   return m;
