@@ -374,7 +374,8 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
   s.gravity[0] = c.gravity[0];
   s.gravity[1] = c.gravity[1];
   s.drag = c.two_phase->drag;
-  s.transfer = {c.settings.apic, c.settings.flip_ratio};
+  s.transfer = c.settings.apic ? mpm::Transfer::Apic : mpm::Transfer::FlipPic;
+  s.flip_ratio = c.settings.flip_ratio;
   s.atomic_scatter = c.settings.atomic_scatter;
   s.track_transfer_dissipation = c.settings.transfer_dissipation;
   // The pore liquid does not penetrate the walls (impermeable) and slides along them freely.

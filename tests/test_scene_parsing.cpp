@@ -473,20 +473,25 @@ json landslide_with_inertial_friction() {
               "/methods/mpm", {{"cell_size_m", 0.5}, {"end_time_s", 1}});
 }
 
+// The MPM material of a parsed inertial_friction block, in SI units (angles given in degrees).
+void expect_inertial_friction(const lsi::mpm::Material& m, double static_deg, double limit_deg,
+                              double I0, double grain_diameter_m, double grain_density) {
+  const double deg = 3.14159265358979323846 / 180;
+  EXPECT_TRUE(m.rate_dependent());
+  EXPECT_DOUBLE_EQ(m.friction_angle, static_deg * deg);
+  EXPECT_DOUBLE_EQ(m.limit_friction_angle, limit_deg * deg);
+  EXPECT_DOUBLE_EQ(m.reference_inertial_number, I0);
+  EXPECT_DOUBLE_EQ(m.grain_diameter, grain_diameter_m);
+  EXPECT_DOUBLE_EQ(m.grain_density, grain_density);
+}
+
 TEST(SceneParse, LandslideInertialFrictionInSiUnits) {
   const Scene s = lsi::parse_scene(landslide_with_inertial_friction());
   ASSERT_TRUE(s.landslide.material.inertial_friction.has_value());
   EXPECT_DOUBLE_EQ(s.landslide.material.inertial_friction->limit_friction_angle_deg, 38);
   const lsi::MpmCase c = lsi::impact_case(s);
   ASSERT_EQ(c.materials.size(), 1u);
-  const auto& m = c.materials[0];
-  const double deg = 3.14159265358979323846 / 180;
-  EXPECT_TRUE(m.rate_dependent());
-  EXPECT_DOUBLE_EQ(m.friction_angle, 25 * deg);   // the static angle
-  EXPECT_DOUBLE_EQ(m.limit_friction_angle, 38 * deg);
-  EXPECT_DOUBLE_EQ(m.reference_inertial_number, 0.3);
-  EXPECT_DOUBLE_EQ(m.grain_diameter, 10e-3);
-  EXPECT_DOUBLE_EQ(m.grain_density, 2650);
+  expect_inertial_friction(c.materials[0], 25, 38, 0.3, 10e-3, 2650);   // 25: the static angle
   // Without the block (and in the reference scenes) the landslide is rate-independent.
   const Scene plain = lsi::parse_scene(
       without(landslide_with_inertial_friction(), "/landslide/material/inertial_friction"));
@@ -774,14 +779,7 @@ std::string mpm_case_error_of(const json& j) {
 TEST(MpmCaseParse, InertialFrictionInSiUnits) {
   const lsi::MpmCase c = lsi::parse_mpm_case(granular_case());
   ASSERT_EQ(c.materials.size(), 1u);
-  const auto& m = c.materials[0];
-  const double deg = 3.14159265358979323846 / 180;
-  EXPECT_TRUE(m.rate_dependent());
-  EXPECT_DOUBLE_EQ(m.friction_angle, 22.5 * deg);   // the static angle
-  EXPECT_DOUBLE_EQ(m.limit_friction_angle, 40 * deg);
-  EXPECT_DOUBLE_EQ(m.reference_inertial_number, 0.279);
-  EXPECT_DOUBLE_EQ(m.grain_diameter, 0.5e-3);
-  EXPECT_DOUBLE_EQ(m.grain_density, 2450);
+  expect_inertial_friction(c.materials[0], 22.5, 40, 0.279, 0.5e-3, 2450);   // 22.5: static
   // Without the block the material is rate-independent.
   const lsi::MpmCase plain = lsi::parse_mpm_case(
       without(granular_case(), "/mpm_case/materials/beads/inertial_friction"));

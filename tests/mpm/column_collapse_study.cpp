@@ -17,6 +17,7 @@
 #include <string>
 
 #include "support/column_collapse.hpp"
+#include "support/study_space.hpp"
 
 int main(int argc, char** argv) {
   if (argc < 3) {
@@ -52,22 +53,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "need a > 0, cells_per_L0 >= 2, L0 > 0, room > 1\n");
     return 2;
   }
-  Kokkos::initialize(argc, argv);
-  int code = 0;
-  {
-#ifdef KOKKOS_ENABLE_SERIAL
-    using Exec = Kokkos::Serial;
-#else
-    using Exec = Kokkos::DefaultHostExecutionSpace;
-#endif
-    const lsi::test::Collapse R = lsi::test::collapse<Exec>(spec);
-    std::printf("a = %g, %d cells per L0, L0 = %g m, phi = %.3f deg, base %g, mu(I) %s\n", spec.a,
-                spec.cells_per_L0, spec.L0, spec.friction_angle_deg, spec.base_friction,
-                spec.reference_inertial_number > 0 ? "on" : "off");
-    lsi::test::print(R, "Serial");
-    std::printf("room to the right wall: %.1f cells\n", R.right_room);
-    if (R.status != lsi::mpm::Status::Finished || R.right_room < 2) code = 1;
-  }
-  Kokkos::finalize();
-  return code;
+  Kokkos::ScopeGuard kokkos(argc, argv);
+  const lsi::test::Collapse R = lsi::test::collapse<lsi::test::StudySpace>(spec);
+  std::printf("a = %g, %d cells per L0, L0 = %g m, phi = %.3f deg, base %g, mu(I) %s\n", spec.a,
+              spec.cells_per_L0, spec.L0, spec.friction_angle_deg, spec.base_friction,
+              spec.reference_inertial_number > 0 ? "on" : "off");
+  lsi::test::print(R, "Serial");
+  std::printf("room to the right wall: %.1f cells\n", R.right_room);
+  return R.status != lsi::mpm::Status::Finished || R.right_room < 2 ? 1 : 0;
 }

@@ -25,6 +25,7 @@
 
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
+#include "support/study_space.hpp"
 
 namespace {
 using namespace lsi::mpm;
@@ -118,16 +119,6 @@ int main(int argc, char** argv) {
                          "0 < v0 <= 10\n");
     return 2;
   }
-  Kokkos::initialize(argc, argv);
-  int code = 0;
-  {
-#ifdef KOKKOS_ENABLE_SERIAL
-    using Exec = Kokkos::Serial;
-#else
-    using Exec = Kokkos::DefaultHostExecutionSpace;
-#endif
-    code = study<Exec>(where == "bed", dx, thickness, v0);
-  }
-  Kokkos::finalize();
-  return code;
+  Kokkos::ScopeGuard kokkos(argc, argv);
+  return study<lsi::test::StudySpace>(where == "bed", dx, thickness, v0);
 }

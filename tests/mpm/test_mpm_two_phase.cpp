@@ -414,18 +414,19 @@ TYPED_TEST(MpmTwoPhase, StabilisedBlockHitsWall) {
   EXPECT_LT(std::fabs(r.residual), 0.15);
 }
 
-// The FLIP/PIC blend of the two-phase transfer (two_phase_g2p.hpp, TwoPhaseTransfer) against
+// The FLIP/PIC blend of the two-phase transfer (two_phase_g2p.hpp, TwoPhaseSettings::transfer) against
 // APIC, on the block without stabilisations.
 TYPED_TEST(MpmTwoPhase, FlipPicTransferConservesMomentumAndOrdersTheLosses) {
-  auto with = [](TwoPhaseTransfer t) {
+  auto with = [](Transfer t, double flip_ratio) {
     TwoPhaseSettings s;
     s.transfer = t;
+    s.flip_ratio = flip_ratio;
     return saturated_block_on_wall<TypeParam>(s);
   };
-  const BlockOnWall apic = with({true, 0.0});
-  const BlockOnWall flip = with({false, 1.0});
-  const BlockOnWall blend = with({false, 0.95});
-  const BlockOnWall pic = with({false, 0.0});
+  const BlockOnWall apic = with(Transfer::Apic, 0.0);
+  const BlockOnWall flip = with(Transfer::FlipPic, 1.0);
+  const BlockOnWall blend = with(Transfer::FlipPic, 0.95);
+  const BlockOnWall pic = with(Transfer::FlipPic, 0.0);
   const std::pair<const char*, const BlockOnWall*> runs[] = {
       {"APIC", &apic}, {"FLIP", &flip}, {"FLIP 0.95", &blend}, {"PIC", &pic}};
   for (const auto& [name, r] : runs) {

@@ -1,4 +1,5 @@
-// Two-phase grid to particle, APIC or a FLIP/PIC blend for both phases (TwoPhaseTransfer): with
+// Two-phase grid to particle, APIC or a FLIP/PIC blend for both phases (the single-phase
+// Transfer and flip ratio of g2p.hpp): with
 // APIC the solid and liquid velocities are interpolated and so are their affine matrices
 // C = 4/dx^2 sum w v_i (x_i - x_p)^T; with FLIP/PIC each velocity is
 // r (v_p + sum w (v_i - v_i,old)) + (1 - r) sum w v_i and the affine matrices stay zero (the
@@ -44,13 +45,6 @@ struct TwoPhaseG2PReport {
   // two_phase_g2p_update() only:
   double viscous_work = 0.0;   // J/m, the bulk viscosity's work (pore pressure fused)
   TimeStepLimits limits;       // of the points at the end of the step (pore pressure fused)
-};
-
-// The velocity transfer of both phases: APIC (flip_ratio unused) or the FLIP/PIC blend with
-// flip_ratio r in [0, 1] (1: FLIP, 0: PIC).
-struct TwoPhaseTransfer {
-  bool apic = true;
-  double flip_ratio = 0.0;
 };
 
 // What two_phase_g2p_impl does after the transfer of a point.
@@ -253,16 +247,17 @@ inline GhostWalls ghost_walls(const Boundaries* walls, const Boundaries* liquid_
   return gw;
 }
 
-// The instantiation for the transfer: APIC, or the FLIP/PIC blend.
+// The instantiation for the transfer: APIC, or the FLIP/PIC blend with flip_ratio r in [0, 1]
+// (1: FLIP, 0: PIC; unused with APIC).
 template <class ExecSpace, bool Ghosts, G2PStress Stress, class MemorySpace>
 TwoPhaseG2PReport two_phase_g2p_transfer(
     const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g, double dt,
-    const GhostWalls& gw, const TwoPhasePointWork& work, const TwoPhaseTransfer& transfer,
+    const GhostWalls& gw, const TwoPhasePointWork& work, Transfer transfer, double flip_ratio,
     const Kokkos::View<const PreparedMaterial*, MemorySpace>& materials = {}) {
-  if (transfer.apic)
+  if (transfer == Transfer::Apic)
     return two_phase_g2p_impl<ExecSpace, Ghosts, Stress, true>(p, g, dt, gw, work, 0.0, materials);
-  return two_phase_g2p_impl<ExecSpace, Ghosts, Stress, false>(p, g, dt, gw, work,
-                                                              transfer.flip_ratio, materials);
+  return two_phase_g2p_impl<ExecSpace, Ghosts, Stress, false>(p, g, dt, gw, work, flip_ratio,
+                                                              materials);
 }
 
 // G2P of both phases alone (the points' stress, pore pressure and porosity untouched).
@@ -271,12 +266,13 @@ TwoPhaseG2PReport two_phase_g2p(const TwoPhaseParticles<MemorySpace>& p,
                                 const TwoPhaseGrid<MemorySpace>& g, double dt,
                                 const Boundaries* walls = nullptr,
                                 const Boundaries* liquid_walls = nullptr,
-                                const TwoPhaseTransfer& transfer = {}) {
+                                Transfer transfer = Transfer::Apic, double flip_ratio = 0.0) {
   const GhostWalls gw = ghost_walls(walls, liquid_walls, g.solid.origin, 1.0 / g.dx());
   const TwoPhasePointWork none;
+  const double r = flip_ratio;
   if (walls != nullptr || liquid_walls != nullptr)
-    return two_phase_g2p_transfer<ExecSpace, true, G2PStress::None>(p, g, dt, gw, none, transfer);
-  return two_phase_g2p_transfer<ExecSpace, false, G2PStress::None>(p, g, dt, gw, none, transfer);
+    return two_phase_g2p_transfer<ExecSpace, true, G2PStress::None>(p, g, dt, gw, none, transfer, r);
+  return two_phase_g2p_transfer<ExecSpace, false, G2PStress::None>(p, g, dt, gw, none, transfer, r);
 }
 
 // G2P of both phases and the point updates that follow it (see the file comment): the effective
@@ -287,18 +283,20 @@ TwoPhaseG2PReport two_phase_g2p_update(
     const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g, double dt,
     const Kokkos::View<const PreparedMaterial*, MemorySpace>& materials,
     const TwoPhasePointWork& work, const Boundaries* walls = nullptr,
-    const Boundaries* liquid_walls = nullptr, const TwoPhaseTransfer& transfer = {}) {
+    const Boundaries* liquid_walls = nullptr, Transfer transfer = Transfer::Apic,
+    double flip_ratio = 0.0) {
   const GhostWalls gw = ghost_walls(walls, liquid_walls, g.solid.origin, 1.0 / g.dx());
   const bool ghosts = walls != nullptr || liquid_walls != nullptr;
   constexpr G2PStress E = G2PStress::Elastic, P = G2PStress::Plastic;
-  const TwoPhaseTransfer& t = transfer;
+  const Transfer t = transfer;
+  const double r = flip_ratio;
   if (ghosts)
     return work.plastic
-               ? two_phase_g2p_transfer<ExecSpace, true, P>(p, g, dt, gw, work, t, materials)
-               : two_phase_g2p_transfer<ExecSpace, true, E>(p, g, dt, gw, work, t, materials);
+               ? two_phase_g2p_transfer<ExecSpace, true, P>(p, g, dt, gw, work, t, r, materials)
+               : two_phase_g2p_transfer<ExecSpace, true, E>(p, g, dt, gw, work, t, r, materials);
   return work.plastic
-             ? two_phase_g2p_transfer<ExecSpace, false, P>(p, g, dt, gw, work, t, materials)
-             : two_phase_g2p_transfer<ExecSpace, false, E>(p, g, dt, gw, work, t, materials);
+             ? two_phase_g2p_transfer<ExecSpace, false, P>(p, g, dt, gw, work, t, r, materials)
+             : two_phase_g2p_transfer<ExecSpace, false, E>(p, g, dt, gw, work, t, r, materials);
 }
 
 }  // namespace lsi::mpm::two_phase

@@ -47,8 +47,10 @@ struct TwoPhaseSettings {
   Drag drag = Drag::Explicit;         // explicit (the paper; permeability limit on dt) or
                                       // semi-implicit per node (no permeability limit)
   bool atomic_scatter = false;        // P2G with atomics instead of per-thread buffers (p2g.hpp)
-  // Velocity transfer of both phases: APIC (default) or a FLIP/PIC blend (two_phase_g2p.hpp).
-  TwoPhaseTransfer transfer;
+  // Velocity transfer of both phases, as the single-phase Settings: APIC, or a FLIP/PIC blend
+  // without affine terms (two_phase_g2p.hpp).
+  Transfer transfer = Transfer::Apic;
+  double flip_ratio = 0.99;           // FlipPic only: share of FLIP, [0, 1] (0: plain PIC)
   // Mirror-image wall correction of P2G (two_phase_p2g.hpp): removes the +15 % boundary layer of
   // stress and pore pressure next to walls the material rests on. Off by default (the
   // single-phase solver has no such correction); on in the column tests.
@@ -155,7 +157,7 @@ class TwoPhaseSolver {
                       grid_.dx()};
     const TwoPhaseG2PReport r =
         two_phase_g2p_update<ExecSpace>(particles_, grid_, dt_, materials_, work, cw, cl,
-                                        settings_.transfer);
+                                        settings_.transfer, settings_.flip_ratio);
     load_work_ += r.load_work;
     if (work.pore_pressure) {
       viscous_ += r.viscous_work;

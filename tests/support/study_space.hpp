@@ -1,0 +1,12 @@
+// The execution space of the study programs built beside the tests (tests/mpm/*_study.cpp): Serial
+// when Kokkos has it (the one-thread runs the docs quote), else the default host space.
+#pragma once
+#include <Kokkos_Core.hpp>
+
+namespace lsi::test {
+#ifdef KOKKOS_ENABLE_SERIAL
+using StudySpace = Kokkos::Serial;
+#else
+using StudySpace = Kokkos::DefaultHostExecutionSpace;
+#endif
+}  // namespace lsi::test
