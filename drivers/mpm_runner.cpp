@@ -378,6 +378,7 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
   s.flip_ratio = c.settings.flip_ratio;
   s.atomic_scatter = c.settings.atomic_scatter;
   s.track_transfer_dissipation = c.settings.transfer_dissipation;
+  s.cell_pore_pressure = c.settings.cell_pore_pressure;
   // The pore liquid does not penetrate the walls (impermeable) and slides along them freely.
   mpm::Boundaries liquid_walls = c.walls;
   for (mpm::Wall* w : {&liquid_walls.left, &liquid_walls.right, &liquid_walls.bottom, &liquid_walls.top})

@@ -27,7 +27,7 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
                                    "max_time_step_s", "output_interval_s", "transfer",
                                    "flip_ratio", "scatter", "snapshot_interval_s",
                                    "small_mass_fraction", "transfer_dissipation"};
-  if (impact) keys.insert(keys.end(), {"base_friction", "phases", "drag"});
+  if (impact) keys.insert(keys.end(), {"base_friction", "phases", "drag", "pore_pressure"});
   const jf::ObjectReader r(block, path, keys);
   MpmSettings s;
   s.cell_size_m = r.number("cell_size_m", jf::greater_than(0, "m"));
@@ -45,6 +45,12 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
     s.semi_implicit_drag =
         r.choice("drag", {"semi-implicit", "explicit"}, std::string("semi-implicit")) == "semi-implicit";
     if (!s.saturated && r.has("drag")) r.fail_at("drag", "only used with \"phases\": \"saturated\"");
+    // The pore pressure per point (the paper's single-point formulation) or projected to its
+    // cell's mean every step (removes the volumetric locking next to walls: docs/two_phase.md,
+    // "The face jet").
+    s.cell_pore_pressure = r.choice("pore_pressure", {"point", "cell"}, std::string("point")) == "cell";
+    if (!s.saturated && r.has("pore_pressure"))
+      r.fail_at("pore_pressure", "only used with \"phases\": \"saturated\"");
   } else {
     s.end_time_s = r.number("end_time_s", jf::greater_than(0, "s"));
   }

@@ -36,6 +36,7 @@ struct MpmSettings {
   double base_friction = 0.0;         // Coulomb coefficient of the base under the flow (paper: 0)
   bool saturated = true;              // "phases": "saturated" (two-phase, the paper) or "dry"
   bool semi_implicit_drag = true;     // "drag": "semi-implicit" or "explicit" (saturated only)
+  bool cell_pore_pressure = false;    // "pore_pressure": "point" or "cell" (saturated only)
   bool end_time_given = true;         // false: end_time_s is the impact scene's default
 };
 

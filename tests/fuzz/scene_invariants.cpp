@@ -140,7 +140,9 @@ void check_settings(const MpmSettings& s, MpmCaseKind kind) {
   if (kind == MpmCaseKind::Verification) {
     require(s.end_time_given, "verification scene without end_time_s");
     require(s.base_friction == 0.0, "verification scene with an impact-only key");
+    require(!s.cell_pore_pressure, "verification scene with an impact-only key");
   }
+  require(!s.cell_pore_pressure || s.saturated, "methods.mpm.pore_pressure \"cell\" on a dry scene");
 }
 
 void check_grid(const MpmCase& c) {
