@@ -61,10 +61,9 @@ struct Block {
   double impulse_scale() const { return mixture_density() * speed * height * height; }   // N s/m
 };
 
-// sinh(k (L - x)) / cosh(k L) (sign -1) or cosh(k (L - x)) / cosh(k L) (sign +1), x in [0, L],
-// without overflow.
-inline double hyperbolic_ratio(double k, double L, double x, double sign) {
-  return std::exp(-k * x) * (1 + sign * std::exp(-2 * k * (L - x))) / (1 + std::exp(-2 * k * L));
+// cosh(k (L - x)) / cosh(k L), x in [0, L], without overflow.
+inline double cosh_ratio(double k, double L, double x) {
+  return std::exp(-k * x) * (1 + std::exp(-2 * k * (L - x))) / (1 + std::exp(-2 * k * L));
 }
 
 // The theory's wall impulse, N s/m.
@@ -83,7 +82,7 @@ inline double theory_vertical_momentum(const Block& b) {
   for (int n = 0; n < kTerms; ++n) {
     const double k = (n + 0.5) * kPi / b.height;
     const double A = 2 * b.speed * (n % 2 ? -1.0 : 1.0) / (k * b.height);
-    s += A / (k * k) * (1 - 2 * std::exp(-k * b.length) / (1 + std::exp(-2 * k * b.length)));
+    s += A / (k * k) * (1 - cosh_ratio(k, b.length, b.length));   // 1 - 1 / cosh(k L)
   }
   return b.mixture_density() * s;
 }
@@ -97,7 +96,7 @@ inline double theory_vertical_velocity(const Block& b, double x0, double x1, dou
     const double A = 2 * b.speed * (n % 2 ? -1.0 : 1.0) / (k * H);
     const double iy = (std::cos(k * y0) - std::cos(k * y1)) / k;   // integral of sin(k y)
     // integral of sinh(k (L - x)) / cosh(k L) over [x0, x1]
-    const double ix = (hyperbolic_ratio(k, L, x0, 1) - hyperbolic_ratio(k, L, x1, 1)) / k;
+    const double ix = (cosh_ratio(k, L, x0) - cosh_ratio(k, L, x1)) / k;
     s += A * iy * ix;
   }
   return s / ((x1 - x0) * (y1 - y0));
