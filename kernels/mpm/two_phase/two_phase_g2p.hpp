@@ -84,12 +84,15 @@ TwoPhaseG2PReport two_phase_g2p_impl(
       KOKKOS_LAMBDA(const int q, double& vm, double& wk, double& visc, double& cm, double& tk,
                     int& nonfinite, int& outside) {
         // Named here, outside the `if constexpr`s: nvcc rejects a lambda whose first use (and
-        // so capture) of a variable is inside one.
+        // so capture) of a variable is inside one (`points` and `apic_scale` are first used in
+        // the Apic branches below).
         [[maybe_unused]] const auto& mats = materials;
         [[maybe_unused]] const GhostWalls& ghost = gw;
         [[maybe_unused]] const bool fuse_pore = pore;
         [[maybe_unused]] const TwoPhaseConstants& constants = kc;
         [[maybe_unused]] const double r_flip = flip, r_pic = pic;
+        [[maybe_unused]] const double apic_scale = apic;   // 4 / dx^2, APIC only
+        const auto& points = p;
         const auto& grid_s = S;
         const auto& grid_l = L;
         const double xp = s.position(q, 0) - ox, yp = s.position(q, 1) - oy;
@@ -172,42 +175,42 @@ TwoPhaseG2PReport two_phase_g2p_impl(
         for (int r = 0; r < 2; ++r) {
           if constexpr (Apic) {
             s.velocity(q, r) = vS[r];
-            p.liquid_velocity(q, r) = vL[r];
+            points.liquid_velocity(q, r) = vL[r];
           } else {
             s.velocity(q, r) = r_flip * (s.velocity(q, r) + vS[r] - vSo[r]) + r_pic * vS[r];
-            p.liquid_velocity(q, r) =
-                r_flip * (p.liquid_velocity(q, r) + vL[r] - vLo[r]) + r_pic * vL[r];
+            points.liquid_velocity(q, r) =
+                r_flip * (points.liquid_velocity(q, r) + vL[r] - vLo[r]) + r_pic * vL[r];
           }
           s.position(q, r) += dt * vSm[r];
           for (int c = 0; c < 2; ++c) {
             if constexpr (Apic) {   // FLIP/PIC: the affine matrices stay zero (as built)
-              s.affine(q, r, c) = apic * CS[r][c];
-              p.liquid_affine(q, r, c) = apic * CL[r][c];
+              s.affine(q, r, c) = apic_scale * CS[r][c];
+              points.liquid_affine(q, r, c) = apic_scale * CL[r][c];
             }
             s.velocity_gradient(q, r, c) = LS[r][c];
           }
         }
-        p.liquid_divergence(q) = divL;
-        wk += dt * (p.traction(q, 0) * vSm[0] + p.traction(q, 1) * vSm[1]);
+        points.liquid_divergence(q) = divL;
+        wk += dt * (points.traction(q, 0) * vSm[0] + points.traction(q, 1) * vSm[1]);
         if constexpr (Stress != G2PStress::None) {
           const PreparedMaterial& m = mats(s.material(q));
           // The pore pressure update needs the porosity of the start of the step (n in D) and
           // the volume of the end (stress update first, as in the unfused sequence).
           if (fuse_pore)
-            p.volumetric_rate(q) =
-                mixture_volumetric_rate(p.porosity(q), LS[0][0] + LS[1][1], divL);
+            points.volumetric_rate(q) =
+                mixture_volumetric_rate(points.porosity(q), LS[0][0] + LS[1][1], divL);
           update_point_stress<Stress == G2PStress::Plastic>(s, q, m, LS[0][0], LS[0][1],
                                                             LS[1][0], LS[1][1], dt);
           if (fuse_pore) {
-            visc += update_point_pore_pressure(p, q, m, constants, LS[0][0], LS[0][1], LS[1][0],
-                                               LS[1][1], dt);
-            point_time_step_limits(p, q, m, constants, cm, tk);
+            visc += update_point_pore_pressure(points, q, m, constants, LS[0][0], LS[0][1],
+                                               LS[1][0], LS[1][1], dt);
+            point_time_step_limits(points, q, m, constants, cm, tk);
           }
         }
         const double s2 = vS[0] * vS[0] + vS[1] * vS[1], l2 = vL[0] * vL[0] + vL[1] * vL[1];
         if (!(s2 < 1e300) || !(l2 < 1e300) || !(s.position(q, 0) == s.position(q, 0)) ||
             !(s.position(q, 1) == s.position(q, 1)) ||
-            !(math::fabs(p.pore_pressure(q)) < 1e300)) {
+            !(math::fabs(points.pore_pressure(q)) < 1e300)) {
           ++nonfinite;
         } else {
           const double v = math::sqrt(math::max(s2, l2));
