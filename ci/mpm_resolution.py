@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """Resolution study of the MPM impact (issue 4): runs reference scenes at several cell sizes
 (cells through the landslide's thickness) and tabulates peak force, impact duration, final
-displacement, steps and solver time, so that the default resolution of scenes/reference/ can be
-chosen and justified (docs/mpm.md, "Reference study resolution"); also the lowest energy
+displacement, overtopped volume, steps and solver time, so that the default resolution of
+scenes/reference/ can be chosen and justified (docs/mpm.md, "Reference study resolution"); also the lowest energy
 residual of each run and the largest volume of points inside the barrier (the contact's leak),
 and, with --set transfer_dissipation=true, the energy lost in the grid transfers and the
 residual it leaves unexplained (docs/mpm.md, "Energy lost in the transfers").
@@ -69,12 +69,13 @@ def main():
                 continue
             rows.append((scene["name"], n, h / n, m))
             print("%-6s %3d cells/h  dx %.4f m: peak %.1f kN/m, duration %.2f s, displacement "
-                  "%s m, %d points, %d steps, %.1f s, residual min %.3f, inside the barrier "
-                  "at most %.3f m^2" % (
+                  "%s m, overtopped %.2f m^2, %d points, %d steps, %.1f s, residual min %.3f, "
+                  "inside the barrier at most %.3f m^2" % (
                       scene["name"], n, h / n, m["peak_force"] / 1e3, m["impact_duration"],
                       "%.3f" % m["final_displacement"] if m.get("final_displacement") is not None
-                      else "never stops", m["particles"], m["steps"], m["solver_seconds"],
-                      m["energy_residual_min"], m.get("barrier_interior_volume_max_m2", 0.0))
+                      else "never stops", m["overtopped_volume_m2"], m["particles"], m["steps"],
+                      m["solver_seconds"], m["energy_residual_min"],
+                      m.get("barrier_interior_volume_max_m2", 0.0))
                   + (", transfer dissipation %.3f MJ/m, unexplained residual %.4f .. %.4f" % (
                       m["transfer_dissipation_j_per_m"] / 1e6, m["energy_residual_unexplained_min"],
                       m["energy_residual_unexplained_max"])
