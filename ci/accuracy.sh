@@ -5,14 +5,15 @@
 # the work-precision and convergence diagrams. Writes results/accuracy/: accuracy.md (tables),
 # accuracy.json, *.png, runs/ (each run's histories and record). About 3-4 minutes on 2 cores.
 # Finished runs are kept: a killed study continues where it stopped; delete results/accuracy to
-# start afresh (docs/accuracy.md).
+# start afresh (docs/accuracy.md). Another study writes to results/<its file name without .json>,
+# e.g. scenes/studies/accuracy-overtopping.json (the overtopped volume, docs/accuracy.md).
 # usage: ci/accuracy.sh [STUDY.json]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$root/ci/setup.sh"
 build="${LSI_BUILD_DIR:-$root/build}"
 study="${1:-$root/scenes/studies/accuracy.json}"
-out="$root/results/accuracy"
+out="$root/results/$(basename "$study" .json)"   # results/accuracy for the default study
 mkdir -p "$out"
 OMP_NUM_THREADS="${OMP_NUM_THREADS:-$(nproc)}" OMP_PROC_BIND=false OMP_WAIT_POLICY=passive \
   "$build/drivers/lsi" accuracy "$study" --out "$out" --resume

@@ -65,6 +65,7 @@ std::string percent(double v) {
 const char* unit_of(const std::string& output) {
   if (output == "peak_force") return "kN/m";
   if (output == "final_displacement") return "m";
+  if (output == "overtopped_volume") return "m^2";
   if (output == "energy_residual") return "1";
   return "s";
 }

@@ -100,8 +100,9 @@ double largest_abs(const std::vector<double>& v) {
 }  // namespace
 
 const std::vector<std::string>& accuracy_output_names() {
-  static const std::vector<std::string> names = {"peak_force", "rise_time", "impact_duration",
-                                                 "final_displacement", "energy_residual"};
+  static const std::vector<std::string> names = {"peak_force",         "rise_time",
+                                                 "impact_duration",    "final_displacement",
+                                                 "overtopped_volume",  "energy_residual"};
   return names;
 }
 
@@ -214,6 +215,8 @@ AccuracyRun run_accuracy_case(const json& scene, const AccuracySeries& series, d
   r.outputs["rise_time"] = m.rise_time;
   r.outputs["impact_duration"] = m.impact_duration;
   r.outputs["final_displacement"] = m.final_displacement;
+  const auto over = m.extra.find("overtopped_volume_m2");   // at the end of the run
+  r.outputs["overtopped_volume"] = over == m.extra.end() ? kNaN : over->second;
   const auto it = m.series.find("energy_residual");
   r.outputs["energy_residual"] = it == m.series.end() ? kNaN : largest_abs(it->second.values);
   return r;

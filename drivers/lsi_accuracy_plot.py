@@ -33,6 +33,7 @@ LABELS = {
     "rise_time": "rise time T1",
     "impact_duration": "impact duration T2",
     "final_displacement": "final displacement",
+    "overtopped_volume": "overtopped volume",
     "energy_residual": "energy residual (absolute)",
 }
 
