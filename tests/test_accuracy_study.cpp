@@ -236,7 +236,7 @@ TEST(AccuracyCommand, FollowsTheOvertoppedVolume) {
     EXPECT_GT(v, 1.0) << h5;   // m^2
   }
   EXPECT_NE(r.out.find("overtopped_volume [m^2]"), std::string::npos) << r.out;
-  fs::remove_all(dir);
+  fs::remove_all(temp_dir());
 }
 
 }  // namespace
