@@ -69,11 +69,13 @@ def main():
                 continue
             rows.append((scene["name"], n, h / n, m))
             print("%-6s %3d cells/h  dx %.4f m: peak %.1f kN/m, duration %.2f s, displacement "
-                  "%s m, overtopped %.2f m^2, %d points, %d steps, %.1f s, residual min %.3f, "
+                  "%s m, overtopped %.2f m^2 (%.2f inside the barrier), %d points, %d steps, "
+                  "%.1f s, residual min %.3f, "
                   "inside the barrier at most %.3f m^2" % (
                       scene["name"], n, h / n, m["peak_force"] / 1e3, m["impact_duration"],
                       "%.3f" % m["final_displacement"] if m.get("final_displacement") is not None
-                      else "never stops", m["overtopped_volume_m2"], m["particles"], m["steps"],
+                      else "never stops", m["overtopped_volume_m2"],
+                      m.get("overtopped_inside_barrier_m2", 0.0), m["particles"], m["steps"],
                       m["solver_seconds"], m["energy_residual_min"],
                       m.get("barrier_interior_volume_max_m2", 0.0))
                   + (", transfer dissipation %.3f MJ/m, unexplained residual %.4f .. %.4f" % (

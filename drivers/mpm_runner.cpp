@@ -71,6 +71,7 @@ void summarize_impact(MethodResult& r, const mpm::Barrier& barrier) {
   r.extra["displacement_at_end"] = barrier.motion.displacement;
   const auto& over = r.series.at("overtopped_volume").values;
   r.extra["overtopped_volume_m2"] = over.back();
+  r.extra["overtopped_inside_barrier_m2"] = r.series.at("overtopped_inside_barrier").values.back();
   r.extra["retained_volume_m2"] = r.series.at("retained_volume").values.back();
 }
 
@@ -215,10 +216,14 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
         o.overtopped);
     add("retained_volume", "m^2", "volume of material upstream of the upstream crest corner",
         o.total - o.overtopped);
+    const mpm::BarrierInterior in =
+        mpm::barrier_interior<Exec>(solid_points(solver), c.barrier->shape, motion.displacement);
     add("barrier_interior_volume", "m^2",
         "volume of the material points whose centre lies inside the barrier (contact leak)",
-        mpm::barrier_interior_volume<Exec>(solid_points(solver), c.barrier->shape,
-                                           motion.displacement));
+        in.inside);
+    add("overtopped_inside_barrier", "m^2",
+        "the part of overtopped_volume whose centre lies inside the barrier (contact leak)",
+        in.past_crest);
     add("barrier_friction_work", "J/m", "work dissipated by the barrier's base friction",
         motion.friction_work);
     add("barrier_kinetic_energy", "J/m", "kinetic energy of the barrier",

@@ -32,23 +32,34 @@ OvertoppingReport overtopping(const Particles<MemorySpace>& p, double crest_x) {
   return r;
 }
 
+struct BarrierInterior {
+  double inside = 0.0;       // m^2: every point whose centre lies inside the barrier
+  double past_crest = 0.0;   // m^2: those of them downstream of the upstream crest corner, which
+                             // `overtopping` counts as overtopped
+};
+
 // Initial volume (m^2 per m) of the points whose centre lies inside the barrier (shape displaced
-// by `displacement`, m, above its base).
+// by `displacement`, m, above its base), and the part of it downstream of the upstream crest
+// corner: the leaked points that `overtopping` counts, so that the overtopped volume lies between
+// overtopped - past_crest and overtopped whichever way the leak is read.
 template <class ExecSpace, class MemorySpace>
-double barrier_interior_volume(const Particles<MemorySpace>& p, const BarrierShape& shape,
-                               const double displacement) {
+BarrierInterior barrier_interior(const Particles<MemorySpace>& p, const BarrierShape& shape,
+                                 const double displacement) {
   const double base_y = shape.toe[1];
-  double inside = 0.0;
+  const double crest_x = shape.crest_upstream_x() + displacement;
+  BarrierInterior r;
   Kokkos::parallel_reduce(
       "lsi::mpm::barrier_interior_volume", Kokkos::RangePolicy<ExecSpace>(0, p.count),
-      KOKKOS_LAMBDA(const int q, double& v) {
-        const double y = p.position(q, 1);
+      KOKKOS_LAMBDA(const int q, double& in, double& past) {
+        const double x = p.position(q, 0), y = p.position(q, 1);
         int k = 0;
-        if (y > base_y && shape.outside_distance(p.position(q, 0) - displacement, y, k) < 0.0)
-          v += p.volume0(q);
+        if (y > base_y && shape.outside_distance(x - displacement, y, k) < 0.0) {
+          in += p.volume0(q);
+          if (x > crest_x) past += p.volume0(q);
+        }
       },
-      inside);
-  return inside;
+      r.inside, r.past_crest);
+  return r;
 }
 
 }  // namespace lsi::mpm

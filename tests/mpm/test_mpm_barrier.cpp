@@ -239,8 +239,10 @@ TYPED_TEST(MpmBarrier, FreeBarrierConservesMomentum) {
 
 // Points placed around a trapezoid (H 4, B 2, b 1 m, face 80 deg, toe at x = 1 m), at rest and
 // displaced 0.5 m downstream: those whose centre is inside count with their initial volume; those
-// upstream of the face, above the crest, beyond the back face or on the base do not. Each point
-// has its own V0 (a power of 2), so the sum says exactly which counted: exact equality.
+// upstream of the face, above the crest, beyond the back face or on the base do not; of those
+// inside, the ones downstream of the upstream crest corner (x > toe + run) are also the part of
+// the overtopped volume that leaked in. Each point has its own V0 (a power of 2), so the sum says
+// exactly which counted: exact equality.
 TYPED_TEST(MpmBarrier, InteriorVolumeCountsThePointsInsideTheDisplacedBarrier) {
   using Mem = typename TypeParam::memory_space;
   const double beta = 80.0 * kPi / 180.0, run = 4.0 / std::tan(beta);   // the face's run, 0.705 m
@@ -266,18 +268,29 @@ TYPED_TEST(MpmBarrier, InteriorVolumeCountsThePointsInsideTheDisplacedBarrier) {
   Particles<Mem> p(n);
   auto pos = Kokkos::create_mirror_view(p.position);
   auto v0 = Kokkos::create_mirror_view(p.volume0);
-  double displaced = 0.0, at_rest = 0.0;
+  double displaced = 0.0, at_rest = 0.0, displaced_past = 0.0, at_rest_past = 0.0;
   for (int q = 0; q < n; ++q) {
     pos(q, 0) = pts[q].x;
     pos(q, 1) = pts[q].y;
     v0(q) = std::ldexp(1.0, -q);
     if (pts[q].inside_displaced) displaced += v0(q);
     if (pts[q].inside_at_rest) at_rest += v0(q);
+    if (pts[q].inside_displaced && pts[q].x > toe + run) displaced_past += v0(q);
+    if (pts[q].inside_at_rest && pts[q].x > 1.0 + run) at_rest_past += v0(q);
   }
   Kokkos::deep_copy(p.position, pos);
   Kokkos::deep_copy(p.volume0, v0);
-  EXPECT_EQ(barrier_interior_volume<TypeParam>(p, shape, shift), displaced);
-  EXPECT_EQ(barrier_interior_volume<TypeParam>(p, shape, 0.0), at_rest);
+  const BarrierInterior moved = barrier_interior<TypeParam>(p, shape, shift);
+  const BarrierInterior still = barrier_interior<TypeParam>(p, shape, 0.0);
+  EXPECT_EQ(moved.inside, displaced);
+  EXPECT_EQ(still.inside, at_rest);
+  EXPECT_EQ(moved.past_crest, displaced_past);
+  EXPECT_EQ(still.past_crest, at_rest_past);
+  // Both cases have points inside on either side of the crest corner (not all or nothing).
+  EXPECT_GT(moved.past_crest, 0.0);
+  EXPECT_LT(moved.past_crest, moved.inside);
+  EXPECT_GT(still.past_crest, 0.0);
+  EXPECT_LT(still.past_crest, still.inside);
 }
 
 }  // namespace

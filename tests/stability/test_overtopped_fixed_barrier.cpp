@@ -97,6 +97,18 @@ TEST(OvertoppedFixedBarrier, RunsToItsEndCleanly) {
   std::cout << "[ overtopping ] largest volume inside the barrier " << interior_max << " m^2\n";
   EXPECT_GT(interior_max, 0.0);
   EXPECT_LT(interior_max, 2.0);
+  // The leaked part of the overtopped volume (points inside the barrier past its crest corner) is
+  // a sum over a subset of the points of each of the other two: exact inequalities.
+  const auto& over = r.series.at("overtopped_volume").values;
+  const auto& leaked = r.series.at("overtopped_inside_barrier").values;
+  ASSERT_EQ(leaked.size(), interior.size());
+  for (size_t i = 0; i < leaked.size(); ++i) {
+    EXPECT_GE(leaked[i], 0.0);
+    EXPECT_LE(leaked[i], interior[i]);
+    EXPECT_LE(leaked[i], over[i]);
+  }
+  EXPECT_GT(*std::max_element(leaked.begin(), leaked.end()), 0.0);   // points do leak past it
+  EXPECT_EQ(r.extra.at("overtopped_inside_barrier_m2"), leaked.back());
 }
 
 }  // namespace
