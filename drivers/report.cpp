@@ -57,6 +57,20 @@ std::string summary_table(const Scene& scene, const std::vector<MethodResult>& r
       << pad(fmt(r.rise_time, "%.3f"), 11) << pad(fmt(r.impact_duration, "%.3f"), 17)
       << fmt(r.final_displacement, "%.3f") << "\n";
   }
+  // The MPM's volumes (the closed forms have none): what went over the crest, and how much of
+  // that is the grid contact's leak into the barrier (docs/two_phase.md).
+  for (const auto& r : results) {
+    const auto over = r.extra.find("overtopped_volume_m2");
+    const auto kept = r.extra.find("retained_volume_m2");
+    if (over == r.extra.end() || kept == r.extra.end()) continue;
+    const double total = over->second + kept->second;
+    o << r.method << ": overtopped " << fmt(over->second, "%.2f") << " m^2/m ("
+      << fmt(total > 0.0 ? 100.0 * over->second / total : 0.0, "%.1f") << " % of the landslide";
+    const auto leak = r.extra.find("overtopped_inside_barrier_m2");
+    if (leak != r.extra.end() && leak->second > 0.0)
+      o << "; " << fmt(leak->second, "%.2f") << " of it inside the barrier, the contact's leak";
+    o << "), retained " << fmt(kept->second, "%.2f") << " m^2/m\n";
+  }
   return o.str();
 }
 
