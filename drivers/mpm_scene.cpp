@@ -48,7 +48,8 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
     // The pore pressure per point (the paper's single-point formulation) or projected to its
     // cell's mean every step (removes the volumetric locking next to walls: docs/two_phase.md,
     // "The face jet").
-    s.cell_pore_pressure = r.choice("pore_pressure", {"point", "cell"}, std::string("point")) == "cell";
+    s.cell_pore_pressure =
+        r.choice("pore_pressure", {"point", "cell"}, std::string("point")) == "cell";
     if (!s.saturated && r.has("pore_pressure"))
       r.fail_at("pore_pressure", "only used with \"phases\": \"saturated\"");
   } else {

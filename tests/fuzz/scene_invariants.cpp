@@ -142,7 +142,8 @@ void check_settings(const MpmSettings& s, MpmCaseKind kind) {
     require(s.base_friction == 0.0, "verification scene with an impact-only key");
     require(!s.cell_pore_pressure, "verification scene with an impact-only key");
   }
-  require(!s.cell_pore_pressure || s.saturated, "methods.mpm.pore_pressure \"cell\" on a dry scene");
+  require(!s.cell_pore_pressure || s.saturated,
+          "methods.mpm.pore_pressure \"cell\" on a dry scene");
 }
 
 void check_grid(const MpmCase& c) {

@@ -57,7 +57,9 @@ struct Block {
   double mixture_density() const {
     return (1 - porosity) * grain_density + porosity * liquid_density;
   }
-  double wave_speed() const { return std::sqrt(liquid_bulk_modulus / (porosity * mixture_density())); }
+  double wave_speed() const {
+    return std::sqrt(liquid_bulk_modulus / (porosity * mixture_density()));
+  }
   double impulse_scale() const { return mixture_density() * speed * height * height; }   // N s/m
 };
 

@@ -414,8 +414,8 @@ TYPED_TEST(MpmTwoPhase, StabilisedBlockHitsWall) {
   EXPECT_LT(std::fabs(r.residual), 0.15);
 }
 
-// The FLIP/PIC blend of the two-phase transfer (two_phase_g2p.hpp, TwoPhaseSettings::transfer) against
-// APIC, on the block without stabilisations.
+// The FLIP/PIC blend of the two-phase transfer (two_phase_g2p.hpp, TwoPhaseSettings::transfer)
+// against APIC, on the block without stabilisations.
 TYPED_TEST(MpmTwoPhase, FlipPicTransferConservesMomentumAndOrdersTheLosses) {
   auto with = [](Transfer t, double flip_ratio) {
     TwoPhaseSettings s;

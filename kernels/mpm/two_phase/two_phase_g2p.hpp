@@ -272,10 +272,10 @@ TwoPhaseG2PReport two_phase_g2p(const TwoPhaseParticles<MemorySpace>& p,
                                 Transfer transfer = Transfer::Apic, double flip_ratio = 0.0) {
   const GhostWalls gw = ghost_walls(walls, liquid_walls, g.solid.origin, 1.0 / g.dx());
   const TwoPhasePointWork none;
-  const double r = flip_ratio;
+  constexpr G2PStress N = G2PStress::None;
   if (walls != nullptr || liquid_walls != nullptr)
-    return two_phase_g2p_transfer<ExecSpace, true, G2PStress::None>(p, g, dt, gw, none, transfer, r);
-  return two_phase_g2p_transfer<ExecSpace, false, G2PStress::None>(p, g, dt, gw, none, transfer, r);
+    return two_phase_g2p_transfer<ExecSpace, true, N>(p, g, dt, gw, none, transfer, flip_ratio);
+  return two_phase_g2p_transfer<ExecSpace, false, N>(p, g, dt, gw, none, transfer, flip_ratio);
 }
 
 // G2P of both phases and the point updates that follow it (see the file comment): the effective
