@@ -306,6 +306,9 @@ class Sampler {
 template <class ExecSpace, class MemorySpace>
 void sample_batch(const ExecSpace& space, const Sampler<MemorySpace>& s, std::uint64_t first,
                   const Kokkos::View<double**, Kokkos::LayoutLeft, MemorySpace>& out) {
+  static_assert(Kokkos::SpaceAccessibility<ExecSpace, MemorySpace>::accessible,
+                "sample_batch: the execution space cannot read the sampler's memory (a host "
+                "sampler drawn on a device)");
   if (out.extent(1) != static_cast<std::size_t>(s.dimensions()))
     throw std::invalid_argument("sample_batch: the output has " + std::to_string(out.extent(1)) +
                                 " columns for " + std::to_string(s.dimensions()) + " inputs");

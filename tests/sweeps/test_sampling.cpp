@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <iostream>
 #include <set>
 #include <string>
 #include <vector>
@@ -73,12 +74,13 @@ DistributionSpec constant(double v) {
   return s;
 }
 
-// All samples [0, n) of a sampler, drawn on the default execution space, as a host matrix.
+// All samples [0, n) of a sampler, drawn on the execution space of its memory (the host's
+// threads for a HostSampler, also in a CUDA build), as a host matrix.
 template <class Mem>
 Kokkos::View<double**, Kokkos::LayoutLeft, Kokkos::HostSpace> draw(const Sampler<Mem>& s, std::uint64_t n,
                                                                     std::uint64_t first = 0) {
   Kokkos::View<double**, Kokkos::LayoutLeft, Mem> out("samples", n, s.dimensions());
-  sample_batch(Kokkos::DefaultExecutionSpace(), s, first, out);
+  sample_batch(typename Mem::execution_space(), s, first, out);
   Kokkos::fence();
   auto host = Kokkos::create_mirror_view(out);
   Kokkos::deep_copy(host, out);
@@ -659,14 +661,27 @@ TEST(Sampler, ConstructorErrors) {
 
 template <class ExecSpace>
 class SamplerReproducibility : public ::testing::Test {};
+
+template <class Mem>
+constexpr bool on_host = Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
+// A device's sample against the host's: a few roundings of the quantile functions, relative to the
+// value (a discrete or grid value is exact unless an input falls within that of a step).
+constexpr double kDeviceTolerance = 1e-13;
+double relative_difference(double a, double b) {
+  if (a == b) return 0.0;
+  return std::fabs(a - b) / std::max(std::fabs(a), std::fabs(b));
+}
 TYPED_TEST_SUITE(SamplerReproducibility, lsi::test::Backends);
 
 TYPED_TEST(SamplerReproducibility, SampleIIsTheSameInEveryBatch) {
-  // Bitwise: sample i from (a) the host scalar call, (b) a batch of N starting at 0, (c) batches of
-  // 1, 7 and 50 starting at i or elsewhere, on this execution space. Since every backend is compared
-  // with the same host scalar reference, Serial and OpenMP agree bitwise with each other.
+  // Sample i from (a) the host scalar call, (b) a batch of N starting at 0, (c) batches of 1, 7 and
+  // 50 starting at i or elsewhere, on this execution space. (b) and (c) agree bitwise everywhere
+  // (what resuming and sharding a sweep rely on). (a) and (b) agree bitwise on the host's spaces
+  // (so Serial and OpenMP agree bitwise with each other) and within kDeviceTolerance on a device,
+  // whose math library (log, exp, erfc) and fused multiply-adds round differently.
   using Exec = TypeParam;
   using Mem = typename Exec::memory_space;
+  double worst = 0.0;   // largest relative difference from the host call
   const std::uint64_t N = 1000;
   const std::vector<std::vector<double>> R = {
       {1, 0.6, 0, 0, 0}, {0.6, 1, 0, 0, 0}, {0, 0, 1, 0, 0}, {0, 0, 0, 1, 0}, {0, 0, 0, 0, 1}};
@@ -690,7 +705,16 @@ TYPED_TEST(SamplerReproducibility, SampleIIsTheSameInEveryBatch) {
     double ref[5];
     for (std::uint64_t i = 0; i < n; ++i) {
       host.sample(i, ref);
-      for (int d = 0; d < 5; ++d) ASSERT_EQ(all_h(i, d), ref[d]) << to_string(design) << " sample " << i << " dim " << d;
+      for (int d = 0; d < 5; ++d) {
+        if (on_host<Mem>) {
+          ASSERT_EQ(all_h(i, d), ref[d]) << to_string(design) << " sample " << i << " dim " << d;
+        } else {
+          worst = std::max(worst, relative_difference(all_h(i, d), ref[d]));
+          ASSERT_LE(relative_difference(all_h(i, d), ref[d]), kDeviceTolerance)
+              << to_string(design) << " sample " << i << " dim " << d << ": " << all_h(i, d)
+              << " on the device, " << ref[d] << " on the host";
+        }
+      }
     }
     for (std::uint64_t first : {0ull, 137ull, 500ull, 999ull})
       for (std::uint64_t size : {1ull, 7ull, 50ull}) {
@@ -705,6 +729,7 @@ TYPED_TEST(SamplerReproducibility, SampleIIsTheSameInEveryBatch) {
       }
 
   }
+  if (!on_host<Mem>) std::cout << "largest relative difference from the host: " << worst << "\n";
 }
 
 TYPED_TEST(SamplerReproducibility, MonteCarloAndSobolAcceptAnyIndex) {
@@ -723,8 +748,10 @@ TYPED_TEST(SamplerReproducibility, MonteCarloAndSobolAcceptAnyIndex) {
     double ref[2];
     for (std::uint64_t i = 0; i < 64; ++i) {
       host.sample(first + i, ref);
-      ASSERT_EQ(h(i, 0), ref[0]);
-      ASSERT_EQ(h(i, 1), ref[1]);
+      for (int d = 0; d < 2; ++d) {
+        if (on_host<Mem>) ASSERT_EQ(h(i, d), ref[d]) << i;
+        else ASSERT_LE(relative_difference(h(i, d), ref[d]), kDeviceTolerance) << i;
+      }
       ASSERT_TRUE(ref[0] > 0 && ref[0] < 1 && std::isfinite(ref[1]));
     }
   }
