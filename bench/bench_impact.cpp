@@ -266,11 +266,12 @@ struct WetColumn {
     body.gravity = kG;
     particles = tp::build_two_phase_particles<Mem>({body}, {s.skeleton}, s.liquid, s.lo, s.dx);
   }
-  tp::TwoPhaseSolver<Exec> solver(tp::Drag drag, bool atomic) const {
+  tp::TwoPhaseSolver<Exec> solver(tp::Drag drag, bool atomic, int tiles = -1) const {
     tp::TwoPhaseSettings t;
     t.courant = 0.5;
     t.drag = drag;
     t.atomic_scatter = atomic;
+    t.scatter_tile_points = tiles;
     return tp::TwoPhaseSolver<Exec>(grid, particles, {s.skeleton}, s.liquid, s.walls,
                                     s.liquid_walls, t);
   }
@@ -286,12 +287,13 @@ void common_counters(benchmark::State& state, int count, int nodes, int threads)
 enum class Phases { Dry, SemiImplicit, Explicit };
 
 template <class Exec>
-void bm_column_step(benchmark::State& state, int n, Phases phases, bool atomic) {
+void bm_column_step(benchmark::State& state, int n, Phases phases, bool atomic, int tiles) {
   if (phases == Phases::Dry) {
     DryColumn<Exec> c(n);
     Settings st;
     st.courant = 0.5;
     st.atomic_scatter = atomic;
+    st.scatter_tile_points = tiles;
     Solver<Exec> solver(c.grid, c.particles, {c.s.skeleton}, c.s.walls, st);
     lsi::bench::step_each_iteration(state, solver);
     Exec().fence();
@@ -300,7 +302,7 @@ void bm_column_step(benchmark::State& state, int n, Phases phases, bool atomic) 
   }
   WetColumn<Exec> c(n);
   auto solver = c.solver(phases == Phases::Explicit ? tp::Drag::Explicit : tp::Drag::SemiImplicit,
-                         atomic);
+                         atomic, tiles);
   lsi::bench::step_each_iteration(state, solver);
   Exec().fence();
   common_counters(state, c.particles.count, c.grid.size(), Exec().concurrency());
@@ -313,7 +315,8 @@ enum class TpKernel {
 };
 
 template <class Exec>
-void bm_twophase_kernel(benchmark::State& state, int n, TpKernel k) {
+void bm_twophase_kernel(benchmark::State& state, int n, TpKernel k, int tiles,
+                        bool contiguous) {
   using Mem = typename Exec::memory_space;
   WetColumn<Exec> c(n);
   {
@@ -335,6 +338,9 @@ void bm_twophase_kernel(benchmark::State& state, int n, TpKernel k) {
   tp::TwoPhaseScatter<Exec, true> atomic;
   if (k == TpKernel::P2G) duplicated = Duplicated(g.solid);
   if (k == TpKernel::P2GAtomic) atomic = tp::TwoPhaseScatter<Exec, true>(g.solid);
+  if (tiles >= 0) atomic.tile_points = tiles;
+  atomic.tile_min_points = 0;   // the variant asked for, at every size
+  if (contiguous) atomic.tile_spread = false;
   const double gravity[2] = {0.0, -kG};
   tp::TwoPhasePointWork fused;   // as the solver: Mohr-Coulomb, pore pressure, next limits
   fused.plastic = true;
@@ -391,20 +397,36 @@ void register_column(Scatters scatters) {
     struct P { Phases p; const char* name; };
     for (const P ph : {P{Phases::Dry, "dry"}, P{Phases::SemiImplicit, "saturated"},
                        P{Phases::Explicit, "saturated_explicit_drag"}}) {
+      // On a device: the atomic scatter without tiles ("/atomic", the default) and with tiles
+      // of 128 points (kernels/mpm/p2g.hpp, scatter_tiles).
+      const std::vector<int> tilings =
+          scatters == Scatters::AtomicOnly ? std::vector<int>{0, 128} : std::vector<int>{-1};
       for (const bool atomic : atomics) {
-        const std::string name = "column_step/" + ex + "/" + ph.name + label(atomic) + size;
-        benchmark::RegisterBenchmark(name.c_str(), bm_column_step<Exec>, n, ph.p, atomic)
-            ->Iterations(steps)
-            ->UseRealTime()
-            ->MeasureProcessCPUTime()
-            ->Unit(benchmark::kMillisecond);
+        for (const int tiles : tilings) {
+          const std::string name = "column_step/" + ex + "/" + ph.name + label(atomic) +
+                                   (tiles > 0 ? "_tiles:" + std::to_string(tiles) : "") + size;
+          benchmark::RegisterBenchmark(name.c_str(), bm_column_step<Exec>, n, ph.p, atomic,
+                                       tiles)
+              ->Iterations(steps)
+              ->UseRealTime()
+              ->MeasureProcessCPUTime()
+              ->Unit(benchmark::kMillisecond);
+        }
       }
     }
-    struct K { TpKernel k; std::string name; };
+    struct K { TpKernel k; std::string name; int tiles = -1; bool contiguous = false; };
     std::vector<K> kernels;
     for (const bool atomic : atomics)
       kernels.push_back({atomic ? TpKernel::P2GAtomic : TpKernel::P2G,
-                         "p2g" + (label(atomic).empty() ? "" : "_" + label(atomic).substr(1))});
+                         "p2g" + (label(atomic).empty() ? "" : "_" + label(atomic).substr(1)),
+                         scatters == Scatters::AtomicOnly ? 0 : -1});
+    if (scatters == Scatters::AtomicOnly)
+      for (const int tiles : {64, 128, 256})
+        for (const bool contiguous : {false, true})
+          kernels.push_back({TpKernel::P2GAtomic,
+                             "p2g_atomic_tiles:" + std::to_string(tiles) +
+                                 (contiguous ? "_contiguous" : ""),
+                             tiles, contiguous});
     for (const K& k : {K{TpKernel::GridUpdateSemiImplicit, "grid_update_semi_implicit"},
                        K{TpKernel::GridUpdateExplicit, "grid_update_explicit"},
                        K{TpKernel::G2P, "g2p"}, K{TpKernel::StressUpdate, "stress_update_plastic"},
@@ -414,7 +436,8 @@ void register_column(Scatters scatters) {
       kernels.push_back(k);
     for (const auto& k : kernels) {
       const std::string name = "twophase_kernel/" + ex + "/" + k.name + size;
-      benchmark::RegisterBenchmark(name.c_str(), bm_twophase_kernel<Exec>, n, k.k)
+      benchmark::RegisterBenchmark(name.c_str(), bm_twophase_kernel<Exec>, n, k.k, k.tiles,
+                                   k.contiguous)
           ->UseRealTime()
           ->MeasureProcessCPUTime()
           ->Unit(benchmark::kMicrosecond);

@@ -101,8 +101,9 @@ void common_counters(benchmark::State& state, int count, int nodes, int threads)
 
 // Whole steps: time step, P2G, grid update with walls, G2P with the health check, stress update.
 template <class Exec>
-void bm_step(benchmark::State& state, int n, bool plastic, bool atomic) {
+void bm_step(benchmark::State& state, int n, bool plastic, bool atomic, int tiles) {
   Column<Exec> c(n, plastic, atomic);
+  c.settings.scatter_tile_points = tiles;
   Solver<Exec> solver(c.grid, c.particles, {c.material}, c.walls, c.settings);
   lsi::bench::step_each_iteration(state, solver);
   Exec().fence();
@@ -115,7 +116,7 @@ enum class Kernel {
 };
 
 template <class Exec>
-void bm_kernel(benchmark::State& state, int n, Kernel k) {
+void bm_kernel(benchmark::State& state, int n, Kernel k, int tiles, bool contiguous) {
   using Mem = typename Exec::memory_space;
   Column<Exec> c(n, true, k == Kernel::P2GAtomic);
   Solver<Exec> solver(c.grid, c.particles, {c.material}, c.walls, c.settings);
@@ -128,6 +129,9 @@ void bm_kernel(benchmark::State& state, int n, Kernel k) {
   const Kokkos::View<const PreparedMaterial*, Mem> materials = table;
   P2GScatter<Exec, false> duplicated(c.grid);   // allocated once, as in the solver
   P2GScatter<Exec, true> atomic(c.grid);
+  if (tiles >= 0) atomic.tile_points = tiles;
+  atomic.tile_min_points = 0;   // the variant asked for, at every size
+  if (contiguous) atomic.tile_spread = false;
   const auto& p = c.particles;
   const auto& g = c.grid;
   double wall_force[2] = {0, 0};
@@ -183,15 +187,25 @@ void register_space(Scatters scatters) {
       for (const bool atomic : {false, true}) {
         if (atomic && !with_atomic) continue;
         if (!atomic && scatters == Scatters::AtomicOnly) continue;
-        const std::string name = "step/" + ex + (plastic ? "/mohr_coulomb" : "/elastic") +
-                                 (with_atomic ? (atomic ? "/atomic" : "/duplicated") : "") + size;
-        benchmark::RegisterBenchmark(name.c_str(), bm_step<Exec>, n, plastic, atomic)
-            ->Iterations(steps)
-            ->UseRealTime()
-            ->Unit(benchmark::kMillisecond);
+        // On a device: the atomic scatter without tiles ("/atomic", the default) and with
+        // tiles of 128 points (kernels/mpm/p2g.hpp, scatter_tiles), and of 64 and 256 for
+        // Mohr-Coulomb.
+        std::vector<int> tilings = {-1};
+        if (scatters == Scatters::AtomicOnly) tilings = {0, 128};
+        if (scatters == Scatters::AtomicOnly && plastic) tilings = {0, 64, 128, 256};
+        for (const int tiles : tilings) {
+          const std::string name =
+              "step/" + ex + (plastic ? "/mohr_coulomb" : "/elastic") +
+              (with_atomic ? (atomic ? "/atomic" : "/duplicated") : "") +
+              (tiles > 0 ? "_tiles:" + std::to_string(tiles) : "") + size;
+          benchmark::RegisterBenchmark(name.c_str(), bm_step<Exec>, n, plastic, atomic, tiles)
+              ->Iterations(steps)
+              ->UseRealTime()
+              ->Unit(benchmark::kMillisecond);
+        }
       }
     }
-    struct K { Kernel k; const char* name; };
+    struct K { Kernel k; std::string name; int tiles = -1; bool contiguous = false; };
     std::vector<K> kernels = {{Kernel::GridUpdate, "grid_update"},
                               {Kernel::G2P, "g2p"},
                               {Kernel::StressElastic, "stress_update_elastic"},
@@ -199,12 +213,20 @@ void register_space(Scatters scatters) {
                               {Kernel::G2PStressElastic, "g2p_stress_elastic"},
                               {Kernel::G2PStressPlastic, "g2p_stress_plastic"}};
     if (n == 50) kernels.push_back({Kernel::ForkJoin, "fork_join"});
-    if (with_atomic) kernels.insert(kernels.begin(), {Kernel::P2GAtomic, "p2g_atomic"});
+    if (with_atomic) kernels.insert(kernels.begin(), {Kernel::P2GAtomic, "p2g_atomic", 0});
+    if (scatters == Scatters::AtomicOnly)
+      for (const int tiles : {64, 128, 256})
+        for (const bool contiguous : {false, true})
+          kernels.insert(kernels.begin() + 1,
+                         {Kernel::P2GAtomic,
+                          "p2g_atomic_tiles:" + std::to_string(tiles) +
+                              (contiguous ? "_contiguous" : ""),
+                          tiles, contiguous});
     if (scatters != Scatters::AtomicOnly)
       kernels.insert(kernels.begin(), {Kernel::P2G, with_atomic ? "p2g_duplicated" : "p2g"});
     for (const auto& k : kernels) {
       const std::string name = "kernel/" + ex + "/" + k.name + size;
-      benchmark::RegisterBenchmark(name.c_str(), bm_kernel<Exec>, n, k.k)
+      benchmark::RegisterBenchmark(name.c_str(), bm_kernel<Exec>, n, k.k, k.tiles, k.contiguous)
           ->UseRealTime()
           ->Unit(benchmark::kMicrosecond);
     }

@@ -7,7 +7,11 @@
 //     Duplicated (the default on host spaces): one buffer per thread; the points are cut into as
 //     many contiguous chunks as there are copies, and each chunk records the rectangle of nodes it
 //     touched. Atomic: one buffer and atomic additions (the choice on devices; `Atomic` asks for
-//     it on the host too). Serial: one buffer, plain additions.
+//     it on the host too), optionally tiled: a team of threads takes `tile_points` consecutive
+//     points, adds them into a tile of nodes in its fast (shared) memory and then adds the tile
+//     into the buffer, one atomic addition per node and field instead of one per point
+//     (detail::scatter_tiles; opt-in until measured on a GPU). Serial: one buffer, plain
+//     additions.
 //  2. gather: for the nodes in the touched rectangle (and those touched the step before, which
 //     must become zero), the buffers are summed into the grid's fields and zeroed on the way, so
 //     the next step needs no reset. The grid records the rectangles (Grid::active) so that the
@@ -49,6 +53,19 @@ namespace detail {
 // doubles, one cache line, with whole-record additions measured slower: GCC 12 keeps them
 // scalar.)
 constexpr int kP2GFields = 5;
+// The fast memory of one tile of the atomic scatter: 24 KiB, 614 nodes of the single-phase P2G,
+// 279 of the two-phase one (an H100 multiprocessor has 228 KiB; its registers, not this, bound
+// the teams it runs at once).
+constexpr int kTileBytes = 24 * 1024;
+
+// Where a scatter adds node (i, j): at kFields ((i - i0) + stride (j - j0)) doubles from its
+// buffer. The grid-wide buffer is {0, 0, nx}; a tile starts at its rectangle's first node.
+struct NodeTile {
+  int i0 = 0, j0 = 0, stride = 0;
+  KOKKOS_FORCEINLINE_FUNCTION int offset(const int i, const int j) const {
+    return (i - i0) + stride * (j - j0);
+  }
+};
 }
 
 // A P2G's buffers of `Fields` doubles per node, allocated once per solver (zero between calls).
@@ -63,6 +80,21 @@ struct P2GScatter {
   int copies_count = 0;
   Kokkos::View<double**, Kokkos::LayoutRight, Mem> copies;   // [copy][node * kFields + field]
   Kokkos::View<int* [4], Kokkos::LayoutRight, Mem> boxes;    // nodes each copy touched, i0 i1 j0 j1
+  // The atomic scatter's tiles (detail::scatter_tiles): points per team (0: no tiles, every
+  // point adds into the buffer) and the most nodes a tile holds; a team whose points touch more
+  // adds them into the buffer directly. Off by default: the corrected version has not yet run on
+  // a GPU (docs/cuda.md, "The tiled P2G"); 128 is the size to measure and then make the device
+  // default.
+  int tile_points = 0;
+  int tile_nodes = detail::kTileBytes / (kFields * static_cast<int>(sizeof(double)));
+  // The lanes of a warp take points tile_points / 32 apart (a multiple of 32 only) instead of
+  // consecutive points, so that they add into fewer common nodes at once.
+  bool tile_spread = true;
+  // Fewer points than this scatter without tiles: finding each tile's rectangle costs more
+  // than the atomics it saves on small sets (an H100, the first version: the dry column's P2G
+  // 57 us without and 64 us with tiles at 20 000 points, 185 and 130 us at 200 000;
+  // docs/cuda.md).
+  int tile_min_points = 50000;
 
   P2GScatter() = default;
   explicit P2GScatter(const Grid<Mem>& g) {
@@ -86,14 +118,105 @@ KOKKOS_FORCEINLINE_FUNCTION void scatter_add(double* a, double v) {
   else *a += v;
 }
 
-// Pass 1 of a P2G: point_fn(q, buf, bi, bj) adds point q's contributions into the interleaved
-// buffer `buf` (with scatter_add<S::atomic>, node n at buf + kFields n) and returns the first
-// node (bi, bj) of its 3 x 3 stencil; every node it writes must lie in the stencil. `position`:
+// The tiled atomic scatter. Team t takes points [t P, (t + 1) P) (P = tile_points), finds the
+// rectangle of their stencils, and if it holds at most tile_nodes nodes: zeroes a tile of that
+// rectangle in the team's scratch (shared) memory, adds the points into it (atomic additions in
+// fast memory), then adds the tile's nonzero values into the buffer (one atomic addition per node
+// and field; consecutive threads write consecutive doubles of a row). Otherwise (points far
+// apart) the team adds its points into the buffer directly. Points with nearby indices are
+// nearby in space (the builders fill the cells row by row, a cell's points one after the other;
+// the flow keeps neighbours together), so 128 points of a column (32 cells) touch about 35 x 4
+// nodes: about 1 global addition per point and field instead of 9. With tile_spread the lanes of
+// a warp take points tile_points / 32 apart (one per cell) rather than consecutive points, which
+// would add into the same nodes at the same time. On the host (tests) a team is one thread.
+template <class S, class PositionView, class PointFn>
+void scatter_tiles(S& scatter, const PositionView& position, const int n_points, const double ox,
+                   const double oy, const double inv_dx, const int nx, const PointFn& point_fn) {
+  using ExecSpace = typename S::Exec;
+  using Policy = Kokkos::TeamPolicy<ExecSpace>;
+  using Member = typename Policy::member_type;
+  using Tile = Kokkos::View<double*, typename ExecSpace::scratch_memory_space,
+                            Kokkos::MemoryTraits<Kokkos::Unmanaged>>;
+  using Ints = Kokkos::View<int*, typename ExecSpace::scratch_memory_space,
+                            Kokkos::MemoryTraits<Kokkos::Unmanaged>>;
+  constexpr int F = S::kFields;
+  constexpr bool host =
+      Kokkos::SpaceAccessibility<Kokkos::HostSpace, typename ExecSpace::memory_space>::accessible;
+  const int per_team = scatter.tile_points, capacity = scatter.tile_nodes;
+  const bool spread = scatter.tile_spread && per_team % 32 == 0;
+  const int league = (n_points + per_team - 1) / per_team;
+  if (league == 0) return;
+  const auto copies = scatter.copies;
+  Policy policy(league, host ? 1 : per_team);
+  policy.set_scratch_size(0, Kokkos::PerTeam(Ints::shmem_size(4) +
+                                             Tile::shmem_size(static_cast<size_t>(F) * capacity)));
+  Kokkos::parallel_for(
+      "lsi::mpm::p2g_scatter_tiles", policy, KOKKOS_LAMBDA(const Member& team) {
+        double* buf = &copies(0, 0);
+        const int begin = team.league_rank() * per_team;
+        const int end = begin + per_team < n_points ? begin + per_team : n_points;
+        // The rectangle of the team's stencils, with atomic min/max in fast memory between
+        // barriers (every thread then reads the same rectangle; two nested team reductions of
+        // Kokkos 3.4 raced on an H100: compute-sanitizer's racecheck, wrong sums under it).
+        Ints box(team.team_scratch(0), 4);
+        Tile tile(team.team_scratch(0), static_cast<size_t>(F) * capacity);
+        Kokkos::single(Kokkos::PerTeam(team), [&]() {
+          box(0) = INT_MAX;
+          box(1) = INT_MIN;
+          box(2) = INT_MAX;
+          box(3) = INT_MIN;
+        });
+        team.team_barrier();
+        Kokkos::parallel_for(Kokkos::TeamThreadRange(team, begin, end), [&](const int q) {
+          const int bi = quadratic_bspline(position(q, 0) - ox, inv_dx).base;
+          const int bj = quadratic_bspline(position(q, 1) - oy, inv_dx).base;
+          Kokkos::atomic_fetch_min(&box(0), bi);
+          Kokkos::atomic_fetch_max(&box(1), bi);
+          Kokkos::atomic_fetch_min(&box(2), bj);
+          Kokkos::atomic_fetch_max(&box(3), bj);
+        });
+        team.team_barrier();
+        const NodeTile local{box(0), box(2), box(1) - box(0) + 3};
+        const int height = box(3) - box(2) + 3;
+        if (local.stride * height > capacity) {   // too spread out for a tile
+          Kokkos::parallel_for(Kokkos::TeamThreadRange(team, begin, end), [&](const int q) {
+            int bi, bj;
+            point_fn(q, buf, NodeTile{0, 0, nx}, bi, bj);
+          });
+        } else {
+          const int values = F * local.stride * height;
+          Kokkos::parallel_for(Kokkos::TeamThreadRange(team, values),
+                               [&](const int k) { tile(k) = 0.0; });
+          team.team_barrier();
+          Kokkos::parallel_for(Kokkos::TeamThreadRange(team, per_team), [&](const int k) {
+            const int q = begin + (spread ? (k % 32) * (per_team / 32) + k / 32 : k);
+            if (q >= end) return;
+            int bi, bj;
+            point_fn(q, tile.data(), local, bi, bj);
+          });
+          team.team_barrier();
+          Kokkos::parallel_for(Kokkos::TeamThreadRange(team, values), [&](const int k) {
+            const double v = tile(k);
+            if (v == 0.0) return;   // adding zero changes nothing
+            const int node = k / F, field = k - F * node;
+            const int row = node / local.stride, i = local.i0 + (node - row * local.stride);
+            Kokkos::atomic_add(buf + F * (i + nx * (local.j0 + row)) + field, v);
+          });
+        }
+        // A block may run several teams in turn: the next one rewrites the box and the tile.
+        team.team_barrier();
+      });
+}
+
+// Pass 1 of a P2G: point_fn(q, buf, tile, bi, bj) adds point q's contributions into the
+// interleaved buffer `buf` (with scatter_add<S::atomic>, node (i, j) at buf + kFields
+// tile.offset(i, j)) and returns the first node (bi, bj) of its 3 x 3 stencil; every node it
+// writes must lie in the stencil. `position`:
 // the points' positions (the stencil of the atomic path's rectangle). Returns the rectangle of
 // touched nodes, not clipped to the grid.
 template <class S, class PositionView, class PointFn>
 NodeBox scatter_points(S& scatter, const PositionView& position, const int n_points,
-                       const double ox, const double oy, const double inv_dx,
+                       const double ox, const double oy, const double inv_dx, const int nx,
                        const PointFn& point_fn) {
   using ExecSpace = typename S::Exec;
   const int nc = scatter.copies_count;
@@ -117,12 +240,16 @@ NodeBox scatter_points(S& scatter, const PositionView& position, const int n_poi
           if (bj + 2 > b1) b1 = bj + 2;
         },
         Kokkos::Min<int>(i0), Kokkos::Max<int>(i1), Kokkos::Min<int>(j0), Kokkos::Max<int>(j1));
-    Kokkos::parallel_for(
-        "lsi::mpm::p2g_scatter", Kokkos::RangePolicy<ExecSpace>(0, n_points),
-        KOKKOS_LAMBDA(const int q) {
-          int bi, bj;
-          point_fn(q, &copies(0, 0), bi, bj);
-        });
+    if (scatter.tile_points > 0 && n_points >= scatter.tile_min_points) {
+      scatter_tiles(scatter, position, n_points, ox, oy, inv_dx, nx, point_fn);
+    } else {
+      Kokkos::parallel_for(
+          "lsi::mpm::p2g_scatter", Kokkos::RangePolicy<ExecSpace>(0, n_points),
+          KOKKOS_LAMBDA(const int q) {
+            int bi, bj;
+            point_fn(q, &copies(0, 0), NodeTile{0, 0, nx}, bi, bj);
+          });
+    }
     if (n_points > 0) touched = {i0, i1, j0, j1};
   } else {
     // One contiguous chunk of points per copy: a copy is never written by two threads at once.
@@ -135,7 +262,7 @@ NodeBox scatter_points(S& scatter, const PositionView& position, const int n_poi
           int a0 = INT_MAX, a1 = INT_MIN, b0 = INT_MAX, b1 = INT_MIN;
           for (int q = begin; q < end; ++q) {
             int bi, bj;
-            point_fn(q, buf, bi, bj);
+            point_fn(q, buf, NodeTile{0, 0, nx}, bi, bj);
             a0 = bi < a0 ? bi : a0;
             a1 = bi + 2 > a1 ? bi + 2 : a1;
             b0 = bj < b0 ? bj : b0;
@@ -214,12 +341,12 @@ KOKKOS_FORCEINLINE_FUNCTION void apic_row_factors(const double wy, const double 
   Q[1] = wy * mC[1][0];
 }
 
-// The 3 x 3 node contributions of point q into the interleaved buffer `buf`; returns the first
-// node of the stencil in (bi, bj) (for the touched-node rectangle).
+// The 3 x 3 node contributions of point q into the interleaved buffer `buf` (node (i, j) at
+// kP2GFields tile.offset(i, j)); returns the first node of the stencil in (bi, bj).
 template <bool Atomic, class MemorySpace>
 KOKKOS_FORCEINLINE_FUNCTION void p2g_point(const Particles<MemorySpace>& p, const int q,
-                                           double* buf, const double ox, const double oy,
-                                           const double dx, const double inv_dx, const int nx,
+                                           double* buf, const NodeTile& tile, const double ox,
+                                           const double oy, const double dx, const double inv_dx,
                                            const double gx, const double gy, int& bi, int& bj) {
   constexpr int F = kP2GFields;
   const double xp = p.position(q, 0) - ox, yp = p.position(q, 1) - oy;
@@ -244,7 +371,7 @@ KOKKOS_FORCEINLINE_FUNCTION void p2g_point(const Particles<MemorySpace>& p, cons
     apic_row_factors(wy, dyb, mv, mC, P, Q);
     const double F1[2] = {-Vs[0] * wy, -Vs[2] * wy};
     const double F0[2] = {-Vs[2] * dwy + wy * m * gx, -Vs[1] * dwy + wy * m * gy};
-    double* row = buf + F * (sx.base + nx * (sy.base + b));
+    double* row = buf + F * tile.offset(sx.base, sy.base + b);
     for (int a = 0; a < 3; ++a) {
       double* node = row + F * a;
       scatter_add<Atomic>(node + 0, wx[a] * wy * m);
@@ -268,9 +395,9 @@ void p2g(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g,
   const int nx = g.nx;
   const double gx = gravity[0], gy = gravity[1];
   const NodeBox touched = detail::scatter_points(
-      scatter, p.position, p.count, ox, oy, inv_dx,
-      KOKKOS_LAMBDA(const int q, double* buf, int& bi, int& bj) {
-        detail::p2g_point<S::atomic>(p, q, buf, ox, oy, dx, inv_dx, nx, gx, gy, bi, bj);
+      scatter, p.position, p.count, ox, oy, inv_dx, nx,
+      KOKKOS_LAMBDA(const int q, double* buf, const detail::NodeTile& tile, int& bi, int& bj) {
+        detail::p2g_point<S::atomic>(p, q, buf, tile, ox, oy, dx, inv_dx, gx, gy, bi, bj);
       });
   const auto mass = g.mass;
   const auto momentum = g.momentum;

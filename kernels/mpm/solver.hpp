@@ -37,6 +37,10 @@ struct Settings {
   Transfer transfer = Transfer::Apic;   // APIC, or a FLIP/PIC blend without affine terms
   double flip_ratio = 0.99;           // FlipPic only: share of FLIP, [0, 1] (0: plain PIC)
   bool atomic_scatter = false;        // P2G with atomics instead of per-thread buffers (p2g.hpp)
+  // Points per tile of the atomic P2G (P2GScatter::tile_points): -1 the default (none, until
+  // the tiles are measured on a GPU), 0 none, n > 0 tiles of n points at any size (128 on a
+  // GPU). A knob of the benchmarks and tests.
+  int scatter_tile_points = -1;
   double energy_growth_limit = 0.5;   // relative growth of the total energy deemed unstable
   // Nodes with less mass than this fraction of the lightest point get gravity but no internal
   // force (grid_update.hpp: the small-mass instability at the edge of the B-spline support).
@@ -58,6 +62,11 @@ class Solver {
         user_max_dt_(settings.max_time_step) {
     if (settings_.atomic_scatter) atomic_scatter_ = P2GScatter<ExecSpace, true>(grid_);
     else duplicated_scatter_ = P2GScatter<ExecSpace, false>(grid_);
+    if (settings_.scatter_tile_points >= 0) {
+      atomic_scatter_.tile_points = settings_.scatter_tile_points;
+      duplicated_scatter_.tile_points = settings_.scatter_tile_points;
+      atomic_scatter_.tile_min_points = duplicated_scatter_.tile_min_points = 0;
+    }
     Kokkos::View<PreparedMaterial*, Mem> table("materials", materials.size());
     auto host = Kokkos::create_mirror_view(table);
     wave_speed_ = 0.0;

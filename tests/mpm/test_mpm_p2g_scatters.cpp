@@ -2,9 +2,13 @@
 // host default), one buffer with atomic additions (what a GPU runs; on the host only when a
 // scene asks for "scatter": "atomic") and, on Serial, the plain one. The atomic path computes
 // the rectangle of touched nodes in a kernel of its own, so the rectangle is checked as well.
+// The atomic scatter's tiles (a GPU's default) are checked against the buffered scatter with
+// every team in a tile, with none (tiles too small: the teams add into the buffer directly) and
+// with a mix of both.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
@@ -17,75 +21,125 @@ template <class Exec>
 class MpmP2GScatters : public ::testing::Test {};
 TYPED_TEST_SUITE(MpmP2GScatters, lsi::test::Backends);
 
-TYPED_TEST(MpmP2GScatters, AtomicAndBufferedScattersGiveTheSameGrid) {
-  using Exec = TypeParam;
+// A column that starts to collapse (nonzero velocities, APIC matrices, stresses) after 20
+// steps, and the grid of the buffered scatter as the reference.
+template <class Exec>
+struct Collapse {
   using Mem = typename Exec::memory_space;
   Material m;
-  m.model = Material::Model::MohrCoulomb;
-  m.density = 1800;
-  m.young_modulus = 5e6;
-  m.poisson_ratio = 0.3;
-  m.friction_angle = 30.0 * 3.14159265358979323846 / 180.0;
   const double lo[2] = {0, 0}, hi[2] = {3, 2}, dx = 0.05;
-  Grid<Mem> grid(lo, hi, dx), atomic_grid(lo, hi, dx);
-  BodySpec body;   // a column that starts to collapse: nonzero velocities, APIC matrices, stresses
-  body.polygon = {{{0.1, 0.1}}, {{0.6, 0.1}}, {{0.6, 1.1}}, {{0.1, 1.1}}};
-  body.geostatic_k0 = 0.3;
-  body.surface_y = 1.1;
-  body.gravity = 9.81;
-  auto particles = build_particles<Mem>({body}, {m}, lo, dx);
-  Boundaries walls;
-  walls.left = {true, 0.1, 0.0};
-  walls.bottom = {true, 0.1, 0.5};
+  Grid<Mem> grid{lo, hi, dx};
+  Particles<Mem> particles;
   Settings s;
-  s.courant = 0.5;
-  Solver<Exec> solver(grid, particles, {m}, walls, s);
-  for (int i = 0; i < 20; ++i) ASSERT_EQ(solver.step(), Status::Running);
-
-  P2GScatter<Exec, false> buffered(grid);
-  P2GScatter<Exec, true> atomic(atomic_grid);
-  p2g(particles, grid, buffered, s.gravity);
-  p2g(particles, atomic_grid, atomic, s.gravity);
-
-  const NodeBox a = grid.mass_box(), b = atomic_grid.mass_box();
-  EXPECT_EQ(a.i0, b.i0);
-  EXPECT_EQ(a.i1, b.i1);
-  EXPECT_EQ(a.j0, b.j0);
-  EXPECT_EQ(a.j1, b.j1);
-  EXPECT_FALSE(a.empty());
-  auto m1 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), grid.mass);
-  auto m2 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), atomic_grid.mass);
-  auto p1 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), grid.momentum);
-  auto p2 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), atomic_grid.momentum);
-  auto f1 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), grid.force);
-  auto f2 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), atomic_grid.force);
-  double mass_max = 0, momentum_max = 0, force_max = 0, total = 0;
-  for (int n = 0; n < grid.size(); ++n) {
-    mass_max = std::fmax(mass_max, m1(n));
-    total += m1(n);
-    for (int d = 0; d < 2; ++d) {
-      momentum_max = std::fmax(momentum_max, std::fabs(p1(n, d)));
-      force_max = std::fmax(force_max, std::fabs(f1(n, d)));
-    }
+  Collapse() {
+    m.model = Material::Model::MohrCoulomb;
+    m.density = 1800;
+    m.young_modulus = 5e6;
+    m.poisson_ratio = 0.3;
+    m.friction_angle = 30.0 * 3.14159265358979323846 / 180.0;
+    BodySpec body;
+    body.polygon = {{{0.1, 0.1}}, {{0.6, 0.1}}, {{0.6, 1.1}}, {{0.1, 1.1}}};
+    body.geostatic_k0 = 0.3;
+    body.surface_y = 1.1;
+    body.gravity = 9.81;
+    particles = build_particles<Mem>({body}, {m}, lo, dx);
+    Boundaries walls;
+    walls.left = {true, 0.1, 0.0};
+    walls.bottom = {true, 0.1, 0.5};
+    s.courant = 0.5;
+    Solver<Exec> solver(grid, particles, {m}, walls, s);
+    for (int i = 0; i < 20; ++i)
+      if (solver.step() != Status::Running) throw std::runtime_error("the column did not run");
+    P2GScatter<Exec, false> buffered(grid);
+    p2g(particles, grid, buffered, s.gravity);
   }
-  ASSERT_GT(momentum_max, 0.0);   // the column moves
-  // The two scatters add the same terms in another order: round-off of a few additions, 1e-12
-  // of the largest nodal value.
-  int compared = 0;
-  for (int n = 0; n < grid.size(); ++n) {
-    EXPECT_NEAR(m1(n), m2(n), 1e-12 * mass_max) << n;
-    for (int d = 0; d < 2; ++d) {
-      EXPECT_NEAR(p1(n, d), p2(n, d), 1e-12 * momentum_max) << n;
-      EXPECT_NEAR(f1(n, d), f2(n, d), 1e-12 * force_max) << n;
+
+  // The grid of `scatter` against the buffered one: the same rectangle of nodes with mass and
+  // the same nodal values.
+  template <class Scatter>
+  void expect_same_grid(Scatter& scatter) const {
+    Grid<Mem> other(lo, hi, dx);
+    p2g(particles, other, scatter, s.gravity);
+    const NodeBox a = grid.mass_box(), b = other.mass_box();
+    EXPECT_EQ(a.i0, b.i0);
+    EXPECT_EQ(a.i1, b.i1);
+    EXPECT_EQ(a.j0, b.j0);
+    EXPECT_EQ(a.j1, b.j1);
+    EXPECT_FALSE(a.empty());
+    auto m1 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), grid.mass);
+    auto m2 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), other.mass);
+    auto p1 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), grid.momentum);
+    auto p2 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), other.momentum);
+    auto f1 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), grid.force);
+    auto f2 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), other.force);
+    double mass_max = 0, momentum_max = 0, force_max = 0, total = 0;
+    for (int n = 0; n < grid.size(); ++n) {
+      mass_max = std::fmax(mass_max, m1(n));
+      total += m1(n);
+      for (int d = 0; d < 2; ++d) {
+        momentum_max = std::fmax(momentum_max, std::fabs(p1(n, d)));
+        force_max = std::fmax(force_max, std::fabs(f1(n, d)));
+      }
     }
-    compared += m1(n) > 0.0 ? 1 : 0;
+    ASSERT_GT(momentum_max, 0.0);   // the column moves
+    // The scatters add the same terms in another order: round-off of a few additions, 1e-12
+    // of the largest nodal value.
+    int compared = 0;
+    for (int n = 0; n < grid.size(); ++n) {
+      EXPECT_NEAR(m1(n), m2(n), 1e-12 * mass_max) << n;
+      for (int d = 0; d < 2; ++d) {
+        EXPECT_NEAR(p1(n, d), p2(n, d), 1e-12 * momentum_max) << n;
+        EXPECT_NEAR(f1(n, d), f2(n, d), 1e-12 * force_max) << n;
+      }
+      compared += m1(n) > 0.0 ? 1 : 0;
+    }
+    EXPECT_GT(compared, 100);
+    // The partition of unity: the nodes receive exactly the points' mass.
+    // (On the host: nvcc refuses a device lambda in a test body, a private member of its class.)
+    const auto pm = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), particles.mass);
+    double point_mass = 0.0;
+    for (int q = 0; q < particles.count; ++q) point_mass += pm(q);
+    EXPECT_NEAR(total, point_mass, 1e-12 * point_mass);
   }
-  EXPECT_GT(compared, 100);
-  // The partition of unity: the nodes receive exactly the points' mass.
-  // (On the host: nvcc refuses a device lambda in a test body, a private member of its class.)
-  const auto pm = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), particles.mass);
-  double point_mass = 0.0;
-  for (int q = 0; q < particles.count; ++q) point_mass += pm(q);
-  EXPECT_NEAR(total, point_mass, 1e-12 * point_mass);
+};
+
+TYPED_TEST(MpmP2GScatters, AtomicAndBufferedScattersGiveTheSameGrid) {
+  using Exec = TypeParam;
+  const Collapse<Exec> c;
+  P2GScatter<Exec, true> atomic(c.grid);
+  atomic.tile_points = 0;
+  c.expect_same_grid(atomic);
+}
+
+TYPED_TEST(MpmP2GScatters, TiledAtomicScatterGivesTheSameGrid) {
+  using Exec = TypeParam;
+  if (!P2GScatter<Exec, true>::atomic) GTEST_SKIP() << "Serial adds without atomics or tiles";
+  const Collapse<Exec> c;   // 0.5 m wide, dx 0.05: 10 cells per row
+  {
+    SCOPED_TRACE("every team in a tile");   // 128 points: 32 cells, 12 x 6 nodes at most
+    P2GScatter<Exec, true> tiled(c.grid);
+    tiled.tile_points = 128;
+    tiled.tile_min_points = 0;   // 800 points: tiles only when asked for
+    c.expect_same_grid(tiled);
+  }
+  {
+    SCOPED_TRACE("no team in a tile");   // 128 points need more than 12 nodes
+    P2GScatter<Exec, true> direct(c.grid);
+    direct.tile_points = 128;
+    direct.tile_min_points = 0;
+    direct.tile_nodes = 12;
+    c.expect_same_grid(direct);
+  }
+  {
+    // The builder fills the cells row by row, 4 points per cell, 10 cells per row: a team of
+    // 12 points (3 cells) in one row touches about 6 x 4 nodes, a team over two rows 12 x 5 or
+    // more. With room for 30 nodes, 8 teams in 10 tile and the others do not.
+    SCOPED_TRACE("some teams in tiles");
+    P2GScatter<Exec, true> mixed(c.grid);
+    mixed.tile_points = 12;
+    mixed.tile_min_points = 0;
+    mixed.tile_nodes = 30;
+    c.expect_same_grid(mixed);
+  }
 }
 }  // namespace

@@ -129,41 +129,57 @@ TYPED_TEST(MpmTwoPhaseKernels, AtomicAndBufferedP2GGiveTheSameGrid) {
   TwoPhaseSolver<Exec> solver(c.grid, c.particles, {c.skeleton}, c.liquid, c.walls, c.settings);
   for (int i = 0; i < 20; ++i) ASSERT_EQ(solver.step(), Status::Running);
 
-  TwoPhaseGrid<Mem> buffered_grid(c.lo, c.hi, c.grid.dx()), atomic_grid(c.lo, c.hi, c.grid.dx());
+  TwoPhaseGrid<Mem> buffered_grid(c.lo, c.hi, c.grid.dx());
   TwoPhaseScatter<Exec, false> buffered(buffered_grid.solid);
-  TwoPhaseScatter<Exec, true> atomic(atomic_grid.solid);
   const double* g = c.settings.gravity;
   two_phase_p2g(c.particles, buffered_grid, buffered, g, c.liquid.density, kG, &c.walls, &c.walls);
-  two_phase_p2g(c.particles, atomic_grid, atomic, g, c.liquid.density, kG, &c.walls, &c.walls);
-
-  for (const auto* grid : {&buffered_grid.liquid, &atomic_grid.solid, &atomic_grid.liquid}) {
-    const NodeBox a = buffered_grid.solid.mass_box(), b = grid->mass_box();
-    EXPECT_EQ(a.i0, b.i0);
-    EXPECT_EQ(a.i1, b.i1);
-    EXPECT_EQ(a.j0, b.j0);
-    EXPECT_EQ(a.j1, b.j1);
-    EXPECT_FALSE(a.empty());
-  }
-  struct Field {
-    std::string name;
-    std::vector<double> buffered, atomic;
+  // The atomic scatter without tiles, with tiles of 128 points (a GPU's default), and with tiles
+  // of 12 points and room for 30 nodes: the teams within a row of cells tile, those over two
+  // rows do not (test_mpm_p2g_scatters.cpp). With the wall correction: the mirror images'
+  // contributions go into the tiles too.
+  struct Tiling {
+    int points, nodes;
   };
-  const std::vector<Field> fields = {
-      {"solid mass", values(buffered_grid.solid.mass), values(atomic_grid.solid.mass)},
-      {"solid momentum", values(buffered_grid.solid.momentum), values(atomic_grid.solid.momentum)},
-      {"mixture force", values(buffered_grid.solid.force), values(atomic_grid.solid.force)},
-      {"liquid mass", values(buffered_grid.liquid.mass), values(atomic_grid.liquid.mass)},
-      {"liquid momentum", values(buffered_grid.liquid.momentum),
-       values(atomic_grid.liquid.momentum)},
-      {"liquid force", values(buffered_grid.liquid.force), values(atomic_grid.liquid.force)},
-      {"drag", values(buffered_grid.drag), values(atomic_grid.drag)}};
-  for (const Field& f : fields) {
-    double largest = 0.0;
-    for (double v : f.buffered) largest = std::max(largest, std::fabs(v));
-    EXPECT_GT(largest, 0.0) << f.name;   // every field has content (the column moves)
-    // The same terms added in another order: round-off of a few additions, 1e-12 of the
-    // largest nodal value.
-    EXPECT_LT(relative_difference(f.buffered, f.atomic), 1e-12) << f.name;
+  for (const Tiling tiling : {Tiling{0, 0}, Tiling{128, 0}, Tiling{12, 30}}) {
+    SCOPED_TRACE("tiles of " + std::to_string(tiling.points) + " points");
+    if (tiling.points > 0 && !TwoPhaseScatter<Exec, true>::atomic) continue;   // Serial: none
+    TwoPhaseGrid<Mem> atomic_grid(c.lo, c.hi, c.grid.dx());
+    TwoPhaseScatter<Exec, true> atomic(atomic_grid.solid);
+    atomic.tile_points = tiling.points;
+    atomic.tile_min_points = 0;   // 800 points: tiles only when asked for
+    if (tiling.nodes > 0) atomic.tile_nodes = tiling.nodes;
+    two_phase_p2g(c.particles, atomic_grid, atomic, g, c.liquid.density, kG, &c.walls, &c.walls);
+
+    for (const auto* grid : {&buffered_grid.liquid, &atomic_grid.solid, &atomic_grid.liquid}) {
+      const NodeBox a = buffered_grid.solid.mass_box(), b = grid->mass_box();
+      EXPECT_EQ(a.i0, b.i0);
+      EXPECT_EQ(a.i1, b.i1);
+      EXPECT_EQ(a.j0, b.j0);
+      EXPECT_EQ(a.j1, b.j1);
+      EXPECT_FALSE(a.empty());
+    }
+    struct Field {
+      std::string name;
+      std::vector<double> buffered, atomic;
+    };
+    const std::vector<Field> fields = {
+        {"solid mass", values(buffered_grid.solid.mass), values(atomic_grid.solid.mass)},
+        {"solid momentum", values(buffered_grid.solid.momentum),
+         values(atomic_grid.solid.momentum)},
+        {"mixture force", values(buffered_grid.solid.force), values(atomic_grid.solid.force)},
+        {"liquid mass", values(buffered_grid.liquid.mass), values(atomic_grid.liquid.mass)},
+        {"liquid momentum", values(buffered_grid.liquid.momentum),
+         values(atomic_grid.liquid.momentum)},
+        {"liquid force", values(buffered_grid.liquid.force), values(atomic_grid.liquid.force)},
+        {"drag", values(buffered_grid.drag), values(atomic_grid.drag)}};
+    for (const Field& f : fields) {
+      double largest = 0.0;
+      for (double v : f.buffered) largest = std::max(largest, std::fabs(v));
+      EXPECT_GT(largest, 0.0) << f.name;   // every field has content (the column moves)
+      // The same terms added in another order: round-off of a few additions, 1e-12 of the
+      // largest nodal value.
+      EXPECT_LT(relative_difference(f.buffered, f.atomic), 1e-12) << f.name;
+    }
   }
 }
 

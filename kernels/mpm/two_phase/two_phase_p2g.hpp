@@ -58,12 +58,14 @@ struct MirrorWalls {
 namespace detail {
 
 // Point q's contributions (3 x 3 nodes, and its mirror images' within the same stencil) into the
-// interleaved buffer `buf`; (bi, bj): the first node of its stencil.
+// interleaved buffer `buf` (node (i, j) at node_field::Count tile.offset(i, j)); (bi, bj): the
+// first node of its stencil.
 template <bool Atomic, class MemorySpace>
 KOKKOS_FORCEINLINE_FUNCTION void two_phase_p2g_point(
-    const TwoPhaseParticles<MemorySpace>& p, const int q, double* buf, const double ox,
-    const double oy, const double dx, const double inv_dx, const int nx, const double gx,
-    const double gy, const double rhoLg, const MirrorWalls& mw, int& bi, int& bj) {
+    const TwoPhaseParticles<MemorySpace>& p, const int q, double* buf,
+    const lsi::mpm::detail::NodeTile& tile, const double ox, const double oy, const double dx,
+    const double inv_dx, const double gx, const double gy, const double rhoLg,
+    const MirrorWalls& mw, int& bi, int& bj) {
   using lsi::mpm::detail::scatter_add;
   namespace nf = node_field;
   constexpr int F = nf::Count;
@@ -103,7 +105,7 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_p2g_point(
     const double FS0[2] = {-Vs[2] * dwy + wy * fext[0], -Vs[1] * dwy + wy * fext[1]};
     const double FL1 = Vnp * wy;
     const double FL0[2] = {wy * fLext[0], Vnp * dwy + wy * fLext[1]};
-    double* row = buf + F * (sx.base + nx * (sy.base + b));
+    double* row = buf + F * tile.offset(sx.base, sy.base + b);
     for (int a = 0; a < 3; ++a) {
       double* node = row + F * a;
       const double w = wx[a] * wy;
@@ -148,7 +150,7 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_p2g_point(
       for (int a = 0; a < 3; ++a) {
         const int ni[2] = {mx.base + a, my.base + b};
         if (!(sgn * (ni[ax] * dx - c) > tol)) continue;   // free nodes only
-        double* node = buf + F * (ni[0] + nx * ni[1]);
+        double* node = buf + F * tile.offset(ni[0], ni[1]);
         const double w = mx.w[a] * my.w[b];
         const double gw[2] = {mx.dw[a] * my.w[b], mx.w[a] * my.dw[b]};
         if (solid_wall)
@@ -187,10 +189,11 @@ void two_phase_p2g(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<M
     mw.at[k] = (ws[k]->active ? ws[k]->position : wl[k]->position) - (k < 2 ? ox : oy);
   }
   const NodeBox touched = lsi::mpm::detail::scatter_points(
-      scatter, p.solid.position, p.count, ox, oy, inv_dx,
-      KOKKOS_LAMBDA(const int q, double* buf, int& bi, int& bj) {
-        detail::two_phase_p2g_point<S::atomic>(p, q, buf, ox, oy, dx, inv_dx, nx, gx, gy, rhoLg,
-                                               mw, bi, bj);
+      scatter, p.solid.position, p.count, ox, oy, inv_dx, nx,
+      KOKKOS_LAMBDA(const int q, double* buf, const lsi::mpm::detail::NodeTile& tile, int& bi,
+                    int& bj) {
+        detail::two_phase_p2g_point<S::atomic>(p, q, buf, tile, ox, oy, dx, inv_dx, gx, gy,
+                                               rhoLg, mw, bi, bj);
       });
   const auto S_ = g.solid;
   const auto L_ = g.liquid;

@@ -47,6 +47,7 @@ struct TwoPhaseSettings {
   Drag drag = Drag::Explicit;         // explicit (the paper; permeability limit on dt) or
                                       // semi-implicit per node (no permeability limit)
   bool atomic_scatter = false;        // P2G with atomics instead of per-thread buffers (p2g.hpp)
+  int scatter_tile_points = -1;       // points per tile of the atomic P2G, as Settings
   // Velocity transfer of both phases, as the single-phase Settings: APIC, or a FLIP/PIC blend
   // without affine terms (two_phase_g2p.hpp).
   Transfer transfer = Transfer::Apic;
@@ -90,6 +91,11 @@ class TwoPhaseSolver {
     }
     if (settings_.atomic_scatter) atomic_scatter_ = TwoPhaseScatter<ExecSpace, true>(grid_.solid);
     else duplicated_scatter_ = TwoPhaseScatter<ExecSpace, false>(grid_.solid);
+    if (settings_.scatter_tile_points >= 0) {
+      atomic_scatter_.tile_points = settings_.scatter_tile_points;
+      duplicated_scatter_.tile_points = settings_.scatter_tile_points;
+      atomic_scatter_.tile_min_points = duplicated_scatter_.tile_min_points = 0;
+    }
     Kokkos::View<PreparedMaterial*, Mem> table("two_phase_materials", materials.size());
     auto host = Kokkos::create_mirror_view(table);
     for (size_t i = 0; i < materials.size(); ++i) {
