@@ -128,7 +128,7 @@ KOKKOS_FORCEINLINE_FUNCTION void scatter_add(double* a, double v) {
 // the flow keeps neighbours together), so 128 points of a column (32 cells) touch about 35 x 4
 // nodes: about 1 global addition per point and field instead of 9. With tile_spread the lanes of
 // a warp take points tile_points / 32 apart (one per cell) rather than consecutive points, which
-// would add into the same nodes at the same time. On the host (tests) a team is one thread.
+// would add into the same nodes at the same time.
 template <class S, class PositionView, class PointFn>
 void scatter_tiles(S& scatter, const PositionView& position, const int n_points, const double ox,
                    const double oy, const double inv_dx, const int nx, const PointFn& point_fn) {
@@ -147,11 +147,8 @@ void scatter_tiles(S& scatter, const PositionView& position, const int n_points,
   const int league = (n_points + per_team - 1) / per_team;
   if (league == 0) return;
   const auto copies = scatter.copies;
-  Policy policy(league, host ? 1 : per_team);
-  policy.set_scratch_size(0, Kokkos::PerTeam(Ints::shmem_size(4) +
-                                             Tile::shmem_size(static_cast<size_t>(F) * capacity)));
-  Kokkos::parallel_for(
-      "lsi::mpm::p2g_scatter_tiles", policy, KOKKOS_LAMBDA(const Member& team) {
+  const size_t scratch = Ints::shmem_size(4) + Tile::shmem_size(static_cast<size_t>(F) * capacity);
+  const auto body = KOKKOS_LAMBDA(const Member& team) {
         double* buf = &copies(0, 0);
         const int begin = team.league_rank() * per_team;
         const int end = begin + per_team < n_points ? begin + per_team : n_points;
@@ -205,7 +202,20 @@ void scatter_tiles(S& scatter, const PositionView& position, const int n_points,
         }
         // A block may run several teams in turn: the next one rewrites the box and the tile.
         team.team_barrier();
-      });
+      };
+  // A device: one thread per point. The host (tests only): as many threads per team as Kokkos
+  // allows (2 with 2 OpenMP threads), so that the barriers and the atomics in the team's scratch
+  // memory run concurrently there too.
+  int team_size = per_team;
+  if constexpr (host) {
+    Policy probe(league, 1);
+    probe.set_scratch_size(0, Kokkos::PerTeam(scratch));
+    const int most = probe.team_size_max(body, Kokkos::ParallelForTag());
+    team_size = most < per_team ? most : per_team;
+  }
+  Policy policy(league, team_size);
+  policy.set_scratch_size(0, Kokkos::PerTeam(scratch));
+  Kokkos::parallel_for("lsi::mpm::p2g_scatter_tiles", policy, body);
 }
 
 // Pass 1 of a P2G: point_fn(q, buf, tile, bi, bj) adds point q's contributions into the
