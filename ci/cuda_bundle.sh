@@ -27,9 +27,11 @@ find . \( -name CTestTestfile.cmake -o -name '*_include*.cmake' -o -name '*_test
 for f in "${programs[@]}"; do ldd "$f"; done | awk '/=>/ {print $3}' | sort -u |
   grep -v -E '/(libc|libm|libdl|libpthread|librt|libresolv|libgcc_s|libstdc\+\+)\.so' |
   xargs -r -I{} cp -L {} "$stage/lib/"
-module=$(grep -h -o '/[^"]*GoogleTestAddTests.cmake' -r . --include='*_include*.cmake' | head -n1 || true)
+module=$(grep -h -o '/[^"]*GoogleTestAddTests.cmake' -r . --include='*_include*.cmake' |
+  head -n1 || true)
 if [ -n "$module" ]; then cp "$module" "$stage/"; fi
 printf '%s\n' "$build" > "$stage/BUILD_DIR"
 sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' CMakeCache.txt > "$stage/SOURCE_DIR"
 tar -C "$stage" -cf - . | xz -6 -T0 > "$out"
-echo "[cuda-bundle] $(du -h "$out" | cut -f1) in ${out}: ${#programs[@]} programs, $(ls "$stage/lib" | wc -l) libraries"
+libraries=$(find "$stage/lib" -type f | wc -l)
+echo "[cuda-bundle] $(du -h "$out" | cut -f1) in ${out}: ${#programs[@]} programs, $libraries libraries"
