@@ -338,8 +338,7 @@ void bm_twophase_kernel(benchmark::State& state, int n, TpKernel k, int tiles,
   tp::TwoPhaseScatter<Exec, true> atomic;
   if (k == TpKernel::P2G) duplicated = Duplicated(g.solid);
   if (k == TpKernel::P2GAtomic) atomic = tp::TwoPhaseScatter<Exec, true>(g.solid);
-  if (tiles >= 0) atomic.tile_points = tiles;
-  atomic.tile_min_points = 0;   // the variant asked for, at every size
+  if (tiles >= 0) atomic.use_tiles(tiles);   // the variant asked for, at every size
   if (contiguous) atomic.tile_spread = false;
   const double gravity[2] = {0.0, -kG};
   tp::TwoPhasePointWork fused;   // as the solver: Mohr-Coulomb, pore pressure, next limits

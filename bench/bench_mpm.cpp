@@ -129,8 +129,7 @@ void bm_kernel(benchmark::State& state, int n, Kernel k, int tiles, bool contigu
   const Kokkos::View<const PreparedMaterial*, Mem> materials = table;
   P2GScatter<Exec, false> duplicated(c.grid);   // allocated once, as in the solver
   P2GScatter<Exec, true> atomic(c.grid);
-  if (tiles >= 0) atomic.tile_points = tiles;
-  atomic.tile_min_points = 0;   // the variant asked for, at every size
+  if (tiles >= 0) atomic.use_tiles(tiles);   // the variant asked for, at every size
   if (contiguous) atomic.tile_spread = false;
   const auto& p = c.particles;
   const auto& g = c.grid;

@@ -96,6 +96,12 @@ struct P2GScatter {
   // docs/cuda.md).
   int tile_min_points = 50000;
 
+  // Tiles of `points` points at any number of points (a setting's explicit choice).
+  void use_tiles(const int points) {
+    tile_points = points;
+    tile_min_points = 0;
+  }
+
   P2GScatter() = default;
   explicit P2GScatter(const Grid<Mem>& g) {
     copies_count = duplicated ? ExecSpace().concurrency() : 1;
@@ -149,60 +155,60 @@ void scatter_tiles(S& scatter, const PositionView& position, const int n_points,
   const auto copies = scatter.copies;
   const size_t scratch = Ints::shmem_size(4) + Tile::shmem_size(static_cast<size_t>(F) * capacity);
   const auto body = KOKKOS_LAMBDA(const Member& team) {
-        double* buf = &copies(0, 0);
-        const int begin = team.league_rank() * per_team;
-        const int end = begin + per_team < n_points ? begin + per_team : n_points;
-        // The rectangle of the team's stencils, with atomic min/max in fast memory between
-        // barriers (every thread then reads the same rectangle; two nested team reductions of
-        // Kokkos 3.4 raced on an H100: compute-sanitizer's racecheck, wrong sums under it).
-        Ints box(team.team_scratch(0), 4);
-        Tile tile(team.team_scratch(0), static_cast<size_t>(F) * capacity);
-        Kokkos::single(Kokkos::PerTeam(team), [&]() {
-          box(0) = INT_MAX;
-          box(1) = INT_MIN;
-          box(2) = INT_MAX;
-          box(3) = INT_MIN;
-        });
-        team.team_barrier();
-        Kokkos::parallel_for(Kokkos::TeamThreadRange(team, begin, end), [&](const int q) {
-          const int bi = quadratic_bspline(position(q, 0) - ox, inv_dx).base;
-          const int bj = quadratic_bspline(position(q, 1) - oy, inv_dx).base;
-          Kokkos::atomic_fetch_min(&box(0), bi);
-          Kokkos::atomic_fetch_max(&box(1), bi);
-          Kokkos::atomic_fetch_min(&box(2), bj);
-          Kokkos::atomic_fetch_max(&box(3), bj);
-        });
-        team.team_barrier();
-        const NodeTile local{box(0), box(2), box(1) - box(0) + 3};
-        const int height = box(3) - box(2) + 3;
-        if (local.stride * height > capacity) {   // too spread out for a tile
-          Kokkos::parallel_for(Kokkos::TeamThreadRange(team, begin, end), [&](const int q) {
-            int bi, bj;
-            point_fn(q, buf, NodeTile{0, 0, nx}, bi, bj);
-          });
-        } else {
-          const int values = F * local.stride * height;
-          Kokkos::parallel_for(Kokkos::TeamThreadRange(team, values),
-                               [&](const int k) { tile(k) = 0.0; });
-          team.team_barrier();
-          Kokkos::parallel_for(Kokkos::TeamThreadRange(team, per_team), [&](const int k) {
-            const int q = begin + (spread ? (k % 32) * (per_team / 32) + k / 32 : k);
-            if (q >= end) return;
-            int bi, bj;
-            point_fn(q, tile.data(), local, bi, bj);
-          });
-          team.team_barrier();
-          Kokkos::parallel_for(Kokkos::TeamThreadRange(team, values), [&](const int k) {
-            const double v = tile(k);
-            if (v == 0.0) return;   // adding zero changes nothing
-            const int node = k / F, field = k - F * node;
-            const int row = node / local.stride, i = local.i0 + (node - row * local.stride);
-            Kokkos::atomic_add(buf + F * (i + nx * (local.j0 + row)) + field, v);
-          });
-        }
-        // A block may run several teams in turn: the next one rewrites the box and the tile.
-        team.team_barrier();
-      };
+    double* buf = &copies(0, 0);
+    const int begin = team.league_rank() * per_team;
+    const int end = begin + per_team < n_points ? begin + per_team : n_points;
+    // The rectangle of the team's stencils, with atomic min/max in fast memory between
+    // barriers (every thread then reads the same rectangle; two nested team reductions of
+    // Kokkos 3.4 raced on an H100: compute-sanitizer's racecheck, wrong sums under it).
+    Ints box(team.team_scratch(0), 4);
+    Tile tile(team.team_scratch(0), static_cast<size_t>(F) * capacity);
+    Kokkos::single(Kokkos::PerTeam(team), [&]() {
+      box(0) = INT_MAX;
+      box(1) = INT_MIN;
+      box(2) = INT_MAX;
+      box(3) = INT_MIN;
+    });
+    team.team_barrier();
+    Kokkos::parallel_for(Kokkos::TeamThreadRange(team, begin, end), [&](const int q) {
+      const int bi = quadratic_bspline(position(q, 0) - ox, inv_dx).base;
+      const int bj = quadratic_bspline(position(q, 1) - oy, inv_dx).base;
+      Kokkos::atomic_fetch_min(&box(0), bi);
+      Kokkos::atomic_fetch_max(&box(1), bi);
+      Kokkos::atomic_fetch_min(&box(2), bj);
+      Kokkos::atomic_fetch_max(&box(3), bj);
+    });
+    team.team_barrier();
+    const NodeTile local{box(0), box(2), box(1) - box(0) + 3};
+    const int height = box(3) - box(2) + 3;
+    if (local.stride * height > capacity) {   // too spread out for a tile
+      Kokkos::parallel_for(Kokkos::TeamThreadRange(team, begin, end), [&](const int q) {
+        int bi, bj;
+        point_fn(q, buf, NodeTile{0, 0, nx}, bi, bj);
+      });
+    } else {
+      const int values = F * local.stride * height;
+      Kokkos::parallel_for(Kokkos::TeamThreadRange(team, values),
+                           [&](const int k) { tile(k) = 0.0; });
+      team.team_barrier();
+      Kokkos::parallel_for(Kokkos::TeamThreadRange(team, per_team), [&](const int k) {
+        const int q = begin + (spread ? (k % 32) * (per_team / 32) + k / 32 : k);
+        if (q >= end) return;
+        int bi, bj;
+        point_fn(q, tile.data(), local, bi, bj);
+      });
+      team.team_barrier();
+      Kokkos::parallel_for(Kokkos::TeamThreadRange(team, values), [&](const int k) {
+        const double v = tile(k);
+        if (v == 0.0) return;   // adding zero changes nothing
+        const int node = k / F, field = k - F * node;
+        const int row = node / local.stride, i = local.i0 + (node - row * local.stride);
+        Kokkos::atomic_add(buf + F * (i + nx * (local.j0 + row)) + field, v);
+      });
+    }
+    // A block may run several teams in turn: the next one rewrites the box and the tile.
+    team.team_barrier();
+  };
   // A device: one thread per point. The host (tests only): as many threads per team as Kokkos
   // allows (2 with 2 OpenMP threads), so that the barriers and the atomics in the team's scratch
   // memory run concurrently there too.
@@ -221,9 +227,8 @@ void scatter_tiles(S& scatter, const PositionView& position, const int n_points,
 // Pass 1 of a P2G: point_fn(q, buf, tile, bi, bj) adds point q's contributions into the
 // interleaved buffer `buf` (with scatter_add<S::atomic>, node (i, j) at buf + kFields
 // tile.offset(i, j)) and returns the first node (bi, bj) of its 3 x 3 stencil; every node it
-// writes must lie in the stencil. `position`:
-// the points' positions (the stencil of the atomic path's rectangle). Returns the rectangle of
-// touched nodes, not clipped to the grid.
+// writes must lie in the stencil. `position`: the points' positions (the stencil of the atomic
+// path's rectangle). Returns the rectangle of touched nodes, not clipped to the grid.
 template <class S, class PositionView, class PointFn>
 NodeBox scatter_points(S& scatter, const PositionView& position, const int n_points,
                        const double ox, const double oy, const double inv_dx, const int nx,

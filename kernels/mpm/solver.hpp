@@ -63,9 +63,8 @@ class Solver {
     if (settings_.atomic_scatter) atomic_scatter_ = P2GScatter<ExecSpace, true>(grid_);
     else duplicated_scatter_ = P2GScatter<ExecSpace, false>(grid_);
     if (settings_.scatter_tile_points >= 0) {
-      atomic_scatter_.tile_points = settings_.scatter_tile_points;
-      duplicated_scatter_.tile_points = settings_.scatter_tile_points;
-      atomic_scatter_.tile_min_points = duplicated_scatter_.tile_min_points = 0;
+      atomic_scatter_.use_tiles(settings_.scatter_tile_points);
+      duplicated_scatter_.use_tiles(settings_.scatter_tile_points);
     }
     Kokkos::View<PreparedMaterial*, Mem> table("materials", materials.size());
     auto host = Kokkos::create_mirror_view(table);

@@ -118,15 +118,13 @@ TYPED_TEST(MpmP2GScatters, TiledAtomicScatterGivesTheSameGrid) {
   {
     SCOPED_TRACE("every team in a tile");   // 128 points: 32 cells, 12 x 6 nodes at most
     P2GScatter<Exec, true> tiled(c.grid);
-    tiled.tile_points = 128;
-    tiled.tile_min_points = 0;   // 800 points: tiles only when asked for
+    tiled.use_tiles(128);   // any number of points (800 here)
     c.expect_same_grid(tiled);
   }
   {
     SCOPED_TRACE("no team in a tile");   // 128 points need more than 12 nodes
     P2GScatter<Exec, true> direct(c.grid);
-    direct.tile_points = 128;
-    direct.tile_min_points = 0;
+    direct.use_tiles(128);
     direct.tile_nodes = 12;
     c.expect_same_grid(direct);
   }
@@ -136,8 +134,7 @@ TYPED_TEST(MpmP2GScatters, TiledAtomicScatterGivesTheSameGrid) {
     // more. With room for 30 nodes, 8 teams in 10 tile and the others do not.
     SCOPED_TRACE("some teams in tiles");
     P2GScatter<Exec, true> mixed(c.grid);
-    mixed.tile_points = 12;
-    mixed.tile_min_points = 0;
+    mixed.use_tiles(12);
     mixed.tile_nodes = 30;
     c.expect_same_grid(mixed);
   }

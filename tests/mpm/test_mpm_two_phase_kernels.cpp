@@ -145,8 +145,7 @@ TYPED_TEST(MpmTwoPhaseKernels, AtomicAndBufferedP2GGiveTheSameGrid) {
     if (tiling.points > 0 && !TwoPhaseScatter<Exec, true>::atomic) continue;   // Serial: none
     TwoPhaseGrid<Mem> atomic_grid(c.lo, c.hi, c.grid.dx());
     TwoPhaseScatter<Exec, true> atomic(atomic_grid.solid);
-    atomic.tile_points = tiling.points;
-    atomic.tile_min_points = 0;   // 800 points: tiles only when asked for
+    atomic.use_tiles(tiling.points);   // at any number of points (800 here)
     if (tiling.nodes > 0) atomic.tile_nodes = tiling.nodes;
     two_phase_p2g(c.particles, atomic_grid, atomic, g, c.liquid.density, kG, &c.walls, &c.walls);
 

@@ -92,9 +92,8 @@ class TwoPhaseSolver {
     if (settings_.atomic_scatter) atomic_scatter_ = TwoPhaseScatter<ExecSpace, true>(grid_.solid);
     else duplicated_scatter_ = TwoPhaseScatter<ExecSpace, false>(grid_.solid);
     if (settings_.scatter_tile_points >= 0) {
-      atomic_scatter_.tile_points = settings_.scatter_tile_points;
-      duplicated_scatter_.tile_points = settings_.scatter_tile_points;
-      atomic_scatter_.tile_min_points = duplicated_scatter_.tile_min_points = 0;
+      atomic_scatter_.use_tiles(settings_.scatter_tile_points);
+      duplicated_scatter_.use_tiles(settings_.scatter_tile_points);
     }
     Kokkos::View<PreparedMaterial*, Mem> table("two_phase_materials", materials.size());
     auto host = Kokkos::create_mirror_view(table);
