@@ -5,6 +5,7 @@
 //
 //   column_collapse_study a cells_per_L0 [key=value ...]
 //     L0=1 (m)  phi=30 (deg)  base=tan(phi) (Coulomb mu; -1: no slip)  room=1.6
+//     dump=FILE  (the final points, "x y" per line in units of L0 from the wall and base)
 //     mu_i=glass-beads  (Jop, Forterre & Pouliquen 2006: phi_s = asin(tan 20.9 deg) = 22.45,
 //                        phi_2 = asin(tan 32.76 deg) = 40.05 deg, I0 = 0.279, d = 0.5 mm,
 //                        rho_s = 2450 kg/m^3; sets phi to phi_s unless phi= is given after it)
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   lsi::test::ColumnSpec spec;
+  std::string dump;
   spec.a = std::atof(argv[1]);
   spec.cells_per_L0 = std::atoi(argv[2]);
   constexpr double kPi = 3.14159265358979323846;
@@ -38,6 +40,7 @@ int main(int argc, char** argv) {
     else if (key == "phi") spec.friction_angle_deg = std::atof(value.c_str());
     else if (key == "base") spec.base_friction = std::atof(value.c_str());
     else if (key == "room") spec.room = std::atof(value.c_str());
+    else if (key == "dump") dump = value;
     else if (key == "mu_i" && value == "glass-beads") {
       spec.friction_angle_deg = std::asin(std::tan(20.9 * kPi / 180)) * 180 / kPi;
       spec.limit_friction_angle_deg = std::asin(std::tan(32.76 * kPi / 180)) * 180 / kPi;
@@ -60,5 +63,15 @@ int main(int argc, char** argv) {
               spec.reference_inertial_number > 0 ? "on" : "off");
   lsi::test::print(R, "Serial");
   std::printf("room to the right wall: %.1f cells\n", R.right_room);
+  if (!dump.empty()) {
+    std::FILE* f = std::fopen(dump.c_str(), "w");
+    if (!f) {
+      std::fprintf(stderr, "cannot write %s\n", dump.c_str());
+      return 1;
+    }
+    for (std::size_t q = 0; q + 1 < R.deposit.size(); q += 2)
+      std::fprintf(f, "%.6f %.6f\n", R.deposit[q], R.deposit[q + 1]);
+    std::fclose(f);
+  }
   return R.status != lsi::mpm::Status::Finished || R.right_room < 2 ? 1 : 0;
 }

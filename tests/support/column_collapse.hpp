@@ -30,6 +30,10 @@ inline constexpr double kBodyThickness = 1.0 / 16;
 struct Collapse {
   double a = 0, Lf = 0, Hf = 0;   // L_f / L0, H_f / L0
   double Lbody = 0;               // end of the deposit thicker than kBodyThickness L0, / L0
+  double Lthin = 0;               // the same at a quarter of it (L0/64; resolved from 64 cells)
+  // Mass measures of the front (all points carry the same mass): the fraction of the column
+  // beyond Lube's run-out and beyond 1.2 times it, and x99 / L0, the point with 1 % beyond it.
+  double beyond_law = 0, beyond_law_120 = 0, x99 = 0;
   double residual = 0, t_over_T = 0, right_room = 0;
   double kinetic_ratio = 0;       // kinetic / released potential energy at the end
   double plastic_share = 0, boundary_share = 0;   // of the released potential energy
@@ -38,6 +42,7 @@ struct Collapse {
   int points = 0;
   double seconds = 0;
   Status status = Status::Running;
+  std::vector<double> deposit;    // final (x - x0, y - y0) / L0 of every point, interleaved
 };
 
 // The column and its model; the defaults are the test's (see its header).
@@ -126,7 +131,27 @@ Collapse collapse(const ColumnSpec& spec) {
     xm = std::max(xm, x(q, 0));
     ym = std::max(ym, x(q, 1));
   }
+  R.deposit.resize(2 * static_cast<std::size_t>(particles.count));
+  for (int q = 0; q < particles.count; ++q) {
+    R.deposit[2 * q] = (x(q, 0) - x0) / L0;
+    R.deposit[2 * q + 1] = (x(q, 1) - y0) / L0;
+  }
   R.Lf = (xm - x0 + h / 2) / L0;
+  {
+    const double law = lube_runout(a);
+    int n_law = 0, n_120 = 0;
+    std::vector<double> xs(particles.count);
+    for (int q = 0; q < particles.count; ++q) {
+      xs[q] = R.deposit[2 * q];
+      n_law += xs[q] > law;
+      n_120 += xs[q] > 1.2 * law;
+    }
+    R.beyond_law = static_cast<double>(n_law) / particles.count;
+    R.beyond_law_120 = static_cast<double>(n_120) / particles.count;
+    const std::size_t k = static_cast<std::size_t>(0.99 * particles.count);
+    std::nth_element(xs.begin(), xs.begin() + k, xs.end());
+    R.x99 = xs[k];
+  }
   R.Hf = (ym - y0 + h / 2) / L0;
   // Deposit profile: highest point (+ h/2) in each grid column right of the left wall; the body
   // ends at the right edge of the last column at least kBodyThickness L0 thick.
@@ -136,11 +161,13 @@ Collapse collapse(const ColumnSpec& spec) {
     const int c = std::clamp(static_cast<int>((x(q, 0) - x0) / dx), 0, columns - 1);
     top[c] = std::max(top[c], x(q, 1) - y0 + h / 2);
   }
-  for (int c = columns - 1; c >= 0; --c)
-    if (top[c] >= kBodyThickness * L0) {
-      R.Lbody = (c + 1) * dx / L0;
-      break;
-    }
+  const auto front = [&](double thickness) {
+    for (int c = columns - 1; c >= 0; --c)
+      if (top[c] >= thickness * L0) return (c + 1) * dx / L0;
+    return 0.0;
+  };
+  R.Lbody = front(kBodyThickness);
+  R.Lthin = front(kBodyThickness / 4);
   R.right_room = (x_right - xm) / dx;
   return R;
 }
@@ -150,16 +177,20 @@ inline void print(const Collapse& R, const char* backend) {
   const double h_small = R.a, h_04 = std::pow(R.a, 0.4), h_13 = std::cbrt(R.a);
   std::printf("[measured] %s a = %.1f (%d points, %ld steps, t = %.2f T, %.2f s, %s): "
               "L_f/L0 = %.3f vs Lube %.3f (%+.1f %%), Lajeunesse %.3f (%+.1f %%); "
-              "body (>= L0/16 thick) ends at %.3f L0 (%+.1f %% Lube, %+.1f %% Lajeunesse); "
+              "body (>= L0/16 thick) ends at %.3f L0 (%+.1f %% Lube, %+.1f %% Lajeunesse), "
+              "L0/64 thick at %.3f L0; "
               "H_f/L0 = %.3f vs a %.3f (%+.1f %%), a^0.4 %.3f (%+.1f %%), a^(1/3) %.3f (%+.1f %%); "
+              "mass beyond Lube's run-out %.2f %%, beyond 1.2 times it %.2f %%, 1 %% beyond "
+              "%.3f L0 (%+.1f %% Lube); "
               "energy residual %+.4f; plastic work %.3f, wall work %.3f of the released potential "
               "energy; kinetic/released %.1e\n",
               backend, R.a, R.points, R.steps, R.t_over_T, R.seconds, describe(R.status), R.Lf,
               lube,
               100 * (R.Lf / lube - 1), laj, 100 * (R.Lf / laj - 1), R.Lbody,
-              100 * (R.Lbody / lube - 1), 100 * (R.Lbody / laj - 1), R.Hf, h_small,
+              100 * (R.Lbody / lube - 1), 100 * (R.Lbody / laj - 1), R.Lthin, R.Hf, h_small,
               100 * (R.Hf / h_small - 1), h_04, 100 * (R.Hf / h_04 - 1), h_13,
-              100 * (R.Hf / h_13 - 1), R.residual, R.plastic_share, R.boundary_share,
+              100 * (R.Hf / h_13 - 1), 100 * R.beyond_law, 100 * R.beyond_law_120, R.x99,
+              100 * (R.x99 / lube - 1), R.residual, R.plastic_share, R.boundary_share,
               R.kinetic_ratio);
 }
 
