@@ -4,7 +4,7 @@
 // space), as the test's a = 3 case.
 //
 //   column_collapse_study a cells_per_L0 [key=value ...]
-//     L0=1 (m)  phi=30 (deg)  base=tan(phi) (Coulomb mu; -1: no slip)  room=1.6
+//     L0=1 (m)  phi=30 (deg)  nu=0.3  base=tan(phi) (Coulomb mu; -1: no slip)  room=1.6
 //     dump=FILE  (the final points, "x y" per line in units of L0 from the wall and base)
 //     mu_i=glass-beads  (Jop, Forterre & Pouliquen 2006: phi_s = asin(tan 20.9 deg) = 22.45,
 //                        phi_2 = asin(tan 32.76 deg) = 40.05 deg, I0 = 0.279, d = 0.5 mm,
@@ -22,7 +22,7 @@
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: %s a cells_per_L0 [L0=.. phi=.. base=.. room=.. mu_i=glass-beads]\n",
+    std::fprintf(stderr, "usage: %s a cells_per_L0 [L0=.. phi=.. nu=.. base=.. room=.. mu_i=glass-beads dump=FILE]\n",
                  argv[0]);
     return 2;
   }
@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
     const std::string value = eq == std::string::npos ? "" : arg.substr(eq + 1);
     if (key == "L0") spec.L0 = std::atof(value.c_str());
     else if (key == "phi") spec.friction_angle_deg = std::atof(value.c_str());
+    else if (key == "nu") spec.poisson_ratio = std::atof(value.c_str());
     else if (key == "base") spec.base_friction = std::atof(value.c_str());
     else if (key == "room") spec.room = std::atof(value.c_str());
     else if (key == "dump") dump = value;
@@ -52,8 +53,9 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (!(spec.a > 0) || spec.cells_per_L0 < 2 || !(spec.L0 > 0) || !(spec.room > 1)) {
-    std::fprintf(stderr, "need a > 0, cells_per_L0 >= 2, L0 > 0, room > 1\n");
+  if (!(spec.a > 0) || spec.cells_per_L0 < 2 || !(spec.L0 > 0) || !(spec.room > 1) ||
+      !(spec.poisson_ratio >= 0 && spec.poisson_ratio < 0.5)) {
+    std::fprintf(stderr, "need a > 0, cells_per_L0 >= 2, L0 > 0, room > 1, 0 <= nu < 0.5\n");
     return 2;
   }
   Kokkos::ScopeGuard kokkos(argc, argv);

@@ -51,6 +51,7 @@ struct ColumnSpec {
   int cells_per_L0 = 32;
   double L0 = 1.0;             // m
   double friction_angle_deg = 30.0;
+  double poisson_ratio = 0.3;
   double base_friction = -2.0; // Coulomb mu of the base; -2: tan(friction angle); -1: no slip
   double room = 1.6;           // the right wall at x0 + room * Lube's run-out (+ 3 cells)
   // mu(I) (kernels/mpm/constitutive/inertial_friction.hpp) when reference_inertial_number > 0:
@@ -70,7 +71,7 @@ Collapse collapse(const ColumnSpec& spec) {
   Material m;
   m.model = Material::Model::MohrCoulomb;
   m.density = 1800;
-  m.poisson_ratio = 0.3;
+  m.poisson_ratio = spec.poisson_ratio;
   m.young_modulus = m.density * kColumnG * H0 / 0.005;
   m.friction_angle = spec.friction_angle_deg * kColumnPi / 180.0;
   m.limit_friction_angle = spec.limit_friction_angle_deg * kColumnPi / 180.0;
