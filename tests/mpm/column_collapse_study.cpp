@@ -22,7 +22,9 @@
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: %s a cells_per_L0 [L0=.. phi=.. nu=.. base=.. room=.. mu_i=glass-beads dump=FILE]\n",
+    std::fprintf(stderr,
+                 "usage: %s a cells_per_L0 [L0=.. phi=.. nu=.. base=.. room=.. "
+                 "mu_i=glass-beads dump=FILE]\n",
                  argv[0]);
     return 2;
   }
