@@ -29,6 +29,7 @@
 #include "kernels/mpm/two_phase/two_phase_energy.hpp"
 #include "kernels/mpm/two_phase/two_phase_g2p.hpp"
 #include "kernels/mpm/two_phase/two_phase_grid.hpp"
+#include "kernels/mpm/two_phase/mirror_reaction.hpp"
 #include "kernels/mpm/two_phase/two_phase_grid_update.hpp"
 #include "kernels/mpm/two_phase/two_phase_p2g.hpp"
 #include "kernels/mpm/two_phase/two_phase_particles.hpp"
@@ -140,13 +141,18 @@ class TwoPhaseSolver {
       two_phase_p2g(particles_, grid_, duplicated_scatter_, settings_.gravity, liquid_.density,
                     settings_.darcy_gravity, cw, cl);
     if (track) transfer_.grid_after_p2g = grid_kinetic_energy(GridState::AfterP2G);
+    // The walls' reaction through the mirror images (mirror_reaction.hpp), before the grid
+    // update narrows the grid's rectangle.
+    double mirror[2] = {0.0, 0.0};
+    if (settings_.wall_correction)
+      mirror_wall_reaction<ExecSpace>(grid_, particles_, settings_.gravity, mirror);
     const GridUpdateReport gu = two_phase_grid_update<ExecSpace>(
         grid_, walls_, liquid_walls_, dt_, settings_.gravity, settings_.drag);
     boundary_ += gu.wall_dissipation;
     drag_ += gu.drag_dissipation;
     seepage_work_ += gu.seepage_gravity_work;
-    wall_force_[0] = gu.wall_force[0];
-    wall_force_[1] = gu.wall_force[1];
+    wall_force_[0] = gu.wall_force[0] + mirror[0];
+    wall_force_[1] = gu.wall_force[1] + mirror[1];
     if (barrier_.active()) barrier_step();
     if (track) transfer_.grid_after_update = grid_kinetic_energy(GridState::AfterUpdate);
     // G2P, the effective stress and (unless the free-surface drainage needs every point's new
@@ -240,7 +246,9 @@ class TwoPhaseSolver {
   long steps() const { return steps_; }
   Status status() const { return status_; }
   const TimeStepLimits& time_step_limits() const { return limits_; }   // of the last step
-  const double* wall_force() const { return wall_force_; }   // N/m on the walls (eq. 26), last step
+  // N/m on the walls, last step: eq. 26 over the constrained nodes, plus the mirror images'
+  // share with the wall correction (mirror_reaction.hpp).
+  const double* wall_force() const { return wall_force_; }
   const TwoPhaseParticles<Mem>& particles() const { return particles_; }
   const TwoPhaseGrid<Mem>& grid() const { return grid_; }
   const TwoPhaseSettings& settings() const { return settings_; }
