@@ -9,8 +9,8 @@
 // the P2G, -V (sigma' - p I) grad(w_i), sum to zero over the nodes (the gradients of the weights
 // of a point sum to zero), so the mixture forces of the nodes sum to the external forces,
 // sum_p (m_S + m_L) g + t_p. The mirror images add forces normal to the walls on the free nodes
-// only, so
-//   force of the walls on the material through the mirrors = sum_i f_mix,i - sum_p ((m_S + m_L) g + t_p)
+// only, so the force of the walls on the material through the mirrors is
+//   sum_i f_mix,i - sum_p ((m_S + m_L) g + t_p)
 // and its opposite is the force ON the walls, added to eq. 26's. Exact to round-off while every
 // point's 3 x 3 stencil lies inside the grid (the walls stand two cells inside it). Two
 // reductions (nodes of the P2G's rectangle, points), run only when the correction is on.
