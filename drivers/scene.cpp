@@ -12,6 +12,7 @@
 #include <iterator>
 
 #include "drivers/json_fields.hpp"
+#include "drivers/mpm_scene.hpp"
 
 namespace lsi {
 
@@ -229,6 +230,11 @@ SceneMethods parse_methods(const ObjectReader& root) {
   if (r.has("literature")) m.literature = parse_literature(r);
   if (const json* mpm = r.find("mpm")) {
     if (!mpm->is_object()) r.fail_at("mpm", "must be an object");
+    // Checked here whichever methods a command runs (`lsi run --methods analytical`, a sweep of
+    // the closed forms): a wrong key or value of the block is an error even when the MPM does
+    // not run. What needs the landslide and the barrier too (the cell size against the
+    // thickness, the explicit drag's cost) is checked when the MPM case is built (mpm_impact.cpp).
+    parse_mpm_settings(*mpm, r.path() + ".mpm", /*impact=*/true);
     m.mpm = *mpm;
   }
   return m;

@@ -539,6 +539,22 @@ TEST(Cli, MpmImpactErrorsNameTheField) {
     const Outcome r = run("run " + p.string() + " --methods mpm");
     EXPECT_EQ(r.code, 2) << r.out;
     EXPECT_NE(r.out.find(c.expect), std::string::npos) << r.out;
+    // The block's own keys and values are checked even when the MPM does not run; the cell
+    // size against the landslide's thickness (the first case) only when it does.
+    const Outcome closed = run("run " + p.string() + " --methods analytical");
+    if (k == 1) {
+      EXPECT_EQ(closed.code, 0) << closed.out;
+    } else {
+      EXPECT_EQ(closed.code, 2) << closed.out;
+      EXPECT_NE(closed.out.find(c.expect), std::string::npos) << closed.out;
+    }
+  }
+  {
+    const fs::path p = write_file("impact_bad_key.json",
+                                  impact_scene(R"({"cell_size_m": 0.1, "cel_size": 1})"));
+    const Outcome r = run("run " + p.string() + " --methods empirical");
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_NE(r.out.find("methods.mpm.cel_size"), std::string::npos) << r.out;
   }
   // --methods mpm on a scene without methods.mpm.
   const Outcome r =

@@ -224,7 +224,7 @@ TEST(SceneParse, OverridesAndOptionalMethods) {
     "empirical": {"a1": 2.0, "a2": -0.4, "tau": 0.2, "kappa": 0.1},
     "analytical": {"lambda": 1},
     "literature": {"family": "hydrostatic", "hydrostatic_k": 1.5},
-    "mpm": {"cells": 100, "anything": [1, 2]}
+    "mpm": {"cell_size_m": 0.1, "phases": "dry"}
   })");
   const Scene s = lsi::parse_scene(j);
   EXPECT_DOUBLE_EQ(s.landslide.material.porosity, 0.4);
@@ -243,9 +243,14 @@ TEST(SceneParse, OverridesAndOptionalMethods) {
   EXPECT_DOUBLE_EQ(s.methods.literature->hydrostatic_k.value(), 1.5);
   EXPECT_FALSE(s.methods.literature->hydrodynamic_alpha.has_value());
   ASSERT_TRUE(s.methods.mpm.has_value());
-  EXPECT_EQ(s.methods.mpm->at("cells"), 100);
-  EXPECT_EQ(s.methods.mpm->at("anything"), json::array({1, 2}));
+  EXPECT_EQ(s.methods.mpm->at("cell_size_m"), 0.1);   // kept as written, for the MPM run
+  EXPECT_EQ(s.methods.mpm->at("phases"), "dry");
   EXPECT_EQ(s.source, j);
+  // The block is checked when the scene is read, whichever methods then run.
+  j["methods"]["mpm"] = {{"cell_size_m", 0.1}, {"anything", {1, 2}}};
+  EXPECT_CONTAINS(error_of(j), "methods.mpm.anything: unknown key");
+  j["methods"]["mpm"] = {{"cell_size_m", -0.1}};
+  EXPECT_CONTAINS(error_of(j), "methods.mpm.cell_size_m = -0.1");
 }
 
 TEST(SceneParse, OnlyTheSelectedMethods) {
