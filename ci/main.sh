@@ -18,13 +18,12 @@ saturated=0
 cells=8
 if [ "${1:-}" = "--saturated" ]; then
   saturated=1
-  if [ -n "${2:-}" ]; then
-    if ! [[ "$2" =~ ^[0-9]+$ ]] || [ "$2" -lt 4 ]; then
-      echo "ci/main.sh: --saturated CELLS must be a whole number of cells through the flow's" \
-           "thickness, at least 4 (the MPM's limit: a cell at most a quarter of it); got '$2'" >&2
-      exit 2
-    fi
-    cells="$2"
+  cells="${2:-8}"
+  if ! [[ "$cells" =~ ^[0-9]+$ ]] || [ "$cells" -lt 4 ] || [ $# -gt 2 ]; then
+    echo "ci/main.sh: --saturated CELLS must be a whole number of cells through the flow's" \
+         "thickness, at least 4 (the MPM's limit: a cell at most a quarter of it); got" \
+         "'${*:2}'" >&2
+    exit 2
   fi
 elif [ $# -gt 0 ]; then
   echo "ci/main.sh: unknown argument '$1' (usage: bash ci/main.sh [--saturated [CELLS]])" >&2
@@ -37,21 +36,8 @@ out="$root/results/reference"
 if [ "$saturated" = 1 ]; then
   out="$root/results/reference-saturated"
   mkdir -p "$out/scenes"
-  # The shipped scenes with methods.mpm switched to the two-phase landslide (semi-implicit drag)
-  # at the requested resolution; everything else as shipped.
-  /usr/bin/python3 - "$out/scenes" "$cells" "${scenes[@]}" <<'EOF'
-import json, os, sys
-out, cells, paths = sys.argv[1], int(sys.argv[2]), sys.argv[3:]
-for path in paths:
-    scene = json.load(open(path))
-    mpm = scene["methods"]["mpm"]
-    mpm["cell_size_m"] = scene["landslide"]["thickness_m"] / cells
-    mpm["phases"] = "saturated"
-    mpm["drag"] = "semi-implicit"
-    with open(os.path.join(out, os.path.basename(path)), "w") as f:
-        json.dump(scene, f, indent=2)
-        f.write("\n")
-EOF
+  # The shipped scenes with the saturated landslide at the requested resolution.
+  /usr/bin/python3 "$root/ci/saturated_scenes.py" "$out/scenes" "$cells" "${scenes[@]}"
   scenes=("$out"/scenes/L?-B?.json)
 fi
 mkdir -p "$out"

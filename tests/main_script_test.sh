@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# main_script_test.sh SOURCE_DIR LSI_EXE OUT_DIR
+# README command 1's options: ci/main.sh's argument checks (made before it installs or builds
+# anything) and the scenes its --saturated option runs (ci/saturated_scenes.py): the nine
+# reference scenes with the saturated MPM landslide at the requested resolution, nothing else
+# changed, each accepted by lsi (which checks the methods.mpm block when it reads a scene).
+set -euo pipefail
+if [ $# -ne 3 ]; then
+  echo "usage: $0 SOURCE_DIR LSI_EXE OUT_DIR" >&2
+  exit 2
+fi
+src=$1
+lsi=$2
+out=$3
+rm -rf "$out"
+mkdir -p "$out"
+
+expect_usage_error() {   # expect_usage_error MESSAGE ARGS...: exit code 2 and MESSAGE on stderr
+  local message=$1 err rc
+  shift
+  set +e
+  err=$(bash "$src/ci/main.sh" "$@" 2>&1 >/dev/null)
+  rc=$?
+  set -e
+  if [ "$rc" -ne 2 ]; then
+    echo "FAIL: ci/main.sh $* exited $rc, expected 2 ($err)" >&2
+    exit 1
+  fi
+  if [[ "$err" != *"$message"* ]]; then
+    echo "FAIL: ci/main.sh $*: the message '$err' lacks '$message'" >&2
+    exit 1
+  fi
+}
+expect_usage_error "unknown argument '--bogus'" --bogus
+expect_usage_error "at least 4" --saturated 3
+expect_usage_error "got 'eight'" --saturated eight
+expect_usage_error "got '8 x'" --saturated 8 x
+
+set +e
+err=$(/usr/bin/python3 "$src/ci/saturated_scenes.py" "$out/bad" 2 "$src/scenes/reference/L1-B1.json" 2>&1)
+rc=$?
+set -e
+if [ "$rc" -ne 2 ] || [[ "$err" != *"at least 4"* ]]; then
+  echo "FAIL: saturated_scenes.py with 2 cells: exit $rc, '$err'" >&2
+  exit 1
+fi
+
+/usr/bin/python3 "$src/ci/saturated_scenes.py" "$out/scenes" 8 "$src"/scenes/reference/L?-B?.json
+/usr/bin/python3 - "$src/scenes/reference" "$out/scenes" <<'PY'
+import glob, json, os, sys
+ref, out = sys.argv[1], sys.argv[2]
+paths = sorted(glob.glob(os.path.join(ref, "L?-B?.json")))
+assert len(paths) == 9, paths
+for path in paths:
+    want = json.load(open(path))
+    got = json.load(open(os.path.join(out, os.path.basename(path))))
+    mpm = got["methods"]["mpm"]
+    h = want["landslide"]["thickness_m"]
+    assert abs(mpm["cell_size_m"] - h / 8) <= 1e-12 * h, (path, mpm)
+    assert mpm["phases"] == "saturated" and mpm["drag"] == "semi-implicit", (path, mpm)
+    want["methods"]["mpm"].update(cell_size_m=mpm["cell_size_m"], phases="saturated",
+                                  drag="semi-implicit")
+    assert got == want, path   # nothing else changed
+print("saturated scenes: 9 checked")
+PY
+for f in "$out"/scenes/L?-B?.json; do
+  "$lsi" run "$f" --methods analytical --format json >/dev/null
+done
+echo "main_script_test: ok"
