@@ -15,7 +15,6 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 saturated=0
-cells=8
 if [ "${1:-}" = "--saturated" ]; then
   saturated=1
   cells="${2:-8}"

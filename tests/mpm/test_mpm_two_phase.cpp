@@ -162,6 +162,16 @@ ColumnSpec hydrostatic_spec() {
   return c;
 }
 
+// The mixture's density and the period of the column's undrained fundamental mode,
+// T1 = 4 H / c_u, c_u = sqrt((M + K_L / n) / rho_m) (M the constrained modulus).
+double mixture_density(const ColumnSpec& c) {
+  return (1 - c.porosity) * c.skeleton.density + c.porosity * c.liquid.density;
+}
+double undrained_period(const ColumnSpec& c) {
+  const double M = c.skeleton.lame_lambda() + 2 * c.skeleton.shear_modulus();
+  return 4 * c.H / std::sqrt((M + c.liquid.bulk_modulus / c.porosity) / mixture_density(c));
+}
+
 double consolidation_coefficient(const ColumnSpec& c) {
   const Material& m = c.skeleton;
   const double M = m.lame_lambda() + 2 * m.shear_modulus();
@@ -286,10 +296,8 @@ TYPED_TEST(MpmTwoPhase, HydrostaticColumnStays) {
   const Boundaries walls = column_walls(col.xl, col.xr, col.yb);
   TwoPhaseSolver<Exec> solver(col.grid, col.particles, {c.skeleton}, c.liquid, walls,
                               settings_for(c));
-  const double rho_m = (1 - c.porosity) * c.skeleton.density + c.porosity * c.liquid.density;
-  const double M = c.skeleton.lame_lambda() + 2 * c.skeleton.shear_modulus();
-  const double cu = std::sqrt((M + c.liquid.bulk_modulus / c.porosity) / rho_m);
-  const double T1 = 4 * c.H / cu;
+  const double rho_m = mixture_density(c);
+  const double T1 = undrained_period(c);
   const auto t0 = std::chrono::steady_clock::now();
   const Status st = solver.run(3 * T1, T1);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -349,9 +357,7 @@ TYPED_TEST(MpmTwoPhase, WallForceCarriesTheWeight) {
     auto ml = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), col.particles.liquid_mass);
     double weight = 0;
     for (int q = 0; q < col.particles.count; ++q) weight += (ms(q) + ml(q)) * kG;
-    const double rho_m = (1 - c.porosity) * c.skeleton.density + c.porosity * c.liquid.density;
-    const double M = c.skeleton.lame_lambda() + 2 * c.skeleton.shear_modulus();
-    const double T1 = 4 * c.H / std::sqrt((M + c.liquid.bulk_modulus / c.porosity) / rho_m);
+    const double T1 = undrained_period(c);
     const double t_avg = 0.5 * T1, t_end = 2.5 * T1;
     double fx = 0, fy = 0, wt = 0;
     while (solver.time() < t_end) {

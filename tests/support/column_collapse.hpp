@@ -128,12 +128,10 @@ Collapse collapse(const ColumnSpec& spec) {
   R.boundary_share = e.boundary / released;
   auto x = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), particles.position);
   double xm = -1e300, ym = -1e300;
+  R.deposit.resize(2 * static_cast<std::size_t>(particles.count));
   for (int q = 0; q < particles.count; ++q) {
     xm = std::max(xm, x(q, 0));
     ym = std::max(ym, x(q, 1));
-  }
-  R.deposit.resize(2 * static_cast<std::size_t>(particles.count));
-  for (int q = 0; q < particles.count; ++q) {
     R.deposit[2 * q] = (x(q, 0) - x0) / L0;
     R.deposit[2 * q + 1] = (x(q, 1) - y0) / L0;
   }
