@@ -6,6 +6,7 @@
 //   column_collapse_study a cells_per_L0 [key=value ...]
 //     L0=1 (m)  phi=30 (deg)  nu=0.3  base=tan(phi) (Coulomb mu; -1: no slip)  room=1.6
 //     dump=FILE  (the final points, "x y" per line in units of L0 from the wall and base)
+//     k0=K       (start from the geostatic stress sigma_xx = sigma_zz = K sigma_yy, not from zero)
 //     trace=1    (the energy shares every T/16, T = sqrt(H0 / g); the deposit then differs
 //                 from the test's by up to 1 %: the output times clip the time step)
 //     mu_i=glass-beads  (Jop, Forterre & Pouliquen 2006: phi_s = asin(tan 20.9 deg) = 22.45,
@@ -26,7 +27,7 @@ int main(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(stderr,
                  "usage: %s a cells_per_L0 [L0=.. phi=.. nu=.. base=.. room=.. "
-                 "mu_i=glass-beads dump=FILE trace=1]\n",
+                 "k0=.. mu_i=glass-beads dump=FILE trace=1]\n",
                  argv[0]);
     return 2;
   }
@@ -47,6 +48,7 @@ int main(int argc, char** argv) {
     else if (key == "room") spec.room = std::atof(value.c_str());
     else if (key == "dump") dump = value;
     else if (key == "trace") spec.trace = value == "1";
+    else if (key == "k0") spec.geostatic_k0 = std::atof(value.c_str());
     else if (key == "mu_i" && value == "glass-beads") {
       spec.friction_angle_deg = std::asin(std::tan(20.9 * kPi / 180)) * 180 / kPi;
       spec.limit_friction_angle_deg = std::asin(std::tan(32.76 * kPi / 180)) * 180 / kPi;

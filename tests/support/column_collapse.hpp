@@ -61,6 +61,7 @@ struct ColumnSpec {
   // Print the energy shares every T/16 (the run then stops at T/16 intervals, not T/4: the
   // output times clip the time step, so the deposit differs from the test's by up to 1 %).
   bool trace = false;
+  double geostatic_k0 = -1.0;  // >= 0: start from sigma_xx = sigma_zz = K0 sigma_yy = -K0 rho g depth
 };
 
 template <class Exec>
@@ -93,6 +94,9 @@ Collapse collapse(const ColumnSpec& spec) {
   BodySpec body;
   body.polygon = {{{x0, y0}}, {{x0 + L0, y0}}, {{x0 + L0, y0 + H0}}, {{x0, y0 + H0}}};
   body.points_per_cell_direction = 2;
+  body.geostatic_k0 = spec.geostatic_k0;
+  body.surface_y = y0 + H0;
+  body.gravity = kColumnG;
   auto particles = build_particles<Mem>({body}, {m}, lo, dx);
   R.points = particles.count;
   Boundaries walls;
