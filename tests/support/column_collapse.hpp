@@ -61,7 +61,8 @@ struct ColumnSpec {
   // Print the energy shares every T/16 (the run then stops at T/16 intervals, not T/4: the
   // output times clip the time step, so the deposit differs from the test's by up to 1 %).
   bool trace = false;
-  double geostatic_k0 = -1.0;  // >= 0: start from sigma_xx = sigma_zz = K0 sigma_yy = -K0 rho g depth
+  // >= 0: start from the geostatic stress, sigma_xx = sigma_zz = K0 sigma_yy = -K0 rho g depth
+  double geostatic_k0 = -1.0;
 };
 
 template <class Exec>
