@@ -37,9 +37,9 @@ struct Settings {
   Transfer transfer = Transfer::Apic;   // APIC, or a FLIP/PIC blend without affine terms
   double flip_ratio = 0.99;           // FlipPic only: share of FLIP, [0, 1] (0: plain PIC)
   bool atomic_scatter = false;        // P2G with atomics instead of per-thread buffers (p2g.hpp)
-  // Points per tile of the atomic P2G (P2GScatter::tile_points): -1 the default (none, until
-  // the tiles are measured on a GPU), 0 none, n > 0 tiles of n points at any size (128 on a
-  // GPU). A knob of the benchmarks and tests.
+  // Points per tile of the atomic P2G (P2GScatter::tile_points): -1 the default (128 on a
+  // device from 50 000 points on, none on the host), 0 none, n > 0 tiles of n points at any
+  // size. A knob of the benchmarks and tests.
   int scatter_tile_points = -1;
   double energy_growth_limit = 0.5;   // relative growth of the total energy deemed unstable
   // Nodes with less mass than this fraction of the lightest point get gravity but no internal
