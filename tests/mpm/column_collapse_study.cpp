@@ -1,12 +1,14 @@
 // Reruns the granular column collapse of tests/mpm/test_mpm_column_collapse.cpp with other
 // settings: the resolution, sensitivity and mu(I) tables of docs/verification.md. Not a test
 // (nothing asserted); built beside the tests, run by hand. Serial backend (or the default host
-// space), as the test's a = 3 case.
+// space), as the test's a = 3 case; `space=default` runs it on a GPU in a CUDA build.
 //
 //   column_collapse_study a cells_per_L0 [key=value ...]
 //     L0=1 (m)  phi=30 (deg)  nu=0.3  base=tan(phi) (Coulomb mu; -1: no slip)  room=1.6
 //     dump=FILE  (the final points, "x y" per line in units of L0 from the wall and base)
 //     k0=K       (start from the geostatic stress sigma_xx = sigma_zz = K sigma_yy, not from zero)
+//     space=default  (run on Kokkos's default execution space, a GPU in a CUDA build, instead
+//                     of Serial: the fine grids of docs/verification.md)
 //     trace=1    (the energy shares every T/16, T = sqrt(H0 / g); the deposit then differs
 //                 from the test's by up to 1 %: the output times clip the time step)
 //     mu_i=glass-beads  (Jop, Forterre & Pouliquen 2006: phi_s = asin(tan 20.9 deg) = 22.45,
@@ -27,12 +29,13 @@ int main(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(stderr,
                  "usage: %s a cells_per_L0 [L0=.. phi=.. nu=.. base=.. room=.. "
-                 "k0=.. mu_i=glass-beads dump=FILE trace=1]\n",
+                 "k0=.. mu_i=glass-beads dump=FILE trace=1 space=default]\n",
                  argv[0]);
     return 2;
   }
   lsi::test::ColumnSpec spec;
   std::string dump;
+  bool default_space = false;
   spec.a = std::atof(argv[1]);
   spec.cells_per_L0 = std::atoi(argv[2]);
   constexpr double kPi = 3.14159265358979323846;
@@ -49,6 +52,7 @@ int main(int argc, char** argv) {
     else if (key == "dump") dump = value;
     else if (key == "trace") spec.trace = value == "1";
     else if (key == "k0") spec.geostatic_k0 = std::atof(value.c_str());
+    else if (key == "space" && value == "default") default_space = true;
     else if (key == "mu_i" && value == "glass-beads") {
       spec.friction_angle_deg = std::asin(std::tan(20.9 * kPi / 180)) * 180 / kPi;
       spec.limit_friction_angle_deg = std::asin(std::tan(32.76 * kPi / 180)) * 180 / kPi;
@@ -66,11 +70,15 @@ int main(int argc, char** argv) {
     return 2;
   }
   Kokkos::ScopeGuard kokkos(argc, argv);
-  const lsi::test::Collapse R = lsi::test::collapse<lsi::test::StudySpace>(spec);
+  const lsi::test::Collapse R =
+      default_space ? lsi::test::collapse<Kokkos::DefaultExecutionSpace>(spec)
+                    : lsi::test::collapse<lsi::test::StudySpace>(spec);
+  const std::string space_name =
+      default_space ? Kokkos::DefaultExecutionSpace::name() : lsi::test::StudySpace::name();
   std::printf("a = %g, %d cells per L0, L0 = %g m, phi = %.3f deg, base %g, mu(I) %s\n", spec.a,
               spec.cells_per_L0, spec.L0, spec.friction_angle_deg, spec.base_friction,
               spec.reference_inertial_number > 0 ? "on" : "off");
-  lsi::test::print(R, "Serial");
+  lsi::test::print(R, space_name.c_str());
   std::printf("room to the right wall: %.1f cells\n", R.right_room);
   if (!dump.empty()) {
     std::FILE* f = std::fopen(dump.c_str(), "w");
