@@ -98,7 +98,7 @@ constexpr const char* kScalarUnits =
     "peak_force N/m; rise_time s; impact_duration s; final_displacement m";
 
 bool is_reserved_attribute(const std::string& name) {
-  if (name == "units") return true;
+  if (name == "units" || name == "end_state" || name == "status") return true;
   for (const auto& s : kScalars)
     if (name == s.name) return true;
   return false;
@@ -175,6 +175,9 @@ void write_file(const std::string& file, const std::string& scene_text,
       for (const auto& [name, value] : r.extra)
         if (!std::isnan(value)) write_double_attribute(g, name, value);
       write_string_attribute(g, "units", kScalarUnits);
+      if (r.end_state != EndState::None)
+        write_string_attribute(g, "end_state", end_state_token(r.end_state));
+      if (!r.status.empty()) write_string_attribute(g, "status", r.status);
     } catch (const std::runtime_error& e) {
       throw std::runtime_error("group '" + r.method + "': " + e.what());
     }
@@ -232,6 +235,16 @@ MethodResult read_group(hid_t file, const std::string& name) {
             },
             &attr_names),
         "cannot list the attributes of group '" + name + "'");
+  if (has_attribute(g, "end_state")) {
+    const std::string token = read_string_attribute(g, "end_state");
+    try {
+      r.end_state = end_state_from_token(token);
+    } catch (const std::invalid_argument&) {
+      throw std::runtime_error("group '" + name + "': attribute end_state = '" + token +
+                               "' is not an end state");
+    }
+  }
+  if (has_attribute(g, "status")) r.status = read_string_attribute(g, "status");
   for (const auto& a : attr_names) {
     if (is_reserved_attribute(a)) continue;
     Handle attr(H5Aopen(g, a.c_str(), H5P_DEFAULT), H5Aclose, "cannot open attribute '" + a + "'");

@@ -4,8 +4,12 @@
 //   /                       attributes: scene (the scene JSON, indent 2), lsi_version, git_revision
 //   /<method>               one group per MethodResult, in the order given (link creation order
 //                           is tracked); attributes: peak_force, rise_time, impact_duration,
-//                           final_displacement (double; +inf allowed), every `extra` entry
-//                           (double), and `units` (string listing the units of the four scalars)
+//                           final_displacement (double; +inf allowed; left out where it is not
+//                           given, e.g. a run cut short while the barrier still slid), every
+//                           `extra` entry (double), `units` (string listing the units of the four
+//                           scalars), and for runs `end_state` (string: at_rest,
+//                           end_time_landslide_moving, end_time_barrier_sliding,
+//                           barrier_left_domain, unstable) and `status` (string)
 //   /<method>/<history>     1D double datasets time, force, force_horizontal, force_vertical,
 //                           landslide_kinetic_energy, barrier_velocity, barrier_displacement;
 //                           only the non-empty ones; each with string attributes units, description

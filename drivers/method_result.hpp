@@ -8,6 +8,26 @@
 
 namespace lsi {
 
+// How a simulated run ended (the MPM; the closed forms have no end state). A final displacement
+// is a result only for AtRest and EndTimeLandslideMoving (the barrier at rest at the end).
+enum class EndState {
+  None,                      // not a run that can end in several ways (closed forms)
+  AtRest,                    // the landslide and the barrier came to rest
+  EndTimeLandslideMoving,    // end time reached, the barrier at rest, the landslide still moving
+  EndTimeBarrierSliding,     // end time reached with the barrier still sliding
+  BarrierLeftDomain,         // the barrier slid to the downstream end of the modelled domain
+  Unstable,                  // the run stopped unstable (MethodResult::status says why)
+};
+
+// The token written to result files ("at_rest", ...), and back; "" for None. Throws
+// std::invalid_argument for an unknown token.
+const char* end_state_token(EndState s);
+EndState end_state_from_token(const std::string& token);
+// True where the barrier's displacement at the end is its final displacement.
+inline bool has_final_displacement(EndState s) {
+  return s == EndState::None || s == EndState::AtRest || s == EndState::EndTimeLandslideMoving;
+}
+
 struct MethodResult {
   std::string method;                               // "empirical", "analytical", "mpm", ...
   // Time histories (all the same length as `time`).
@@ -23,6 +43,11 @@ struct MethodResult {
   double rise_time = 0.0;                           // s, T1
   double impact_duration = 0.0;                     // s, T2
   double final_displacement = 0.0;                  // m; +infinity if the barrier never stops
+                                                    // (closed forms), NaN if a run was cut
+                                                    // short before it stopped (end_state)
+  // Runs (the MPM): how the run ended, and the solver's status ("finished" or why it stopped).
+  EndState end_state = EndState::None;
+  std::string status;
   // Further method-specific scalars (e.g. "froude_number", "reduced_mass_kg_per_m"), SI units.
   std::map<std::string, double> extra;
   // Further method-specific histories on the same `time` axis (e.g. the MPM's energies).

@@ -14,6 +14,10 @@
 namespace lsi {
 namespace {
 
+// The default end time of an impact, in impact time scales 2 L / v0 + 2 sqrt(2 max(H, h) / g):
+// a bound, not the end (the run ends when all is at rest); a run that reaches it is reported as
+// cut short (EndState).
+constexpr double kEndTimeScales = 10.0;
 // The most steps an explicit-drag run may need by its permeability limit alone.
 constexpr double kMaxExplicitDragSteps = 1e8;
 using CaseTwoPhase = MpmCase::TwoPhase;
@@ -99,17 +103,22 @@ MpmCase impact_case(const Scene& scene) {
                      json_fields::format_number(kinetic_energy) + " J/m (m1 = " +
                      json_fields::format_number(l.mass_kg_per_m()) +
                      " kg/m): must be finite and > 0 for the MPM impact");
+  // The time scale of the impact: the landslide passes in L / v0; twice that, plus the fall of
+  // the flow from the height of the barrier. The run ends once the landslide and the barrier are
+  // at rest; the end time only bounds it, at kEndTimeScales of these (the retained flow may slump
+  // back upstream for several of them).
+  const double impact_time = 2.0 * length / v0 + 2.0 * std::sqrt(2.0 * std::max(b.height_m, h) / g);
   if (!c.settings.end_time_given) {
-    // The landslide passes in L / v0; twice that, plus the fall of the flow from the height of
-    // the barrier, lets the barrier come to rest (the run ends earlier once all is at rest).
-    c.settings.end_time_s = 2.0 * length / v0 + 2.0 * std::sqrt(2.0 * std::max(b.height_m, h) / g);
+    c.settings.end_time_s = kEndTimeScales * impact_time;
     if (!std::isfinite(c.settings.end_time_s))
       throw InputError("landslide.velocity_m_s = " + json_fields::format_number(v0) +
-                       ": the MPM's default end time 2 L / v0 + 2 sqrt(2 max(H, h) / g) = " +
+                       ": the MPM's default end time " + std::to_string(int(kEndTimeScales)) +
+                       " (2 L / v0 + 2 sqrt(2 max(H, h) / g)) = " +
                        json_fields::format_number(c.settings.end_time_s) +
                        " s is not finite: give methods.mpm.end_time_s");
   }
-  if (!(c.settings.output_interval_s > 0.0)) c.settings.output_interval_s = c.settings.end_time_s / 400;
+  if (!(c.settings.output_interval_s > 0.0))
+    c.settings.output_interval_s = std::min(impact_time, c.settings.end_time_s) / 400;
 
   // Geometry: base y = 0, barrier toe x = 0, landslide front toe touching it.
   constexpr double kPi = 3.14159265358979323846;

@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 
+#include "drivers/impact_summary.hpp"
 #include "drivers/progress.hpp"
 #include "kernels/mpm/momentum.hpp"
 #include "kernels/mpm/overtopping.hpp"
@@ -48,24 +49,26 @@ MpmSnapshot take_snapshot(const mpm::Particles<Mem>& p, double time) {
   return s;
 }
 
-// Peak force (normal to the upstream face) and its time (rise time); impact duration: the last
-// time the normal force differs from its final value (mean of the last 5 % of the samples, the
-// static load of what the barrier retains) by more than 10 % of the peak; final displacement of
-// the barrier (+infinity if it still slides at the end of the run).
-void summarize_impact(MethodResult& r, const mpm::Barrier& barrier) {
-  const size_t n = r.force.size();
+// The impact's scalar outputs (impact_summary.hpp): the peak force normal to the upstream face
+// (the largest mean over one output interval) and its time (rise time), the peak averaged over
+// the scene's window, the impact duration and the impulse delivered during it; the volumes at the
+// end. The final displacement is the barrier's displacement where it has come to rest
+// (has_final_displacement), NaN where the run was cut short while it still moved.
+void summarize_impact(MethodResult& r, const mpm::Barrier& barrier, double window) {
   const size_t peak = std::max_element(r.force.begin(), r.force.end()) - r.force.begin();
   r.peak_force = r.force[peak];
   r.rise_time = r.time[peak];
-  const size_t tail = std::max<size_t>(1, n / 20);
-  double final_force = 0.0;
-  for (size_t i = n - tail; i < n; ++i) final_force += r.force[i] / tail;
-  r.impact_duration = r.time[peak];
-  for (size_t i = peak; i < n; ++i)
-    if (std::fabs(r.force[i] - final_force) > 0.1 * r.peak_force) r.impact_duration = r.time[i];
-  r.final_displacement = barrier.motion.sliding() ? std::numeric_limits<double>::infinity()
-                                                  : barrier.motion.displacement;
-  r.extra["final_force"] = final_force;
+  const ImpactDuration d = impact_duration(r.time, r.force);
+  r.impact_duration = d.duration;
+  r.final_displacement = has_final_displacement(r.end_state)
+                             ? barrier.motion.displacement
+                             : std::numeric_limits<double>::quiet_NaN();
+  const WindowedPeak w = windowed_peak(r.time, r.force, window);
+  r.extra["peak_force_windowed"] = w.force;
+  r.extra["peak_force_windowed_time"] = w.time;
+  r.extra["peak_force_window"] = window;
+  r.extra["impulse"] = impulse_until(r.time, r.force, r.impact_duration);
+  r.extra["final_force"] = d.final_force;
   r.extra["peak_force_horizontal"] =
       *std::max_element(r.force_horizontal.begin(), r.force_horizontal.end());
   r.extra["displacement_at_end"] = barrier.motion.displacement;
@@ -137,10 +140,43 @@ double add_energies(const SaturatedSolver& sv, const AddSeries& add) {
 const mpm::Particles<Mem>& solid_points(const DrySolver& sv) { return sv.particles(); }
 const mpm::Particles<Mem>& solid_points(const SaturatedSolver& sv) { return sv.particles().solid; }
 
-MpmSnapshot snapshot_of(const DrySolver& sv) { return take_snapshot(sv.particles(), sv.time()); }
-MpmSnapshot snapshot_of(const SaturatedSolver& sv) {
+// The pore pressure a saturated run reports (snapshots, the face): each point's cell mean by
+// default (cell_mean_pore_pressure), or the points' own field. Filled on demand between steps.
+class ReportedPorePressure {
+ public:
+  ReportedPorePressure(const SaturatedSolver& sv, bool cell_mean)
+      : cell_mean_(cell_mean),
+        field_(cell_mean ? Kokkos::View<double*, Mem>("reported_pore_pressure", sv.particles().count)
+                         : sv.particles().pore_pressure) {}
+  Kokkos::View<const double*, Mem> of(const SaturatedSolver& sv) const {
+    if (cell_mean_)
+      mpm::two_phase::cell_mean_pore_pressure<Exec>(sv.particles(), sv.grid(), field_);
+    return field_;
+  }
+
+ private:
+  bool cell_mean_;
+  Kokkos::View<double*, Mem> field_;
+};
+
+// Solver-specific outputs of a run: the reported pore pressure when saturated.
+struct DryOutputs {
+  DryOutputs(const DrySolver&, const MpmCase&) {}
+};
+struct SaturatedOutputs {
+  SaturatedOutputs(const SaturatedSolver& sv, const MpmCase& c)
+      : pressure(sv, c.settings.cell_mean_pore_pressure_output) {}
+  ReportedPorePressure pressure;
+};
+DryOutputs outputs_for(const DrySolver& sv, const MpmCase& c) { return {sv, c}; }
+SaturatedOutputs outputs_for(const SaturatedSolver& sv, const MpmCase& c) { return {sv, c}; }
+
+MpmSnapshot snapshot_of(const DrySolver& sv, const DryOutputs&) {
+  return take_snapshot(sv.particles(), sv.time());
+}
+MpmSnapshot snapshot_of(const SaturatedSolver& sv, const SaturatedOutputs& o) {
   MpmSnapshot s = take_snapshot(sv.particles().solid, sv.time());
-  const auto p = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), sv.particles().pore_pressure);
+  const auto p = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), o.pressure.of(sv));
   s.pore_pressure.assign(p.data(), p.data() + p.extent(0));
   return s;
 }
@@ -162,12 +198,16 @@ void add_step_outputs(const DrySolver& sv, const AddSeries& add) {
 }
 void add_step_outputs(const SaturatedSolver&, const AddSeries&) {}
 
-void add_face_outputs(const DrySolver&, const MpmCase&, const AddSeries&) {}
-void add_face_outputs(const SaturatedSolver& sv, const MpmCase& c, const AddSeries& add) {
+void add_face_outputs(const DrySolver&, const DryOutputs&, const MpmCase&, const AddSeries&) {}
+void add_face_outputs(const SaturatedSolver& sv, const SaturatedOutputs& o, const MpmCase& c,
+                      const AddSeries& add) {
   add("face_pore_pressure_max", "Pa",
-      "largest pore pressure of the points within one cell in front of the upstream face",
-      mpm::two_phase::face_pore_pressure<Exec>(sv.particles(), c.barrier->shape,
-                                               sv.barrier().motion.displacement,
+      c.settings.cell_mean_pore_pressure_output
+          ? "largest pore pressure (cell mean) of the points within one cell in front of the "
+            "upstream face"
+          : "largest pore pressure of the points within one cell in front of the upstream face",
+      mpm::two_phase::face_pore_pressure<Exec>(sv.particles(), o.pressure.of(sv),
+                                               c.barrier->shape, sv.barrier().motion.displacement,
                                                c.settings.cell_size_m));
 }
 
@@ -192,6 +232,7 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
   const auto t0 = std::chrono::steady_clock::now();
   double io_seconds = 0.0, last_output = 0.0;
   bool barrier_left = false;
+  const auto extra_outputs = outputs_for(solver, c);
   // Impact outputs: the contact forces as averages over each output interval (impulse /
   // interval: the force of one step rings with the contact of single node columns).
   auto impact_outputs = [&](double t, double kinetic) {
@@ -228,7 +269,7 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
         motion.friction_work);
     add("barrier_kinetic_energy", "J/m", "kinetic energy of the barrier",
         0.5 * motion.mass * motion.velocity * motion.velocity);
-    add_face_outputs(solver, c, add);
+    add_face_outputs(solver, extra_outputs, c, add);
     double p[2];
     material_momentum(solver, p);
     add("momentum_x", "kg m/s per m", "horizontal momentum of the material (both phases)", p[0]);
@@ -251,7 +292,7 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
             c.settings.end_time_s - t <= std::max(1e-12 * c.settings.end_time_s, min_dt);
         if (snap_dt > 0 &&
             (t + snap_tol >= next_snap * snap_dt || (at_end && out.snapshots.back().time < t))) {
-          out.snapshots.push_back(snapshot_of(sv));
+          out.snapshots.push_back(snapshot_of(sv, extra_outputs));
           while (next_snap * snap_dt <= t + snap_tol) ++next_snap;
         }
         progress.update(t, sv.steps());
@@ -275,7 +316,7 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
   // written: snapshots never hold NaN).
   if (snap_dt > 0 && status == mpm::Status::LeftGrid &&
       (out.snapshots.empty() || out.snapshots.back().time < solver.time()))
-    out.snapshots.push_back(snapshot_of(solver));
+    out.snapshots.push_back(snapshot_of(solver, extra_outputs));
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.particles = particle_count;
   // A barrier pushed to the downstream end of the modelled domain is a physical outcome (far too
@@ -284,18 +325,32 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
   out.finished = status == mpm::Status::Finished;
   out.status = barrier_left ? "finished: the barrier slid to the downstream end of the domain"
                             : mpm::describe(status);
+  r.status = out.status;
+  if (c.barrier) {
+    // At rest: the landslide's kinetic energy below 1e-3 of its initial value and the barrier
+    // not sliding (the test that ends the run early); else the run was cut short.
+    const bool sliding = solver.barrier().motion.sliding();
+    const bool landslide_rest = !r.landslide_kinetic_energy.empty() &&
+                                r.landslide_kinetic_energy.back() <
+                                    1e-3 * c.landslide_initial_kinetic_energy;
+    r.end_state = !out.finished   ? EndState::Unstable
+                  : barrier_left  ? EndState::BarrierLeftDomain
+                  : sliding       ? EndState::EndTimeBarrierSliding
+                  : landslide_rest ? EndState::AtRest
+                                   : EndState::EndTimeLandslideMoving;
+  }
   out.steps = solver.steps();
   out.wall_seconds = total - io_seconds;
   out.particle_updates_per_second =
       out.wall_seconds > 0 ? double(particle_count) * solver.steps() / out.wall_seconds : 0.0;
   r.peak_force = r.rise_time = r.impact_duration = r.final_displacement =
       std::numeric_limits<double>::quiet_NaN();   // not an impact: not given
-  if (c.barrier && !r.force.empty()) summarize_impact(r, solver.barrier());
-  if (barrier_left) {
-    r.final_displacement = std::numeric_limits<double>::infinity();
-    r.extra["barrier_left_domain"] = 1.0;
-  }
-  if (c.barrier && r.series.count("face_pore_pressure_max")) {
+  // A run that stopped unstable keeps its histories up to the stop; its summary would look like
+  // a result, so it is not given.
+  if (c.barrier && !r.force.empty() && out.finished)
+    summarize_impact(r, solver.barrier(), c.settings.peak_force_window_s);
+  if (c.barrier) r.extra["displacement_at_end"] = solver.barrier().motion.displacement;
+  if (c.barrier && out.finished && r.series.count("face_pore_pressure_max")) {
     const auto& v = r.series.at("face_pore_pressure_max").values;
     r.extra["face_pore_pressure_max_pa"] = *std::max_element(v.begin(), v.end());
   }

@@ -27,7 +27,9 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
                                    "max_time_step_s", "output_interval_s", "transfer",
                                    "flip_ratio", "scatter", "snapshot_interval_s",
                                    "small_mass_fraction", "transfer_dissipation"};
-  if (impact) keys.insert(keys.end(), {"base_friction", "phases", "drag", "pore_pressure"});
+  if (impact)
+    keys.insert(keys.end(), {"base_friction", "phases", "drag", "pore_pressure",
+                             "pore_pressure_output", "peak_force_window_s"});
   const jf::ObjectReader r(block, path, keys);
   MpmSettings s;
   s.cell_size_m = r.number("cell_size_m", jf::greater_than(0, "m"));
@@ -52,6 +54,12 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
         r.choice("pore_pressure", {"point", "cell"}, std::string("point")) == "cell";
     if (!s.saturated && r.has("pore_pressure"))
       r.fail_at("pore_pressure", "only used with \"phases\": \"saturated\"");
+    s.cell_mean_pore_pressure_output =
+        r.choice("pore_pressure_output", {"cell", "point"}, std::string("cell")) == "cell";
+    if (!s.saturated && r.has("pore_pressure_output"))
+      r.fail_at("pore_pressure_output", "only used with \"phases\": \"saturated\"");
+    s.peak_force_window_s =
+        r.number_or("peak_force_window_s", kDefaultPeakForceWindow, jf::greater_than(0, "s"));
   } else {
     s.end_time_s = r.number("end_time_s", jf::greater_than(0, "s"));
   }

@@ -19,6 +19,11 @@
 
 namespace lsi {
 
+// The default window of the averaged peak force of an impact (s): the shortest window over which
+// the reference study's peak force holds within a few percent between the two finest
+// resolutions of its convergence study (docs/mpm.md, "Convergence of the impact outputs").
+inline constexpr double kDefaultPeakForceWindow = 0.05;
+
 struct MpmSettings {
   double cell_size_m = 0.1;
   int particles_per_cell = 4;         // a perfect square: n x n points per cell
@@ -37,6 +42,12 @@ struct MpmSettings {
   bool saturated = true;              // "phases": "saturated" (two-phase, the paper) or "dry"
   bool semi_implicit_drag = true;     // "drag": "semi-implicit" or "explicit" (saturated only)
   bool cell_pore_pressure = false;    // "pore_pressure": "point" or "cell" (saturated only)
+  // "pore_pressure_output": the pore pressure of snapshots and of the face as its cell's mean
+  // ("cell", the default: the per-point field rings from point to point) or per point ("point").
+  bool cell_mean_pore_pressure_output = true;
+  // The peak force is also reported as the largest mean over any window of this length (s);
+  // 0 until the impact case sets its default (kDefaultPeakForceWindow).
+  double peak_force_window_s = 0.0;
   bool end_time_given = true;         // false: end_time_s is the impact scene's default
 };
 

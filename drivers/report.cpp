@@ -26,6 +26,47 @@ std::string pad(const std::string& s, size_t width) {
   return s.size() >= width ? s + " " : s + std::string(width - s.size(), ' ');
 }
 
+double extra_or_nan(const MethodResult& r, const char* key) {
+  const auto it = r.extra.find(key);
+  return it == r.extra.end() ? std::nan("") : it->second;
+}
+
+// The final displacement as a table cell: the number where it is one; ">=" the displacement at
+// the end where the run was cut short while the barrier still slid; "unstable".
+std::string displacement_cell(const MethodResult& r) {
+  switch (r.end_state) {
+    case EndState::EndTimeBarrierSliding:
+    case EndState::BarrierLeftDomain:
+      return ">=" + fmt(extra_or_nan(r, "displacement_at_end"), "%.3f");
+    case EndState::Unstable:
+      return "unstable";
+    default:
+      return fmt(r.final_displacement, "%.3f");
+  }
+}
+
+// What a table must say about how a run ended, or "" (at rest, or not a run).
+std::string end_note(const MethodResult& r) {
+  const std::string t = fmt(extra_or_nan(r, "end_time"), "%.3g");
+  const std::string d = fmt(extra_or_nan(r, "displacement_at_end"), "%.3g");
+  switch (r.end_state) {
+    case EndState::EndTimeBarrierSliding:
+      return "the barrier was still sliding at t = " + t + " s (>= " + d +
+             " m): the run reached its end time (final displacement not known)";
+    case EndState::BarrierLeftDomain:
+      return "the barrier was still sliding at t = " + t + " s (>= " + d +
+             " m) when it reached the downstream end of the modelled domain (final "
+             "displacement not known)";
+    case EndState::EndTimeLandslideMoving:
+      return "the landslide was still moving at t = " + t +
+             " s, the end time (the barrier at rest, displaced " + d + " m)";
+    case EndState::Unstable:
+      return "stopped unstable at t = " + t + " s: " + r.status;
+    default:
+      return "";
+  }
+}
+
 }  // namespace
 
 nlohmann::json summary_json(const std::vector<MethodResult>& results) {
@@ -37,6 +78,8 @@ nlohmann::json summary_json(const std::vector<MethodResult>& results) {
     put(m, "impact_duration", r.impact_duration);
     put(m, "final_displacement", r.final_displacement);
     for (const auto& [k, v] : r.extra) put(m, k, v);
+    if (r.end_state != EndState::None) m["end_state"] = end_state_token(r.end_state);
+    if (!r.status.empty()) m["status"] = r.status;
     j[r.method] = m;
   }
   return j;
@@ -55,7 +98,11 @@ std::string summary_table(const Scene& scene, const std::vector<MethodResult>& r
   for (const auto& r : results) {
     o << pad(r.method, 12) << pad(fmt(r.peak_force / 1e3, "%.1f"), 13)
       << pad(fmt(r.rise_time, "%.3f"), 11) << pad(fmt(r.impact_duration, "%.3f"), 17)
-      << fmt(r.final_displacement, "%.3f") << "\n";
+      << displacement_cell(r) << "\n";
+  }
+  for (const auto& r : results) {
+    const std::string note = end_note(r);
+    if (!note.empty()) o << r.method << ": " << note << "\n";
   }
   // The MPM's volumes (the closed forms have none): what went over the crest, and how much of
   // that is the grid contact's leak into the barrier (docs/two_phase.md).
@@ -149,9 +196,13 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_
       }
       return pad(out, group);
     };
+    std::string displacements;
+    for (const char* m : methods) {
+      const MethodResult* r = find(row.results, m);
+      displacements += pad(r ? displacement_cell(*r) : "-", w);
+    }
     o << pad(row.scene, 8) << cols(&MethodResult::peak_force, "%.1f", 1e3)
-      << cols(&MethodResult::impact_duration, "%.2f", 1)
-      << cols(&MethodResult::final_displacement, "%.3f", 1);
+      << cols(&MethodResult::impact_duration, "%.2f", 1) << pad(displacements, group);
     for (const char* m : {"empirical", "analytical"}) {
       const MassDesign* d = find(row.designs, m);
       o << pad(!d ? "-" : d->status == "found" ? fmt(d->mass_kg_per_m / 1e3, "%.1f")
@@ -163,6 +214,11 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_
   o << "E displacement: rigid-block sliding under the empirical (fixed-barrier) pulse; A: the "
        "two-body model; M: the MPM (docs/mpm.md). \"any\": no mass exceeds the tolerance "
        "(docs/models.md).\n";
+  for (const auto& row : rows)
+    for (const auto& r : row.results) {
+      const std::string note = end_note(r);
+      if (!note.empty()) o << row.scene << " " << r.method << ": " << note << "\n";
+    }
   if (mpm) {
     o << "MPM run time per case [s]:";
     for (const auto& row : rows) {

@@ -24,7 +24,10 @@
 
 namespace lsi {
 
-enum class SampleStatus : std::int8_t { ok = 0, invalid_input = 1, unstable = 2, failed = 3 };
+// truncated: an MPM run that reached its end time with the barrier still sliding (or at the end
+// of the domain): its final displacement is not known (NaN), the sample is not an ok one.
+enum class SampleStatus : std::int8_t {
+  ok = 0, invalid_input = 1, unstable = 2, failed = 3, truncated = 4 };
 const char* describe(SampleStatus s);
 
 struct SweepTable {

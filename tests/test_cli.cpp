@@ -440,16 +440,20 @@ TEST(Cli, MpmImpactRunsBesideTheClosedFormsAndConservesMomentum) {
 }
 
 // The text summary of an MPM impact gives the overtopped and retained volumes and the leaked part
-// of the overtopped one, as stored in the result file. L3-B3, dry at 4 cells through the
-// thickness (384 points, well under a second of MPM), overtops: 6.75 m^2 of 54, 0.84 of it
-// inside the barrier (docs/two_phase.md), so every number of the line is checked nonzero.
+// of the overtopped one, as stored in the result file. A 3 m flow at 12.5 m/s (the paper's shape,
+// 4 squares: 54 m^2) against a light 60 deg earth barrier, dry at 4 cells through the thickness
+// (384 points, well under a second of MPM), cut at 5.86 s while material still lies inside the
+// barrier: it overtops, and part of that inside the barrier, so every number of the line is
+// checked nonzero.
 TEST(Cli, MpmImpactSummaryGivesTheVolumes) {
-  std::ifstream in(source_dir / "scenes/reference/L3-B3.json");
-  nlohmann::json s = nlohmann::json::parse(in);
-  nlohmann::json mpm = s["methods"]["mpm"];
-  mpm["cell_size_m"] = 0.75;
-  mpm["phases"] = "dry";
-  s["methods"] = {{"mpm", mpm}};
+  nlohmann::json s = nlohmann::json::parse(R"({"name": "overtopping",
+    "landslide": {"thickness_m": 3.0, "velocity_m_s": 12.5, "density_kg_m3": 1800,
+      "shape": {"kind": "front-body-tail", "body_squares": 4},
+      "material": {"friction_angle_deg": 20, "young_modulus_mpa": 2, "poisson_ratio": 0.25}},
+    "barrier": {"height_m": 5, "base_width_m": 6, "top_width_m": 2, "face_angle_deg": 60,
+      "density_kg_m3": 2000, "base_friction": 0.5, "face_friction": 0.3, "fixed": false},
+    "methods": {"mpm": {"cell_size_m": 0.75, "phases": "dry", "transfer": "apic",
+                        "end_time_s": 5.86}}})");
   const fs::path scene = write_file("impact_volumes.json", s.dump());
   const fs::path out = temp_dir() / "impact_volumes.h5";
   const Outcome r = run("run " + scene.string() + " --out " + out.string());
@@ -468,6 +472,103 @@ TEST(Cli, MpmImpactSummaryGivesTheVolumes) {
                 over, 100.0 * over / (over + kept), leak, kept);
   EXPECT_NE(r.out.find(line), std::string::npos) << r.out << "\nexpected: " << line;
   EXPECT_NEAR(over + kept, 54.0, 1e-9 * 54.0);   // the landslide as placed, m^2
+}
+
+// A free, light barrier (a 1 m x 3 m flow at 4 m/s, dry, 4 cells through it) hit by the flow:
+// cut short by end_time_s while it slides, the run says so (table, JSON, HDF5) and gives no
+// final displacement, only how far the barrier got; left to run, with the flow's base friction,
+// it ends at rest before the default end time and gives its final displacement.
+std::string sliding_barrier_scene(const std::string& mpm) {
+  return R"({"name": "sliding",
+ "landslide": {"thickness_m": 1.0, "velocity_m_s": 4, "density_kg_m3": 1800,
+   "shape": {"kind": "rectangle", "length_m": 3.0},
+   "material": {"friction_angle_deg": 20, "young_modulus_mpa": 2, "poisson_ratio": 0.25}},
+ "barrier": {"height_m": 2, "base_width_m": 1.5, "top_width_m": 1.0, "face_angle_deg": 90,
+   "density_kg_m3": 400, "base_friction": 0.5, "face_friction": 0.3, "fixed": false},
+ "methods": {"mpm": )" + mpm + "}}";
+}
+
+TEST(Cli, MpmRunCutShortWhileTheBarrierSlidesHasNoFinalDisplacement) {
+  const fs::path scene = write_file(
+      "cut_short.json",
+      sliding_barrier_scene(R"({"cell_size_m": 0.25, "phases": "dry", "end_time_s": 0.4})"));
+  const fs::path out = temp_dir() / "cut_short.h5";
+  const Outcome table = run("run " + scene.string() + " --out " + out.string());
+  ASSERT_EQ(table.code, 0) << table.out;   // a physical outcome, not a failure
+  EXPECT_NE(table.out.find("mpm: the barrier was still sliding at t = 0.4 s (>= "),
+            std::string::npos)
+      << table.out;
+  EXPECT_EQ(table.out.find("never stops"), std::string::npos) << table.out;
+  const Outcome js = run("run " + scene.string() + " --format json");
+  ASSERT_EQ(js.code, 0) << js.out;
+  const auto m = nlohmann::json::parse(js.out.substr(js.out.find('{')))["mpm"];
+  EXPECT_FALSE(m.contains("final_displacement")) << m.dump();
+  EXPECT_EQ(m["end_state"], "end_time_barrier_sliding");
+  EXPECT_GT(m["displacement_at_end"].get<double>(), 0.0);
+  const auto stored = lsi::read_results(out.string());
+  ASSERT_EQ(stored.results.size(), 1u);
+  const auto& r = stored.results[0];
+  EXPECT_EQ(r.end_state, lsi::EndState::EndTimeBarrierSliding);
+  EXPECT_TRUE(std::isnan(r.final_displacement)) << r.final_displacement;
+  EXPECT_GT(r.barrier_velocity.back(), 0.0);   // it was indeed still moving
+  EXPECT_EQ(r.extra.at("displacement_at_end"), r.barrier_displacement.back());
+}
+
+TEST(Cli, MpmRunEndsWhenTheLandslideAndTheBarrierAreAtRest) {
+  const fs::path scene = write_file(
+      "at_rest.json",
+      sliding_barrier_scene(R"({"cell_size_m": 0.25, "phases": "dry", "base_friction": 0.4})"));
+  const fs::path out = temp_dir() / "at_rest.h5";
+  const Outcome r = run("run " + scene.string() + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(r.out.find("still"), std::string::npos) << r.out;
+  const auto stored = lsi::read_results(out.string());
+  const auto& m = stored.results[0];
+  EXPECT_EQ(m.end_state, lsi::EndState::AtRest);
+  EXPECT_GT(m.final_displacement, 0.0);
+  EXPECT_EQ(m.final_displacement, m.extra.at("displacement_at_end"));
+  EXPECT_EQ(m.barrier_velocity.back(), 0.0);
+  // Well before the default bound, 10 impact time scales 2 L / v0 + 2 sqrt(2 H / g) = 2.77 s.
+  EXPECT_LT(m.extra.at("end_time"), 0.5 * 27.7);
+}
+
+// The pore pressure of snapshots is the cell mean by default: the points of one cell share one
+// value, so there are far fewer distinct values than points; "pore_pressure_output": "point"
+// writes the points' own field, nearly every point its own value. Mid-impact, where the per-point
+// field rings (a saturated blunt front, 8 cells through the flow, 4 points per cell).
+std::vector<double> snapshot_dataset(const fs::path& file, const std::string& path) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  EXPECT_GE(f, 0) << file;
+  const hid_t d = H5Dopen2(f, path.c_str(), H5P_DEFAULT);
+  EXPECT_GE(d, 0) << path;
+  const hid_t space = H5Dget_space(d);
+  std::vector<double> v(static_cast<size_t>(H5Sget_simple_extent_npoints(space)));
+  H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  H5Sclose(space);
+  H5Dclose(d);
+  H5Fclose(f);
+  return v;
+}
+
+TEST(Cli, MpmSnapshotPorePressureIsTheCellMeanByDefault) {
+  auto distinct_share = [&](const std::string& extra) {
+    const fs::path scene = write_file(
+        "snap_p" + std::to_string(extra.size()) + ".json",
+        impact_scene(R"({"cell_size_m": 0.125, "end_time_s": 0.2, "snapshot_interval_s": 0.1)" +
+                     extra + "}"));
+    const fs::path out = temp_dir() / ("snap_p" + std::to_string(extra.size()) + ".h5");
+    const Outcome r = run("run " + scene.string() + " --methods mpm --out " + out.string());
+    EXPECT_EQ(r.code, 0) << r.out;
+    std::vector<double> p = snapshot_dataset(out, "/mpm/snapshots/000001/pore_pressure");
+    const size_t n = p.size();
+    EXPECT_GT(n, 700u);   // 3 m x 1 m at 4 points per 0.125 m cell: 768
+    std::sort(p.begin(), p.end());
+    return double(std::unique(p.begin(), p.end()) - p.begin()) / n;
+  };
+  // About one value per cell (a quarter of the points) with the cell mean; points that changed
+  // cell share it too. Checked to fail: the per-point field gives nearly one value per point.
+  EXPECT_LT(distinct_share(""), 0.4);
+  EXPECT_GT(distinct_share(R"(, "pore_pressure_output": "point")"), 0.9);
 }
 
 TEST(Cli, MpmSaturatedImpactReportsPorePressureOnTheFace) {
@@ -492,14 +593,15 @@ TEST(Cli, MpmSaturatedImpactReportsPorePressureOnTheFace) {
 
 // "pore_pressure": "cell" reaches the two-phase solver: the pore pressure is projected to each
 // cell's mean every step, which lowers the largest point value on the face (the wall's cell is
-// averaged; measured 1.70 against 1.91 MPa) and leaves the water-hammer peak force of the blunt
-// front nearly as it is (measured 1.037 against 1.047 MN/m).
+// averaged; the face pressure is read per point here, "pore_pressure_output": "point", so that
+// the solver's field is what is compared) and leaves the water-hammer peak force of the blunt
+// front nearly as it is.
 TEST(Cli, MpmSaturatedCellPorePressureReachesTheSolver) {
   auto run_with = [&](const std::string& pore_pressure) {
     const fs::path scene =
         write_file("impact_sat_" + pore_pressure + ".json",
                    impact_scene(R"({"cell_size_m": 0.125, "end_time_s": 0.6, "pore_pressure": ")" +
-                                pore_pressure + "\"}"));
+                                pore_pressure + R"(", "pore_pressure_output": "point"})"));
     const Outcome r = run("run " + scene.string() + " --methods mpm --format json");
     EXPECT_EQ(r.code, 0) << r.out;
     return nlohmann::json::parse(r.out.substr(r.out.find('{')))["mpm"];

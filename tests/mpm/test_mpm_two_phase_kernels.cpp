@@ -11,7 +11,10 @@
 //    on so that every branch of the fused pass runs.
 // Both on a saturated Mohr-Coulomb column that has collapsed for 20 steps (nonzero velocities of
 // both phases, APIC matrices, yielding, compressing points).
-// 3. The wave speed of the time step (two_phase_time_step.hpp, saturated_wave_speed, written with
+// 3. The reported pore pressure (pore_pressure_update.hpp, cell_mean_pore_pressure): a
+//    point-to-point checkerboard laid on the column's field is gone from every cell, the n V
+//    weighted integral is kept, and the points' own field is left as it was.
+// 4. The wave speed of the time step (two_phase_time_step.hpp, saturated_wave_speed, written with
 //    three divisions) against the largest eigenvalue of the 2 x 2 wave problem computed by Eigen
 //    from the stiffness and mass matrices themselves.
 #include <Eigen/Dense>
@@ -260,6 +263,42 @@ TYPED_TEST(MpmTwoPhaseKernels, FusedPointPassMatchesTheSeparateKernels) {
   EXPECT_NEAR(limits_a.wave_speed, b.limits.wave_speed, 1e-12 * limits_a.wave_speed);
   EXPECT_NEAR(limits_a.permeability_dt, b.limits.permeability_dt,
               1e-12 * limits_a.permeability_dt);
+}
+
+TYPED_TEST(MpmTwoPhaseKernels, CellMeanPorePressureRemovesTheCheckerboard) {
+  using Exec = TypeParam;
+  using Mem = typename Exec::memory_space;
+  CollapsingColumn<Exec> c;
+  // A smooth field (hydrostatic in y) plus +-50 kPa alternating from point to point: 2 x 2 points
+  // per cell, numbered along rows, so each cell holds two of each sign.
+  auto p_host = Kokkos::create_mirror_view(c.particles.pore_pressure);
+  const auto x_host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.particles.solid.position);
+  const auto n_host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.particles.porosity);
+  const auto v_host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.particles.solid.volume);
+  const double dx = c.grid.dx();
+  for (int q = 0; q < c.particles.count; ++q) {
+    // The point's column and row on the half-cell lattice (the column has not moved yet).
+    const long k = std::lround((x_host(q, 0) - c.lo[0]) / dx * 2 - 0.5) +
+                   std::lround((x_host(q, 1) - c.lo[1]) / dx * 2 - 0.5);
+    p_host(q) = 1e4 * (1.1 - x_host(q, 1)) + (k % 2 == 0 ? 5e4 : -5e4);
+  }
+  Kokkos::deep_copy(c.particles.pore_pressure, p_host);
+  Kokkos::View<double*, Mem> mean("mean", c.particles.count);
+  cell_mean_pore_pressure<Exec>(c.particles, c.grid, mean);
+  const auto m_host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), mean);
+  const auto p_after = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.particles.pore_pressure);
+  double integral_before = 0.0, integral_after = 0.0, worst = 0.0;
+  for (int q = 0; q < c.particles.count; ++q) {
+    EXPECT_EQ(p_after(q), p_host(q)) << "the points' own field must not change, point " << q;
+    integral_before += n_host(q) * v_host(q) * p_host(q);
+    integral_after += n_host(q) * v_host(q) * m_host(q);
+    // In a cell the points' weights are equal, so the checkerboard cancels: what is left is the
+    // smooth field's mean over the cell, within its variation across one cell (1e4 Pa/m x dx).
+    worst = std::max(worst, std::fabs(m_host(q) - 1e4 * (1.1 - x_host(q, 1))));
+  }
+  EXPECT_LT(worst, 1e4 * dx);   // the checkerboard's 5e4 Pa would be far above this
+  // A projection: the n V weighted integral is kept, to round-off of the sums.
+  EXPECT_NEAR(integral_after, integral_before, 1e-12 * std::fabs(integral_before) + 1e-9);
 }
 
 TEST(SaturatedWaveSpeed, IsTheFastestWaveOfTheTwoPhases) {

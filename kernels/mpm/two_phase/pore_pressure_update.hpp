@@ -21,7 +21,8 @@
 //   accounts for it (two_phase_time_step.hpp).
 // * Free-surface drainage (free_surface_fill > 0): points whose neighbourhood is not full get
 //   p = q = 0 (below).
-// * Cell projection of p (project_pore_pressure, called by the solver after this update).
+// * Cell projection of p (project_pore_pressure, called by the solver after this update), and
+//   the cell means reported as the smooth pore pressure (cell_mean_pore_pressure).
 #pragma once
 #include <Kokkos_Core.hpp>
 
@@ -67,24 +68,18 @@ void nodal_volume(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<Me
       });
 }
 
-// Cell projection of the pore pressure (`cell_pressure`): p_p <- sum_{q in c} n_q V_q p_q /
-// sum_{q in c} n_q V_q over the points q of the point's cell c (the cell of its position). A
-// projection (P^2 = P) that is symmetric in the n V weighted product, so with p already uniform in
-// the cell it changes nothing and the forces of P2G stay the transpose of the storage equation
-// (energy consistent); points crossing cells are mixed, which can only lower the stored liquid
-// energy sum n V p^2 / (2 K_L) (Jensen): the drop is returned (J/m). Removes the checkerboard
-// (Q1P0-like pressure per cell). Uses grid.smooth_value / smooth_weight per cell (cell index =
-// index of its lower-left node).
+// The n V weighted sums of the pore pressure per cell (cell index = index of its lower-left node)
+// into grid.smooth_value (sum n V p) and grid.smooth_weight (sum n V), over the points of each cell
+// (the cell of a point's position).
 template <class ExecSpace, class MemorySpace>
-double project_pore_pressure(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g,
-                             double liquid_bulk_modulus) {
+void sum_cell_pore_pressure(const TwoPhaseParticles<MemorySpace>& p,
+                            const TwoPhaseGrid<MemorySpace>& g) {
   const auto s = p.solid;
   const auto num = g.smooth_value, den = g.smooth_weight;
   Kokkos::deep_copy(num, 0.0);
   Kokkos::deep_copy(den, 0.0);
   const double ox = g.solid.origin[0], oy = g.solid.origin[1], inv_dx = 1.0 / g.solid.dx;
   const int nx = g.solid.nx;
-  const double K_L = liquid_bulk_modulus;
   Kokkos::parallel_for(
       "lsi::mpm::two_phase::cell_pressure_sum", Kokkos::RangePolicy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q) {
@@ -94,6 +89,45 @@ double project_pore_pressure(const TwoPhaseParticles<MemorySpace>& p, const TwoP
         Kokkos::atomic_add(&num(c), w * p.pore_pressure(q));
         Kokkos::atomic_add(&den(c), w);
       });
+}
+
+// The cell-averaged pore pressure of every point, out(q) = sum_{r in c} n_r V_r p_r /
+// sum_{r in c} n_r V_r over the points r of q's cell c: the smooth field that is reported
+// (snapshots, the pressure on the barrier's face), whatever the solver keeps per point. Uses the
+// grid's smooth_value / smooth_weight as scratch; p is not changed.
+template <class ExecSpace, class MemorySpace>
+void cell_mean_pore_pressure(const TwoPhaseParticles<MemorySpace>& p,
+                             const TwoPhaseGrid<MemorySpace>& g,
+                             const Kokkos::View<double*, MemorySpace>& out) {
+  sum_cell_pore_pressure<ExecSpace>(p, g);
+  const auto s = p.solid;
+  const auto num = g.smooth_value, den = g.smooth_weight;
+  const double ox = g.solid.origin[0], oy = g.solid.origin[1], inv_dx = 1.0 / g.solid.dx;
+  const int nx = g.solid.nx;
+  Kokkos::parallel_for(
+      "lsi::mpm::two_phase::cell_pressure_mean", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      KOKKOS_LAMBDA(const int q) {
+        const int c = static_cast<int>((s.position(q, 0) - ox) * inv_dx) +
+                      nx * static_cast<int>((s.position(q, 1) - oy) * inv_dx);
+        out(q) = den(c) > 0.0 ? num(c) / den(c) : p.pore_pressure(q);
+      });
+}
+
+// Cell projection of the pore pressure (`cell_pressure`): p_p <- the cell mean above, in place. A
+// projection (P^2 = P) that is symmetric in the n V weighted product, so with p already uniform in
+// the cell it changes nothing and the forces of P2G stay the transpose of the storage equation
+// (energy consistent); points crossing cells are mixed, which can only lower the stored liquid
+// energy sum n V p^2 / (2 K_L) (Jensen): the drop is returned (J/m). Removes the checkerboard
+// (Q1P0-like pressure per cell).
+template <class ExecSpace, class MemorySpace>
+double project_pore_pressure(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g,
+                             double liquid_bulk_modulus) {
+  sum_cell_pore_pressure<ExecSpace>(p, g);
+  const auto s = p.solid;
+  const auto num = g.smooth_value, den = g.smooth_weight;
+  const double ox = g.solid.origin[0], oy = g.solid.origin[1], inv_dx = 1.0 / g.solid.dx;
+  const int nx = g.solid.nx;
+  const double K_L = liquid_bulk_modulus;
   double drop = 0.0;
   Kokkos::parallel_reduce(
       "lsi::mpm::two_phase::cell_pressure_set", Kokkos::RangePolicy<ExecSpace>(0, p.count),
