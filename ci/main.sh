@@ -1,48 +1,52 @@
 #!/usr/bin/env bash
-# README command 1: installs what is missing, builds, and runs the reference study (the nine
-# landslide-barrier cases L1-L3 x B1-B3): prints the comparison table of the methods and the
-# barrier masses for a 0.5 m tolerable displacement, and writes results/reference/ (one HDF5 file
-# per case, comparison.txt, comparison.json, and a PNG per case under plots/).
+# README command 1: installs what is missing, builds, and runs the reference study (nine
+# landslide-barrier cases L1-L3 x B1-B3, each with a free and a fixed barrier): prints the
+# comparison table of the methods with the MPM's error bars from the convergence study, and the
+# barrier masses for a 0.5 m tolerable displacement; writes results/reference/ (one HDF5 file per
+# case, comparison.txt, comparison.json, and a PNG per case under plots/).
 #
-#   bash ci/main.sh                       the study as shipped (MPM: dry, 16 cells per thickness)
-#   bash ci/main.sh --saturated [CELLS]   the same nine with a saturated (two-phase) MPM landslide
-#                                         at CELLS cells through the flow's thickness (default 8)
-#                                         into results/reference-saturated/ (scenes/ holds the
-#                                         scenes it ran); why the shipped study runs dry, and what
-#                                         the saturated runs do and do not resolve: docs/mpm.md
-#                                         ("The reference study: settings and resolution"),
-#                                         docs/two_phase.md ("Impacts")
+#   bash ci/main.sh                      the study as shipped (saturated MPM landslide, 8 cells
+#                                        through the flow's thickness, base friction 0.2)
+#   bash ci/main.sh [--cells N] [--dry] [--smooth-base]
+#                                        a variant: N cells through the thickness, the dry
+#                                        (single-phase) landslide, the paper's smooth base
+#                                        (F1 = 0); into results/reference-<variant>/ (its scenes
+#                                        in scenes/ there); no error bars (the convergence study
+#                                        is of the shipped settings: ci/reference_convergence.py)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-saturated=0
-if [ "${1:-}" = "--saturated" ]; then
-  saturated=1
-  cells="${2:-8}"
-  if ! [[ "$cells" =~ ^[0-9]+$ ]] || [ "$cells" -lt 4 ] || [ $# -gt 2 ]; then
-    echo "ci/main.sh: --saturated CELLS must be a whole number of cells through the flow's" \
-         "thickness, at least 4 (the MPM's limit: a cell at most a quarter of it); got" \
-         "'${*:2}'" >&2
-    exit 2
-  fi
-elif [ $# -gt 0 ]; then
-  echo "ci/main.sh: unknown argument '$1' (usage: bash ci/main.sh [--saturated [CELLS]])" >&2
-  exit 2
-fi
+usage="usage: bash ci/main.sh [--cells N] [--dry] [--smooth-base]"
+variant=() tag=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --cells)
+      cells="${2:-}"
+      if ! [[ "$cells" =~ ^[0-9]+$ ]] || [ "$cells" -lt 4 ]; then
+        echo "ci/main.sh: --cells must be a whole number of cells through the flow's thickness," \
+             "at least 4 (the MPM's limit: a cell at most a quarter of it); got '$cells'" >&2
+        exit 2
+      fi
+      variant+=(--cells "$cells"); tag+="-$cells"; shift 2 ;;
+    --dry) variant+=(--dry); tag+="-dry"; shift ;;
+    --smooth-base) variant+=(--smooth-base); tag+="-smooth"; shift ;;
+    *) echo "ci/main.sh: unknown argument '$1' ($usage)" >&2; exit 2 ;;
+  esac
+done
 bash "$root/ci/setup.sh"
 build="${LSI_BUILD_DIR:-$root/build}"
-scenes=("$root"/scenes/reference/L?-B?.json)
+scenes=("$root"/scenes/reference/L?-B?.json "$root"/scenes/reference/L?-B?-fixed.json)
 out="$root/results/reference"
-if [ "$saturated" = 1 ]; then
-  out="$root/results/reference-saturated"
-  mkdir -p "$out/scenes"
-  # The shipped scenes with the saturated landslide at the requested resolution.
-  /usr/bin/python3 "$root/ci/saturated_scenes.py" "$out/scenes" "$cells" "${scenes[@]}"
-  scenes=("$out"/scenes/L?-B?.json)
+bars=(--convergence "$root/ci/reference_convergence.json")
+if [ ${#variant[@]} -gt 0 ]; then
+  out="$root/results/reference$tag"
+  /usr/bin/python3 "$root/ci/reference_variant.py" "$out/scenes" "${variant[@]}" "${scenes[@]}"
+  scenes=("$out"/scenes/L?-B?.json "$out"/scenes/L?-B?-fixed.json)
+  bars=()
 fi
 mkdir -p "$out"
 "$build/drivers/lsi" compare "${scenes[@]}" --out-dir "$out" --max-displacement 0.5 \
-  --summary-json "$out/comparison.json" | tee "$out/comparison.txt"
-MPLCONFIGDIR="$out/.mplconfig" /usr/bin/python3 "$root/drivers/lsi_plot.py" "$out"/L?-B?.h5 \
+  "${bars[@]}" --summary-json "$out/comparison.json" | tee "$out/comparison.txt"
+MPLCONFIGDIR="$out/.mplconfig" /usr/bin/python3 "$root/drivers/lsi_plot.py" "$out"/L?-B?*.h5 \
   --out-dir "$out/plots" >/dev/null
 rm -rf "$out/.mplconfig"
 echo "results, comparison tables and plots written to ${out#$root/}/"

@@ -11,9 +11,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "drivers/closed_form_methods.hpp"
+#include "drivers/convergence_file.hpp"
 #include "drivers/hdf5_results.hpp"
 #include "drivers/mpm_impact.hpp"
 #include "drivers/mpm_runner.hpp"
@@ -185,6 +187,10 @@ int main(int argc, char** argv) {
   std::string summary_json_path;
   compare->add_option("--summary-json", summary_json_path,
                       "Also write the comparison as JSON to this file (written atomically)");
+  std::string convergence_path;
+  compare->add_option("--convergence", convergence_path,
+                      "A convergence study of these scenes (ci/reference_convergence.py): the MPM "
+                      "outputs get its error bars");
 
   const lsi::Subcommand subcommands[] = {lsi::add_sweep_command(app), lsi::add_merge_command(app),
                                          lsi::add_calibrate_command(app),
@@ -239,6 +245,8 @@ int main(int argc, char** argv) {
     } else if (*compare) {
       std::vector<lsi::ComparisonRow> rows;
       bool unstable = false;
+      std::optional<lsi::ConvergenceStudy> convergence;
+      if (!convergence_path.empty()) convergence = lsi::load_convergence_study(convergence_path);
       for (const auto& path : compare_scenes) {
         const lsi::Scene scene = load(path);
         std::string mpm_status;
@@ -247,6 +255,13 @@ int main(int argc, char** argv) {
           std::cerr << "lsi: " << path << ": the MPM run stopped: " << mpm_status << "\n";
           unstable = true;
         }
+        for (auto& r : row.results)
+          if (convergence && r.method == "mpm") {
+            const std::string why = lsi::attach_convergence(*convergence, scene, r);
+            if (!why.empty())
+              std::cerr << "lsi: " << path << ": no error bars from " << convergence_path << ": "
+                        << why << "\n";
+          }
         if (!scene.barrier.fixed) row.designs = lsi::design_barrier_mass(scene, max_displacement, only);
         if (!out_dir.empty()) {
           const auto file = std::filesystem::path(out_dir) / (scene.name + ".h5");

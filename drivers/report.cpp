@@ -1,5 +1,6 @@
 #include "drivers/report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -172,37 +173,85 @@ const MassDesign* find(const std::vector<MassDesign>& ds, const std::string& m) 
 }
 }  // namespace
 
+namespace {
+// An MPM value with its error bar where a convergence study gave one (`<key>_spread`,
+// `<key>_converged`: drivers/convergence_file.hpp): "value+-spread", "*" when not converged.
+std::string with_spread(const MethodResult& r, const std::string& key, const std::string& value,
+                        double scale, const char* format) {
+  const auto s = r.extra.find(key + "_spread");
+  if (s == r.extra.end() || value == "-") return value;
+  const auto c = r.extra.find(key + "_converged");
+  const bool converged = c != r.extra.end() && c->second == 1.0;
+  return value + "+-" + fmt(s->second / scale, format) + (converged ? "" : "*");
+}
+
+bool has_spreads(const std::vector<ComparisonRow>& rows) {
+  for (const auto& row : rows)
+    for (const auto& r : row.results)
+      if (r.extra.count("peak_force_spread")) return true;
+  return false;
+}
+
+struct MpmColumn {
+  const char* key;
+  const char* head;
+  double scale;
+  const char* format;
+};
+// The MPM outputs with error bars, in the order of the convergence study.
+constexpr MpmColumn kMpmColumns[] = {
+    {"peak_force", "peak [kN/m]", 1e3, "%.1f"},
+    {"peak_force_windowed", "peak, window [kN/m]", 1e3, "%.1f"},
+    {"impulse", "impulse [kN s/m]", 1e3, "%.1f"},
+    {"impact_duration", "duration [s]", 1, "%.2f"},
+    {"final_displacement", "displacement [m]", 1, "%.3f"},
+    {"overtopped_volume_m2", "overtopped [m^2]", 1, "%.2f"},
+    {"retained_volume_m2", "retained [m^2]", 1, "%.2f"},
+    {"face_pore_pressure_max_pa", "face pore p. [kPa]", 1e3, "%.0f"},
+};
+
+double value_of(const MethodResult& r, const std::string& key) {
+  if (key == "peak_force") return r.peak_force;
+  if (key == "impact_duration") return r.impact_duration;
+  if (key == "final_displacement") return r.final_displacement;
+  return extra_or_nan(r, key.c_str());
+}
+}  // namespace
+
 std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_displacement_m) {
   // Columns: E = empirical, A = analytical, M = MPM (when any row ran it).
   bool mpm = false;
   for (const auto& row : rows) mpm = mpm || find(row.results, "mpm");
+  const bool bars = has_spreads(rows);
   std::vector<const char*> methods = {"empirical", "analytical"};
   if (mpm) methods.push_back("mpm");
-  const size_t w = 9;
-  const std::string heads = mpm ? "E        A        M" : "E        A";
-  const size_t group = w * methods.size() + 2;
+  const size_t w = 9, wm = bars ? 17 : 9;
+  size_t case_w = 8;
+  for (const auto& row : rows) case_w = std::max(case_w, row.scene.size() + 1);
+  const std::string heads = pad("E", w) + pad("A", w) + (mpm ? pad("M", wm) : "");
+  const size_t group = 2 * w + (mpm ? wm : 0) + 2;
+  auto width = [&](const char* m) { return std::string(m) == "mpm" ? wm : w; };
   std::ostringstream o;
   o << "Comparison of the design methods (E: empirical, A: analytical"
     << (mpm ? ", M: MPM" : "") << "); forces normal to the face\n";
-  o << pad("case", 8) << pad("peak force [kN/m]", group) << pad("impact period [s]", group)
+  o << pad("case", case_w) << pad("peak force [kN/m]", group) << pad("impact period [s]", group)
     << pad("final displ. [m]", group) << "mass for " << fmt(max_displacement_m) << " m [t/m]\n";
-  o << pad("", 8) << pad(heads, group) << pad(heads, group) << pad(heads, group) << "E        A\n";
+  o << pad("", case_w) << pad(heads, group) << pad(heads, group) << pad(heads, group)
+    << "E        A\n";
   for (const auto& row : rows) {
-    auto cols = [&](double MethodResult::*f, const char* format, double scale) {
+    auto cols = [&](const std::string& key, const char* format, double scale) {
       std::string out;
       for (const char* m : methods) {
         const MethodResult* r = find(row.results, m);
-        out += pad(r ? fmt(r->*f / scale, format) : "-", w);
+        std::string cell = r ? fmt(value_of(*r, key) / scale, format) : "-";
+        if (r && key == "final_displacement") cell = displacement_cell(*r);
+        if (r) cell = with_spread(*r, key, cell, scale, format);
+        out += pad(cell, width(m));
       }
       return pad(out, group);
     };
-    std::string displacements;
-    for (const char* m : methods) {
-      const MethodResult* r = find(row.results, m);
-      displacements += pad(r ? displacement_cell(*r) : "-", w);
-    }
-    o << pad(row.scene, 8) << cols(&MethodResult::peak_force, "%.1f", 1e3)
-      << cols(&MethodResult::impact_duration, "%.2f", 1) << pad(displacements, group);
+    o << pad(row.scene, case_w) << cols("peak_force", "%.1f", 1e3)
+      << cols("impact_duration", "%.2f", 1) << cols("final_displacement", "%.3f", 1);
     for (const char* m : {"empirical", "analytical"}) {
       const MassDesign* d = find(row.designs, m);
       o << pad(!d ? "-" : d->status == "found" ? fmt(d->mass_kg_per_m / 1e3, "%.1f")
@@ -219,6 +268,31 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_
       const std::string note = end_note(r);
       if (!note.empty()) o << row.scene << " " << r.method << ": " << note << "\n";
     }
+  if (bars) {
+    double cells = 0, courant = 0;
+    for (const auto& row : rows)
+      if (const MethodResult* r = find(row.results, "mpm"); r && r->extra.count("peak_force_spread")) {
+        cells = extra_or_nan(*r, "convergence_finer_cells");
+        courant = extra_or_nan(*r, "convergence_finer_courant");
+      }
+    o << "\nMPM outputs +- their spread in the convergence study (the larger change to "
+      << fmt(cells, "%.0f") << " cells through the thickness or to Courant " << fmt(courant)
+      << "; * not converged: the spread above 10 % of the value and above the output's floor)\n";
+    o << pad("case", case_w);
+    for (const auto& c : kMpmColumns) o << pad(c.head, 20);
+    o << "\n";
+    for (const auto& row : rows) {
+      const MethodResult* r = find(row.results, "mpm");
+      if (!r) continue;
+      o << pad(row.scene, case_w);
+      for (const auto& c : kMpmColumns) {
+        std::string cell = fmt(value_of(*r, c.key) / c.scale, c.format);
+        if (std::string(c.key) == "final_displacement") cell = displacement_cell(*r);
+        o << pad(with_spread(*r, c.key, cell, c.scale, c.format), 20);
+      }
+      o << "\n";
+    }
+  }
   if (mpm) {
     o << "MPM run time per case [s]:";
     for (const auto& row : rows) {

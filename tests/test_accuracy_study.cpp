@@ -39,7 +39,7 @@ json dry_series(std::vector<double> cells, bool reference) {
 
 json small_study() {
   return {{"name", "small"},
-          {"scene", (source_dir / "scenes/reference/L1-B1.json").string()},
+          {"scene", (source_dir / "scenes/former-reference/L1-B1.json").string()},
           {"outputs", {"peak_force", "impact_duration", "energy_residual"}},
           {"series", {dry_series({4, 5, 6}, true)}}};
 }
@@ -215,7 +215,7 @@ TEST(AccuracyCommand, FollowsTheOvertoppedVolume) {
   fs::create_directories(dir);
   const json study = {
       {"name", "overtopping"},
-      {"scene", (source_dir / "scenes/reference/L3-B3.json").string()},
+      {"scene", (source_dir / "scenes/former-reference/L3-B3.json").string()},
       {"outputs", {"peak_force", "overtopped_volume"}},
       {"series", {{{"name", "dry"}, {"parameter", "cells_per_thickness"}, {"values", {4, 5, 6}},
                    {"set", {{"/methods/mpm/phases", "dry"}, {"/methods/mpm/transfer", "apic"}}},

@@ -42,7 +42,7 @@ fs::path write_file(const std::string& name, const std::string& text) {
 }
 
 std::string reference(const std::string& name) {
-  return (source_dir / "scenes/reference" / (name + ".json")).string();
+  return (source_dir / "scenes/former-reference" / (name + ".json")).string();
 }
 
 TEST(Cli, VersionAndHelp) {
@@ -569,6 +569,68 @@ TEST(Cli, MpmSnapshotPorePressureIsTheCellMeanByDefault) {
   // cell share it too. Checked to fail: the per-point field gives nearly one value per point.
   EXPECT_LT(distinct_share(""), 0.4);
   EXPECT_GT(distinct_share(R"(, "pore_pressure_output": "point")"), 0.9);
+}
+
+// `lsi compare --convergence FILE`: the MPM outputs get the error bars of a convergence study of
+// the same scene and settings (table "+-", "*" where not converged; JSON and HDF5 extras
+// <output>_spread, <output>_converged). A study of other settings, or whose values this run does
+// not reproduce (stale), gives no error bars and says why; a malformed study is an input error.
+// The scene: the sliding-barrier flow at 4 cells, run to rest (well under a second).
+TEST(Cli, CompareAttachesTheErrorBarsOfAConvergenceStudy) {
+  const std::string mpm = R"({"cell_size_m": 0.25, "phases": "dry", "base_friction": 0.4})";
+  const fs::path scene = write_file("bars.json", sliding_barrier_scene(mpm));
+  const Outcome first = run("run " + scene.string() + " --format json");
+  ASSERT_EQ(first.code, 0) << first.out;
+  const auto m = nlohmann::json::parse(first.out.substr(first.out.find('{')))["mpm"];
+  const auto doc = nlohmann::json::parse(sliding_barrier_scene(mpm));
+  auto study = [&](double peak_scale, const nlohmann::json& mpm_block) {
+    nlohmann::json outputs = {
+        {"peak_force", {{"value", peak_scale * m["peak_force"].get<double>()}, {"spread", 1234.0},
+                        {"converged", true}}},
+        {"final_displacement",
+         {{"value", m["final_displacement"].get<double>()}, {"spread", 0.5}, {"converged", false}}},
+        {"face_pore_pressure_max_pa", {{"value", nullptr}, {"spread", nullptr}}}};
+    nlohmann::json st = {
+        {"base", {{"cells", 4}, {"courant", 0.5}}},
+        {"finer", {{"cells", 8}, {"courant", 0.25}}},
+        {"cases", {{"sliding", {{"landslide", doc["landslide"]}, {"barrier", doc["barrier"]},
+                                {"mpm", mpm_block}, {"outputs", outputs}}}}}};
+    return st.dump();
+  };
+  const fs::path good = write_file("bars_study.json", study(1.0, doc["methods"]["mpm"]));
+  const fs::path out = temp_dir() / "bars_out";
+  const Outcome r = run("compare " + scene.string() + " --convergence " + good.string() +
+                        " --out-dir " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("+-1.2"), std::string::npos) << r.out;   // the peak's 1234 N/m in kN/m
+  EXPECT_NE(r.out.find("+-0.500*"), std::string::npos) << r.out;   // not converged
+  EXPECT_EQ(r.out.find("no error bars"), std::string::npos) << r.out;
+  const auto stored = lsi::read_results((out / "sliding.h5").string());
+  const auto& x = stored.results.back().extra;
+  EXPECT_EQ(x.at("peak_force_spread"), 1234.0);
+  EXPECT_EQ(x.at("peak_force_converged"), 1.0);
+  EXPECT_EQ(x.at("final_displacement_converged"), 0.0);
+  EXPECT_EQ(x.count("face_pore_pressure_max_pa_spread"), 0u);   // the study had none
+  // Other settings: no error bars, and why.
+  nlohmann::json finer = doc["methods"]["mpm"];
+  finer["cell_size_m"] = 0.125;
+  const fs::path other = write_file("bars_other.json", study(1.0, finer));
+  const Outcome o = run("compare " + scene.string() + " --convergence " + other.string());
+  ASSERT_EQ(o.code, 0) << o.out;
+  EXPECT_NE(o.out.find("no error bars from"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("other MPM settings"), std::string::npos) << o.out;
+  EXPECT_EQ(o.out.find("+-"), std::string::npos) << o.out;
+  // A study whose peak this run does not reproduce (10 % off): stale.
+  const fs::path stale = write_file("bars_stale.json", study(1.1, doc["methods"]["mpm"]));
+  const Outcome st = run("compare " + scene.string() + " --convergence " + stale.string());
+  ASSERT_EQ(st.code, 0) << st.out;
+  EXPECT_NE(st.out.find("stale: peak_force"), std::string::npos) << st.out;
+  // Malformed: exit 2, the field named.
+  const fs::path bad = write_file("bars_bad.json", R"({"base": {"cells": 4, "courant": 0.5},
+    "finer": {"cells": 8, "courant": -1}, "cases": {}})");
+  const Outcome b = run("compare " + scene.string() + " --convergence " + bad.string());
+  EXPECT_EQ(b.code, 2) << b.out;
+  EXPECT_NE(b.out.find("finer.courant = -1"), std::string::npos) << b.out;
 }
 
 TEST(Cli, MpmSaturatedImpactReportsPorePressureOnTheFace) {

@@ -113,53 +113,58 @@ struct Barrier {
   double beta, H, B, b, rho;
 };
 const Landslide kLandslides[] = {{"L1", 2.0, 6.0, 6}, {"L2", 2.5, 9.0, 6}, {"L3", 3.0, 12.5, 4}};
-const Barrier kBarriers[] = {{"B1", 80, 4, 2.0, 1.0, 2400},
-                             {"B2", 70, 4, 3.5, 1.5, 1900},
-                             {"B3", 60, 5, 6.0, 2.0, 2000}};
+const Barrier kBarriers[] = {{"B1", 80, 4, 4.0, 1.5, 2400},
+                             {"B2", 70, 5, 6.0, 2.0, 1800},
+                             {"B3", 60, 5, 13.4, 3.0, 2000}};
 
-TEST(SceneReference, AllNineFilesParseWithTheStudyValues) {
+// The reference study (README, "The reference study"): nine landslide-barrier cases, each with a
+// free barrier (Lx-By) and a fixed copy (Lx-By-fixed).
+TEST(SceneReference, AllEighteenFilesParseWithTheStudyValues) {
   int parsed = 0;
-  for (const auto& l : kLandslides) {
-    for (const auto& b : kBarriers) {
-      const std::string name = std::string(l.id) + "-" + b.id;
-      SCOPED_TRACE(name);
-      const Scene s = lsi::load_scene((kScenes / "reference" / (name + ".json")).string());
-      EXPECT_EQ(s.name, name);
-      EXPECT_DOUBLE_EQ(s.landslide.thickness_m, l.h);
-      EXPECT_DOUBLE_EQ(s.landslide.velocity_m_s, l.v);
-      EXPECT_DOUBLE_EQ(s.landslide.density_kg_m3, 1800.0);
-      EXPECT_EQ(s.landslide.shape.kind, lsi::LandslideShape::Kind::FrontBodyTail);
-      EXPECT_EQ(s.landslide.shape.body_squares, l.squares);
-      EXPECT_DOUBLE_EQ(s.landslide.equivalent_length_m(), (2 + l.squares) * l.h);
-      EXPECT_DOUBLE_EQ(s.landslide.area_m2(), (2 + l.squares) * l.h * l.h);
-      EXPECT_DOUBLE_EQ(s.landslide.material.porosity, 0.5);
-      EXPECT_DOUBLE_EQ(s.landslide.material.friction_angle_deg, 20.0);
-      EXPECT_DOUBLE_EQ(s.landslide.material.hydraulic_conductivity_m_s, 1e-4);
-      EXPECT_DOUBLE_EQ(s.landslide.material.liquid_viscosity_kpa_s, 1e-6);
-      EXPECT_DOUBLE_EQ(s.barrier.face_angle_deg, b.beta);
-      EXPECT_DOUBLE_EQ(s.barrier.height_m, b.H);
-      EXPECT_DOUBLE_EQ(s.barrier.base_width_m, b.B);
-      EXPECT_DOUBLE_EQ(s.barrier.top_width_m, b.b);
-      ASSERT_TRUE(s.barrier.density_kg_m3.has_value());
-      EXPECT_DOUBLE_EQ(*s.barrier.density_kg_m3, b.rho);
-      EXPECT_FALSE(s.barrier.mass_kg_per_m.has_value());
-      EXPECT_DOUBLE_EQ(s.barrier.mass(), b.rho * 0.5 * (b.B + b.b) * b.H);
-      EXPECT_DOUBLE_EQ(s.barrier.base_friction, 0.5);
-      EXPECT_DOUBLE_EQ(s.barrier.face_friction, 0.3);
-      EXPECT_FALSE(s.barrier.fixed);
-      EXPECT_TRUE(s.methods.empirical.has_value());
-      EXPECT_TRUE(s.methods.analytical.has_value());
-      EXPECT_FALSE(s.methods.literature.has_value());
-      // The MPM column of the study: dry, APIC, 16 cells through the thickness (docs/mpm.md).
-      ASSERT_TRUE(s.methods.mpm.has_value());
-      EXPECT_DOUBLE_EQ(s.methods.mpm->at("cell_size_m").get<double>(), s.landslide.thickness_m / 16);
-      EXPECT_EQ(s.methods.mpm->at("phases"), "dry");
-      EXPECT_EQ(s.methods.mpm->at("transfer"), "apic");
-      EXPECT_EQ(s.source.at("name"), name);
-      ++parsed;
+  for (const bool fixed : {false, true})
+    for (const auto& l : kLandslides) {
+      for (const auto& b : kBarriers) {
+        const std::string name = std::string(l.id) + "-" + b.id + (fixed ? "-fixed" : "");
+        SCOPED_TRACE(name);
+        const Scene s = lsi::load_scene((kScenes / "reference" / (name + ".json")).string());
+        EXPECT_EQ(s.name, name);
+        EXPECT_DOUBLE_EQ(s.landslide.thickness_m, l.h);
+        EXPECT_DOUBLE_EQ(s.landslide.velocity_m_s, l.v);
+        EXPECT_DOUBLE_EQ(s.landslide.density_kg_m3, 1800.0);
+        EXPECT_EQ(s.landslide.shape.kind, lsi::LandslideShape::Kind::FrontBodyTail);
+        EXPECT_EQ(s.landslide.shape.body_squares, l.squares);
+        EXPECT_DOUBLE_EQ(s.landslide.equivalent_length_m(), (2 + l.squares) * l.h);
+        EXPECT_DOUBLE_EQ(s.landslide.area_m2(), (2 + l.squares) * l.h * l.h);
+        EXPECT_DOUBLE_EQ(s.landslide.material.porosity, 0.5);
+        EXPECT_DOUBLE_EQ(s.landslide.material.friction_angle_deg, 20.0);
+        EXPECT_DOUBLE_EQ(s.landslide.material.hydraulic_conductivity_m_s, 1e-4);
+        EXPECT_DOUBLE_EQ(s.landslide.material.liquid_viscosity_kpa_s, 1e-6);
+        EXPECT_DOUBLE_EQ(s.barrier.face_angle_deg, b.beta);
+        EXPECT_DOUBLE_EQ(s.barrier.height_m, b.H);
+        EXPECT_DOUBLE_EQ(s.barrier.base_width_m, b.B);
+        EXPECT_DOUBLE_EQ(s.barrier.top_width_m, b.b);
+        ASSERT_TRUE(s.barrier.density_kg_m3.has_value());
+        EXPECT_DOUBLE_EQ(*s.barrier.density_kg_m3, b.rho);
+        EXPECT_FALSE(s.barrier.mass_kg_per_m.has_value());
+        EXPECT_DOUBLE_EQ(s.barrier.mass(), b.rho * 0.5 * (b.B + b.b) * b.H);
+        EXPECT_DOUBLE_EQ(s.barrier.base_friction, 0.5);
+        EXPECT_DOUBLE_EQ(s.barrier.face_friction, 0.3);
+        EXPECT_EQ(s.barrier.fixed, fixed);
+        EXPECT_TRUE(s.methods.empirical.has_value());
+        EXPECT_TRUE(s.methods.analytical.has_value());
+        EXPECT_FALSE(s.methods.literature.has_value());
+        // The MPM column of the study: saturated, APIC, 8 cells through the thickness, the flow's
+        // base friction 0.2 (README; docs/reference_convergence.md).
+        ASSERT_TRUE(s.methods.mpm.has_value());
+        EXPECT_DOUBLE_EQ(s.methods.mpm->at("cell_size_m").get<double>(), s.landslide.thickness_m / 8);
+        EXPECT_EQ(s.methods.mpm->at("phases"), "saturated");
+        EXPECT_EQ(s.methods.mpm->at("transfer"), "apic");
+        EXPECT_DOUBLE_EQ(s.methods.mpm->at("base_friction").get<double>(), 0.2);
+        EXPECT_EQ(s.source.at("name"), name);
+        ++parsed;
+      }
     }
-  }
-  EXPECT_EQ(parsed, 9);
+  EXPECT_EQ(parsed, 18);
 }
 
 TEST(SceneReference, L1AndB1DerivedValues) {
@@ -167,8 +172,8 @@ TEST(SceneReference, L1AndB1DerivedValues) {
   EXPECT_DOUBLE_EQ(s.landslide.equivalent_length_m(), 16.0);   // (2 + 6) * 2
   EXPECT_DOUBLE_EQ(s.landslide.area_m2(), 32.0);               // (2 + 6) * 2^2
   EXPECT_DOUBLE_EQ(s.landslide.mass_kg_per_m(), 57600.0);      // 1800 * 32
-  EXPECT_DOUBLE_EQ(s.barrier.area_m2(), 6.0);                  // (2 + 1) / 2 * 4
-  EXPECT_DOUBLE_EQ(s.barrier.mass(), 14400.0);                 // 2400 * 6
+  EXPECT_DOUBLE_EQ(s.barrier.area_m2(), 11.0);                 // (4 + 1.5) / 2 * 4
+  EXPECT_DOUBLE_EQ(s.barrier.mass(), 26400.0);                 // 2400 * 11
 }
 
 TEST(SceneExamples, MinimalGetsAllDefaults) {

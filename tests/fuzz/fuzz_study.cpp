@@ -3,7 +3,7 @@
 //   bytes -> json_fields::parse_json_document -> parse_study
 //
 // A study's `scene` may be a file path: it is resolved against scenes/studies/
-// (LSI_FUZZ_STUDY_DIR), so the shipped studies' "../reference/L1-B1.json" is read as `lsi sweep`
+// (LSI_FUZZ_STUDY_DIR), so the shipped studies' "../former-reference/L1-B1.json" is read as `lsi sweep`
 // would read it. parse_study starts Kokkos once (the sampler keeps its tables in Views); it stays
 // up between inputs. Every rejection must be an lsi::InputError with a one-line message; what is
 // accepted must satisfy tests/fuzz/study_invariants.hpp.

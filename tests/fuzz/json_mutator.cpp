@@ -43,7 +43,7 @@ const char* const kStrings[] = {
     "/methods/mpm/cell_size_m", "/methods/mpm/courant", "/methods/mpm/", "/methods/mpm/x/0",
     "/methods/mpm/x/-", "/methods/mpm/a~2", "/methods/mpm/a~", "/methods/mpm/transfer/x",
     "/methods/mpm/cell_size_m/0", "/methods/mpm/xs/01", "/methods/mpm/xs/99999999999",
-    "/methods/mpm", "/landslide", "../reference/L1-B1.json", "../reference/L3-B3.json",
+    "/methods/mpm", "/landslide", "../former-reference/L1-B1.json", "../former-reference/L3-B3.json",
     "../examples/rectangle-fixed.json", "../examples/impact-small.json",
     "../verification/column-collapse.json", "missing.json", ".", "..", "/", "", " ", "a\nb",
     "\xc3\xa9", "sand", "L1-B1",

@@ -24,7 +24,7 @@ inline json patched(json base, const std::string& patch) {
 
 inline Scene scene_of(const json& j) { return parse_scene(j); }
 
-// scenes/reference/L3-B3.json (3 m at 12.5 m/s, 60 deg earth barrier, free) at h / 4, the
+// scenes/former-reference/L3-B3.json (3 m at 12.5 m/s, 60 deg earth barrier, free) at h / 4, the
 // landslide saturated (the default phases) or, with `"phases": "dry"` patched in, dry.
 inline json fast_flow_on_earth_barrier_h4() {
   return json::parse(R"({

@@ -1,6 +1,6 @@
 // mu(I) in an impact scene (landslide.material.inertial_friction; the law in
 // kernels/mpm/constitutive/inertial_friction.hpp, its parsing in drivers/inertial_friction_input.hpp):
-// the reference flow L1-B1 (scenes/reference/L1-B1.json, dry, at h / 8) against its sliding
+// the reference flow L1-B1 (scenes/former-reference/L1-B1.json, dry, at h / 8) against its sliding
 // barrier. The law spans two rate-independent materials: with a reference inertial number I0 far
 // above any inertial number of the flow the friction stays at the static angle (20 deg), with I0
 // far below it every shearing point is at the limit angle (35 deg). The impact run must follow:

@@ -23,7 +23,7 @@
 namespace {
 using namespace lsi::stability;
 
-// scenes/reference/L2-B1.json, fixed, dry PIC at h / 8 (the reference study runs h / 16).
+// scenes/former-reference/L2-B1.json, fixed, dry PIC at h / 8 (the reference study runs h / 16).
 const json kScene = json::parse(R"({
   "name": "L2-B1-fixed-h8",
   "landslide": {

@@ -1,4 +1,4 @@
-// The fastest reference flow, saturated, against the earth barrier: scenes/reference/L3-B3.json
+// The fastest reference flow, saturated, against the earth barrier: scenes/former-reference/L3-B3.json
 // (3 m at 12.5 m/s, 60 deg face, free barrier) with the two-phase landslide at h / 4. With a
 // smooth downstream wall and no top wall this scene stopped with "a material point left the
 // grid" at t = 4.5 s (docs/two_phase.md, "Impacts"): a splash along the face fell behind the
@@ -19,7 +19,7 @@
 namespace {
 using namespace lsi::stability;
 
-// scenes/reference/L3-B3.json, saturated (the default phases), h / 4 (the study runs h / 16).
+// scenes/former-reference/L3-B3.json, saturated (the default phases), h / 4 (the study runs h / 16).
 const json kScene = fast_flow_on_earth_barrier_h4();
 
 TEST(SaturatedReferenceImpact, FastFlowAgainstTheEarthBarrierRunsToItsEnd) {

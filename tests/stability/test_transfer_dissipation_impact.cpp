@@ -1,5 +1,5 @@
 // Where the impacts' energy goes: the fastest reference flow against the earth barrier
-// (scenes/reference/L3-B3.json at h / 4), dry and saturated, with the transfer dissipation
+// (scenes/former-reference/L3-B3.json at h / 4), dry and saturated, with the transfer dissipation
 // accounted (kernels/mpm/transfer_dissipation.hpp). Its energy residual, -4 % dry and -17 %
 // saturated, is the kinetic energy lost in the grid transfers where streams of different
 // velocity merge: with that loss booked, what is left is a fraction of a percent.

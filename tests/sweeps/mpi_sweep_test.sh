@@ -28,7 +28,7 @@ if [ -n "${ASAN_OPTIONS:-}" ]; then export ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwi
 import json, sys
 src = sys.argv[1]
 s = json.load(open(f"{src}/scenes/studies/L1-B1-monte-carlo.json"))
-s.update(name="L1-B1-mpi-test", scene=f"{src}/scenes/reference/L1-B1.json", samples=20000,
+s.update(name="L1-B1-mpi-test", scene=f"{src}/scenes/former-reference/L1-B1.json", samples=20000,
          chunk_samples=2048)
 json.dump(s, open("study.json", "w"), indent=2)
 s["samples"] = -5

@@ -46,7 +46,7 @@ Outcome run(const std::string& args) {
 
 // A reference scene, renamed, with 4 cells through the thickness (h/4 = 0.5 m for L1).
 fs::path coarse_scene(const std::string& reference, const std::string& name, bool fixed) {
-  std::ifstream in(source_dir / "scenes/reference" / (reference + ".json"));
+  std::ifstream in(source_dir / "scenes/former-reference" / (reference + ".json"));
   json s = json::parse(in);
   s["name"] = name;
   s["barrier"]["fixed"] = fixed;
@@ -195,7 +195,7 @@ TEST(CalibrateCli, BadOptionsExitTwoNamingTheOption) {
   EXPECT_EQ(fmt.code, 2);
   EXPECT_NE(fmt.err.find("--format xml"), std::string::npos) << fmt.err;
   // A scene without methods.mpm and no stored history: the missing field is named.
-  std::ifstream in(source_dir / "scenes/reference/L1-B1.json");
+  std::ifstream in(source_dir / "scenes/former-reference/L1-B1.json");
   json s = json::parse(in);
   s["methods"].erase("mpm");
   const fs::path nompm = temp_dir() / "no-mpm.json";

@@ -44,10 +44,11 @@ fs::path temp_dir() {
   return d;
 }
 
-// A study of the reference case L1-B1 (scene inlined) with `extra` keys merged in.
+// A study of the former reference case L1-B1 (a 14.4 t/m wall: scenes/former-reference/) with `extra` keys
+// merged in.
 fs::path write_study(const std::string& name, json extra) {
   json s = {{"name", name},
-            {"scene", (source_dir / "scenes/reference/L1-B1.json").string()},
+            {"scene", (source_dir / "scenes/former-reference/L1-B1.json").string()},
             {"inputs",
              {{{"path", "/landslide/thickness_m"}, {"distribution", "lognormal"}, {"mean", 2.0}, {"sd", 0.3}},
               {{"path", "/landslide/velocity_m_s"}, {"distribution", "truncated-normal"}, {"mean", 6.0},
@@ -383,7 +384,7 @@ TEST(SweepCli, GridDesignRunsTheFullFactorialFirstInputFastest) {
 TEST(SweepCli, MpmSamplesRunBesideTheClosedForms) {
   // Two coarse MPM runs (cell h/4, 1 particle per cell: about a second each).
   json scene;
-  std::ifstream(source_dir / "scenes/reference/L1-B1.json") >> scene;
+  std::ifstream(source_dir / "scenes/former-reference/L1-B1.json") >> scene;
   scene["methods"]["mpm"] = {{"cell_size_m", 0.5}, {"phases", "dry"}, {"transfer", "pic"},
                              {"particles_per_cell", 1}};
   const fs::path study = write_study(
@@ -425,7 +426,7 @@ TEST(SweepCli, MpmSamplesRunBesideTheClosedForms) {
 
 TEST(SweepCli, MpmRunsAtQuantilesOfAClosedFormOutput) {
   json scene;
-  std::ifstream(source_dir / "scenes/reference/L1-B1.json") >> scene;
+  std::ifstream(source_dir / "scenes/former-reference/L1-B1.json") >> scene;
   scene["methods"]["mpm"] = {{"cell_size_m", 0.5}, {"phases", "dry"}, {"transfer", "pic"},
                              {"particles_per_cell", 1}};
   const fs::path study = write_study(
