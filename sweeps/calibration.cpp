@@ -220,8 +220,12 @@ double mpm_alpha(const ImpactInputs& in, double mpm_peak_force) {
 std::vector<double> residuals(const CalibrationCase& c, const ImpactSummary& mpm, const ForcePulse& p,
                               Objective o) {
   if (o == Objective::NormalisedRms) {
-    // sum r_i^2 = mean (F_model - F_mpm)^2 / F_peak^2 = nrms^2.
-    const size_t n = c.time.size();
+    // sum r_i^2 = mean (F_model - F_mpm)^2 / F_peak^2 = nrms^2, over the MPM's impact: the
+    // samples up to its impact duration (at least the first two). What follows is the static
+    // load of the retained flow, outside the model, and as long as the run goes on at rest.
+    size_t n = 0;
+    while (n < c.time.size() && c.time[n] <= mpm.impact_duration) ++n;
+    n = std::max<size_t>(n, 2);
     const double scale = 1.0 / (mpm.peak_force * std::sqrt(static_cast<double>(n)));
     std::vector<double> r(n);
     for (size_t i = 0; i < n; ++i) r[i] = (p.force(c.time[i]) - c.force[i]) * scale;

@@ -2,8 +2,10 @@
 //
 // Analytical (two-body) model, kernels/closed_form/two_body_model.hpp: fits lambda = s1,max/L1,0
 // in (0, 1] and tau = T1/T2 in (0, 1) per case by minimising one of two objectives,
-//   nrms           normalised RMS misfit of F(t) on the MPM output times (0 .. end of the MPM
-//                  history):  sqrt(mean_i (F_model(t_i) - F_mpm(t_i))^2) / F_peak,mpm
+//   nrms           normalised RMS misfit of F(t) on the MPM output times of its impact (0 .. the
+//                  MPM's impact duration; after it the MPM's force is the static load of the
+//                  retained flow, which the models do not have, for as long as the run goes on):
+//                  sqrt(mean_i (F_model(t_i) - F_mpm(t_i))^2) / F_peak,mpm
 //   peak-duration  relative residuals of the peak force and of the impact duration, plus the rise
 //                  time relative to the MPM impact duration. The third residual is needed: peak
 //                  and duration alone depend on lambda only (F_peak = 3 mu v0^2 / (4 lambda L1,0),
