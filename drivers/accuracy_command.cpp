@@ -14,6 +14,7 @@
 #include "drivers/accuracy_study.hpp"
 #include "drivers/hdf5_results.hpp"
 #include "drivers/json_fields.hpp"
+#include "drivers/output_paths.hpp"
 #include "drivers/subcommand.hpp"
 #include "drivers/text_file.hpp"
 
@@ -83,6 +84,7 @@ Subcommand add_accuracy_command(CLI::App& app) {
       if (std::none_of(study.series.begin(), study.series.end(),
                        [&](const AccuracySeries& x) { return x.name == name; }))
         throw InputError("--only \"" + name + "\": no such series in " + args->study);
+    check_output_directory("--out", args->out);
     const fs::path out(args->out), runs_dir = out / "runs";
     fs::create_directories(runs_dir);
     std::vector<std::vector<AccuracyRun>> runs(study.series.size());

@@ -46,6 +46,7 @@
 #include "drivers/hdf5_results.hpp"
 #include "drivers/mpm_impact.hpp"
 #include "drivers/mpm_runner.hpp"
+#include "drivers/output_paths.hpp"
 #include "drivers/scene.hpp"
 #include "drivers/subcommand.hpp"
 #include "drivers/time_call.hpp"
@@ -675,12 +676,15 @@ void write_calibration(const std::string& path, const std::vector<Case>& cases,
 
 int run_calibrate(const Options& opt) {
   const sweeps::CalibrationOptions co = calibration_options(opt);
+  if (!opt.out.empty()) check_output_file("--out", opt.out, opt.scenes);
   std::vector<Case> cases;
   bool skipped = false;
   for (const auto& path : opt.scenes) {
     Case c;
     c.path = path;
     c.scene = with_path(path, [&] { return load_scene(path); });
+    // The stored run is read from <results-dir>/<name>.h5: the name must stay inside it.
+    if (!opt.results_dir.empty()) check_file_name(path + ": name", c.scene.name);
     for (const auto& other : cases)
       if (other.scene.name == c.scene.name)
         throw InputError(path + ": name = \"" + c.scene.name + "\": must be unique among the "

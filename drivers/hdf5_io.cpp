@@ -1,5 +1,6 @@
 // HDF5 plumbing; see hdf5_io.hpp.
 #include "drivers/hdf5_io.hpp"
+#include "drivers/output_paths.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -152,6 +153,7 @@ void write_atomically(const std::string& path, const std::string& who,
   const auto failure = [&](const std::string& what) {
     return std::runtime_error(who + ": cannot write '" + path + "': " + what);
   };
+  if (const std::string why = unsafe_output_reason(path); !why.empty()) throw failure(why);
   if (target.has_parent_path()) {
     std::error_code ec;
     fs::create_directories(target.parent_path(), ec);

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -22,6 +23,7 @@
 #include "drivers/mpm_snapshots.hpp"
 #include "drivers/mpm_scene.hpp"
 #include "drivers/openmp_wait_policy.hpp"
+#include "drivers/output_paths.hpp"
 #include "drivers/report.hpp"
 #include "drivers/scene.hpp"
 #include "drivers/subcommand.hpp"
@@ -215,6 +217,10 @@ int main(int argc, char** argv) {
     check_format(format);
     const auto only = parse_methods(methods_list);
     if (*run) {
+      if (!out_path.empty()) {
+        lsi::check_output_file("--out", out_path, {scene_path});
+        lsi::check_output_file("--out", lsi::mpm_snapshots_xdmf_path(out_path), {scene_path});
+      }
       const nlohmann::json doc = lsi::read_scene_document(scene_path);
       if (lsi::is_mpm_case(doc)) return run_mpm_case(scene_path, doc, out_path, format);
       const lsi::Scene scene = with_path(scene_path, [&] { return lsi::parse_scene(doc); });
@@ -247,8 +253,30 @@ int main(int argc, char** argv) {
       bool unstable = false;
       std::optional<lsi::ConvergenceStudy> convergence;
       if (!convergence_path.empty()) convergence = lsi::load_convergence_study(convergence_path);
+      // Every input is read and every output checked before the first run: two scenes of one
+      // name would write one file, a name with a path in it would write outside --out-dir.
+      std::vector<std::string> inputs = compare_scenes;
+      if (!convergence_path.empty()) inputs.push_back(convergence_path);
+      if (!summary_json_path.empty()) lsi::check_output_file("--summary-json", summary_json_path, inputs);
+      std::vector<lsi::Scene> scenes;
+      std::map<std::string, std::string> file_of_name;
       for (const auto& path : compare_scenes) {
-        const lsi::Scene scene = load(path);
+        scenes.push_back(load(path));
+        const std::string& name = scenes.back().name;
+        if (!out_dir.empty()) {
+          lsi::check_file_name(path + ": name", name);
+          const auto [it, fresh] = file_of_name.emplace(name, path);
+          if (!fresh)
+            throw lsi::InputError(path + ": name = \"" + name + "\": also the name of " + it->second +
+                                  " (--out-dir writes one file per name)");
+          lsi::check_output_file("--out-dir", (std::filesystem::path(out_dir) / (name + ".h5")).string(),
+                                 inputs);
+        }
+      }
+      if (!out_dir.empty()) lsi::check_output_directory("--out-dir", out_dir);
+      for (size_t k = 0; k < compare_scenes.size(); ++k) {
+        const std::string& path = compare_scenes[k];
+        const lsi::Scene& scene = scenes[k];
         std::string mpm_status;
         lsi::ComparisonRow row{scene.name, run_scene(path, scene, only, mpm_status), {}};
         if (!mpm_status.empty()) {

@@ -2,6 +2,7 @@
 // Carlo, Latin hypercube, Sobol or grid) and join the files of a sharded run.
 #include <iostream>
 
+#include "drivers/output_paths.hpp"
 #include "drivers/study.hpp"
 #include "drivers/subcommand.hpp"
 #include "drivers/sweep_runner.hpp"
@@ -46,6 +47,7 @@ Subcommand add_sweep_command(CLI::App& app) {
     o.out = args->out;
     o.resume = args->resume;
     parse_shard(args->shard, o.shard, o.shard_count);
+    check_output_file("--out", args->out, {args->study});
     const Study study = load_study(args->study);
     return report(run_sweep(study, o), o.out, args->format);
   };
@@ -67,6 +69,7 @@ Subcommand add_merge_command(CLI::App& app) {
   s.command->add_option("--format", args->format, "Summary format: table or json");
   s.run = [args] {
     check_format(args->format);
+    check_output_file("--out", args->out, args->shards);
     return report(merge_sweeps(args->shards, args->out), args->out, args->format);
   };
   return s;

@@ -72,6 +72,7 @@ json mpm_at_quantiles(const Study& study, const SweepTable& t) {
       const MpmOutcome o =
           run_mpm_case(impact_case(parse_scene(sample_scene_document(study, x.data()))));
       e["mpm_status"] = o.status;
+      e["mpm_end_state"] = end_state_token(o.result.end_state);   // at_rest, or how it was cut short
       json mpm = json::object(), errors = json::object();
       for (const auto& output : study.outputs) mpm[output] = json_number(mpm_value(o.result, output));
       if (o.finished) {

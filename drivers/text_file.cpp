@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "drivers/hdf5_io.hpp"
+#include "drivers/output_paths.hpp"
 
 namespace lsi {
 
@@ -24,6 +25,7 @@ void write_text_atomically(const std::string& path, const std::string& text) {
     fs::remove(tmp, ignored);
     throw std::runtime_error("cannot write '" + path + "': " + what);
   };
+  if (const std::string why = unsafe_output_reason(path); !why.empty()) fail(why);
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
     if (!f) fail("cannot create '" + tmp + "': " + std::strerror(errno));

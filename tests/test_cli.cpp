@@ -13,6 +13,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include "drivers/closed_form_methods.hpp"
@@ -741,3 +742,86 @@ TEST(Cli, CompareWritesOneFilePerSceneAndPrintsTheTable) {
   EXPECT_NE(r.out.find("MPM run time per case"), std::string::npos);
 }
 }  // namespace
+
+// Where the commands write (drivers/output_paths.hpp): never onto a device, a directory or a
+// pipe, never onto one of their inputs, never outside --out-dir through a scene's name; each is
+// refused before anything runs, exit 2 with the option or field named, and the file there is left
+// as it was. Closed-form scenes only (instant).
+namespace {
+std::string file_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+}  // namespace
+
+TEST(Cli, OutputsNeverReplaceDevicesInputsOrLeaveTheirDirectory) {
+  const fs::path dir = temp_dir() / "outputs";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "out");
+  const std::string scene_text = file_text(source_dir / "scenes/examples/minimal.json");
+  const fs::path scene = dir / "minimal.json";
+  std::ofstream(scene) << scene_text;
+  // A named pipe (what /dev/null is to a root process: not a regular file).
+  const fs::path fifo = dir / "pipe";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  Outcome r = run("run " + scene.string() + " --out " + fifo.string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("is a named pipe"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  r = run("run " + scene.string() + " --out " + dir.string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("is a directory"), std::string::npos) << r.out;
+  // The input as the output, spelt differently too.
+  for (const std::string& out : {scene.string(), (dir / "out" / ".." / "minimal.json").string()}) {
+    r = run("run " + scene.string() + " --out " + out);
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_NE(r.out.find("which the output would destroy"), std::string::npos) << r.out;
+  }
+  r = run("compare " + scene.string() + " --summary-json " + scene.string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_EQ(file_text(scene), scene_text);
+  // Scene names that are not plain file names, with --out-dir: nothing written anywhere.
+  auto named = [&](const std::string& file, const std::string& name) {
+    nlohmann::json s = nlohmann::json::parse(scene_text);
+    s["name"] = name;
+    const fs::path p = dir / file;
+    std::ofstream(p) << s.dump();
+    return p;
+  };
+  for (const std::string& name : std::vector<std::string>{"../escape", "/tmp/lsi-escape", "..", "a\nb"}) {
+    const fs::path p = named("named.json", name);
+    r = run("compare " + p.string() + " --out-dir " + (dir / "out").string());
+    EXPECT_EQ(r.code, 2) << name << ": " << r.out;
+    EXPECT_NE(r.out.find("named.json: name = "), std::string::npos) << r.out;
+  }
+  EXPECT_FALSE(fs::exists(dir / "escape.h5"));
+  EXPECT_FALSE(fs::exists("/tmp/lsi-escape.h5"));
+  EXPECT_TRUE(fs::is_empty(dir / "out"));
+  // Two scenes of one name would write one file.
+  const fs::path twin = named("twin.json", "minimal");
+  r = run("compare " + scene.string() + " " + twin.string() + " --out-dir " + (dir / "out").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("also the name of"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::is_empty(dir / "out"));
+  // --out-dir that is a file.
+  r = run("compare " + scene.string() + " --out-dir " + scene.string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_EQ(file_text(scene), scene_text);
+  // lsi calibrate reads <results-dir>/<name>.h5: the same names are refused there.
+  const fs::path esc = named("esc.json", "../escape");
+  r = run("calibrate " + esc.string() + " --results-dir " + (dir / "out").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("esc.json: name = "), std::string::npos) << r.out;
+  r = run("calibrate " + scene.string() + " --out " + scene.string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_EQ(file_text(scene), scene_text);
+  // lsi sweep onto its study file.
+  const fs::path study = dir / "study.json";
+  const std::string study_text = R"({"name": "s", "scene": "minimal.json", "samples": 4,
+    "inputs": [{"path": "/landslide/velocity_m_s", "distribution": "uniform", "min": 5, "max": 7}]})";
+  std::ofstream(study) << study_text;
+  r = run("sweep " + study.string() + " --out " + study.string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("which the output would destroy"), std::string::npos) << r.out;
+  EXPECT_EQ(file_text(study), study_text);
+}
