@@ -146,6 +146,28 @@ TEST(BarrierSliding, PhaseBMatchesPrintedEquation18SecondBranch) {
   }
 }
 
+TEST(BarrierSliding, SecondBranchOfEquation17HasTheWrongSignAndDropsATerm) {
+  // Eq. 17, T1 < t < T2 (docs/models.md, deviation A8): integrating the drive c N(t) / m2 gives
+  //   v2 = q1^2 c / (4 K1 m2) [-(t^2 - 2 T2 t + T1 T2) / (1 - tau) - t*^2 / tau] - g mu_b (t - t*)
+  // while the printed branch has + on the first term and no t*^2 / tau.
+  const double m2 = 14400, mu_b = 0.5, tau = 0.25;
+  const auto imp = two_body_impact(97200, 12.5, 18, m2, TwoBodyCoefficients{0.41, tau});
+  const SlidingBlock b = block_for(m2, mu_b, 80);
+  const BarrierMotion m = barrier_motion(imp.pulse, b);
+  const double q1 = imp.q1, K1 = imp.K1, c = b.drive, g = 9.81, T1 = imp.pulse.rise_time,
+               T2 = imp.pulse.duration, ts = m.start_time;
+  ASSERT_GT(m.velocity(T2), 0.0);   // still sliding through the decay: the branch applies
+  for (double f : {0.1, 0.5, 0.9}) {
+    const double t = T1 + f * (T2 - T1);
+    const double k = q1 * q1 * c / (4 * K1 * m2);
+    const double derived =
+        k * (-(t * t - 2 * T2 * t + T1 * T2) / (1 - tau) - ts * ts / tau) - g * mu_b * (t - ts);
+    const double printed = k * (t * t - 2 * T2 * t + T1 * T2) / (1 - tau) - g * mu_b * (t - ts);
+    EXPECT_NEAR(m.velocity(t), derived, 1e-12 * 10) << "t = " << t;   // m/s: round-off
+    EXPECT_GT(std::fabs(printed - derived), 1.0) << "t = " << t;       // printed: off by m/s
+  }
+}
+
 TEST(BarrierSliding, PrintedEquation20OmitsTermsThatMatter) {
   // docs/models.md, deviation A4: eq. 20 as printed (with the same c) against the exact answer.
   const double m2 = 14400, mu_b = 0.5, tau = 0.25;
