@@ -31,7 +31,7 @@ for objective in nrms peak-duration; do
   "$build/drivers/lsi" calibrate "${scenes[@]}" --results-dir "$runs" --objective "$objective" \
     --out "$out/$objective.h5" > "$out/$objective.txt"
   MPLCONFIGDIR="$out/.mplconfig" /usr/bin/python3 "$root/drivers/lsi_calibration_plot.py" \
-    "$out/$objective.h5" --out-dir "$out" > /dev/null 2>&1
+    "$out/$objective.h5" --out-dir "$out" > /dev/null
 done
 rm -rf "$out/.mplconfig"
 /usr/bin/python3 "$root/ci/calibration_report.py" --out "$root/docs/calibration_results.md" \

@@ -99,6 +99,8 @@ def main():
             peak, dur = c["peak_force_rel_error"][:], c["impact_duration_rel_error"][:]
             disp, run = c["final_displacement_rel_error"][:], c["run_time_s"][:]
             for group in ("fixed", "free"):
+                if group not in f["groups"]:
+                    continue
                 in_group = np.isin(case, text(f["groups"][group]["cases"][:]))
                 for m in ("empirical", "analytical", "mpm"):
                     for k in dict.fromkeys(coef[in_group & (method == m)]):

@@ -74,7 +74,9 @@ def main():
                   "inside the barrier at most %.3f m^2" % (
                       scene["name"], n, h / n, m["peak_force"] / 1e3, m["impact_duration"],
                       "%.3f" % m["final_displacement"] if m.get("final_displacement") is not None
-                      else "never stops", m["overtopped_volume_m2"],
+                      else ">= %.3f (%s)" % (m.get("displacement_at_end", float("nan")),
+                                             m.get("end_state", "cut short")),
+                      m["overtopped_volume_m2"],
                       m.get("overtopped_inside_barrier_m2", 0.0), m["particles"], m["steps"],
                       m["solver_seconds"], m["energy_residual_min"],
                       m.get("barrier_interior_volume_max_m2", 0.0))

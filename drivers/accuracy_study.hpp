@@ -59,7 +59,7 @@ struct AccuracyRun {
   bool finished = false;
   double solver_seconds = 0.0;         // the solver loop (no setup, no I/O)
   double steps = 0.0, particles = 0.0;
-  std::map<std::string, double> outputs;   // inf: the barrier never stopped
+  std::map<std::string, double> outputs;   // NaN: not known (e.g. a run cut short)
   MethodResult result;                     // the histories (not kept in the run's JSON record)
 };
 

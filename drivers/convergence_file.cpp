@@ -57,8 +57,9 @@ ConvergenceStudy load_convergence_study(const std::string& path) {
                                 {"value", "coarser", "finer_cells", "finer_courant", "spread",
                                  "converged"});
       // An output the study could not measure (no final displacement, ...) has null values.
-      if (!ro.has("spread") || ro.find("spread")->is_null() || ro.find("value")->is_null())
-        continue;
+      const nlohmann::json* value = ro.find("value");
+      const nlohmann::json* spread = ro.find("spread");
+      if (!value || !spread || value->is_null() || spread->is_null()) continue;
       OutputSpread s;
       s.value = ro.number("value", jf::any_number());
       s.spread = ro.number("spread", jf::at_least(0));
@@ -77,9 +78,17 @@ std::string attach_convergence(const ConvergenceStudy& study, const Scene& scene
   if (c.landslide != scene.source.value("landslide", nlohmann::json()) ||
       c.barrier != scene.source.value("barrier", nlohmann::json()))
     return "the study ran another landslide or barrier under this name";
-  if (!scene.methods.mpm ||
-      !(parse_mpm_settings(*scene.methods.mpm, "methods.mpm", /*impact=*/true) == c.mpm))
+  if (!scene.methods.mpm) return "the scene has no methods.mpm";
+  // The settings that shape the solution must be the study's; what is only written out may differ.
+  MpmSettings here = parse_mpm_settings(*scene.methods.mpm, "methods.mpm", /*impact=*/true);
+  here.snapshot_interval_s = c.mpm.snapshot_interval_s;
+  here.cell_mean_pore_pressure_output = c.mpm.cell_mean_pore_pressure_output;
+  here.transfer_dissipation = c.mpm.transfer_dissipation;
+  if (!(here == c.mpm))
     return "the study's base resolution has other MPM settings (cell size, Courant number, ...)";
+  if (mpm.end_state != EndState::AtRest)
+    return std::string("this run ended ") + end_state_token(mpm.end_state) +
+           ", not at rest as the study's runs";
   for (const auto& [key, s] : c.outputs) {
     const double v = output_value(mpm, key);
     if (!(std::fabs(v - s.value) <= kConvergenceStaleRelative * std::fabs(s.value) + 1e-12))

@@ -83,7 +83,7 @@ def plot_file(path, out_dir):
                                norm=LogNorm(vmin=floor, vmax=np.nanmax(shown)))
             fig.colorbar(im, ax=ax, label=f"{objective} misfit")
             best = min(_attr(c, "misfit"), np.nanmin(m))
-            if np.nanmax(m) > (1 + tol) * best > 0:
+            if np.nanmax(m) > (1 + tol) * best > max(0.0, np.nanmin(m)):   # the level is on the map
                 ax.contour(lam, tau, m.T, levels=[(1 + tol) * best], colors="white",
                            linewidths=0.8, linestyles="dotted")
             lb, tb = _attr(c, "lambda"), _attr(c, "tau")

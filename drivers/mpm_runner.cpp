@@ -320,8 +320,8 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.particles = particle_count;
   // A barrier pushed to the downstream end of the modelled domain is a physical outcome (far too
-  // light a barrier), not an instability: the run ends there and the barrier counts as never
-  // stopping (final displacement +infinity; the distance reached is displacement_at_end).
+  // light a barrier), not an instability: the run ends there, cut short while it slides (end
+  // state barrier_left_domain: no final displacement; the distance reached is displacement_at_end).
   out.finished = status == mpm::Status::Finished;
   out.status = barrier_left ? "finished: the barrier slid to the downstream end of the domain"
                             : mpm::describe(status);

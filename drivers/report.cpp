@@ -60,7 +60,7 @@ std::string end_note(const MethodResult& r) {
              "displacement not known)";
     case EndState::EndTimeLandslideMoving:
       return "the landslide was still moving at t = " + t +
-             " s, the end time (the barrier at rest, displaced " + d + " m)";
+             " s, the end time (the barrier at rest, displaced " + d + " m so far)";
     case EndState::Unstable:
       return "stopped unstable at t = " + t + " s: " + r.status;
     default:

@@ -11,7 +11,9 @@
 namespace lsi {
 
 // {"empirical": {"peak_force": N/m, "rise_time": s, "impact_duration": s,
-//                "final_displacement": m or null if the barrier never stops}, ...}
+//                "final_displacement": m or null if the barrier never stops (a closed form
+//                without base friction); left out where not known (an MPM run cut short: its
+//                "end_state" says why)}, ...}
 nlohmann::json summary_json(const std::vector<MethodResult>& results);
 std::string summary_table(const Scene& scene, const std::vector<MethodResult>& results);
 

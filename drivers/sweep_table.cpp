@@ -116,8 +116,9 @@ void write_file(const std::string& file, const SweepHeader& h, const SweepTable&
     Handle g(H5Gopen2(f, "/samples", H5P_DEFAULT), H5Gclose, "cannot open /samples");
     write_string_attribute(g, "output_columns", columns.dump());
     write_string_attribute(g, "status_meaning",
-                           "0 ok, 1 invalid input, 2 MPM unstable, 3 failed, 4 MPM cut short (the barrier still "
-                           "sliding at the end; reasons in /failures)");
+                           "0 ok, 1 invalid input, 2 MPM unstable, 3 failed, 4 MPM cut short "
+                           "while the barrier slid (end time or end of the domain); reasons in "
+                           "/failures");
   }
   for (std::size_t c = 0; c < t.output_columns.size(); ++c) {
     const std::string name = "/samples/" + t.output_columns[c];

@@ -40,7 +40,7 @@ inline json fast_flow_on_earth_barrier_h4() {
     "barrier": {"height_m": 5, "base_width_m": 6, "top_width_m": 2, "face_angle_deg": 60,
                 "density_kg_m3": 2000, "base_friction": 0.5, "face_friction": 0.3,
                 "fixed": false},
-    "methods": {"mpm": {"cell_size_m": 0.75}}
+    "methods": {"mpm": {"cell_size_m": 0.75, "end_time_s": 5.86}}
   })");
 }
 

@@ -41,7 +41,8 @@ TEST(SaturatedReferenceImpact, FastFlowAgainstTheEarthBarrierRunsToItsEnd) {
   EXPECT_EQ(out.status, "finished");
   ASSERT_TRUE(out.finished);
   expect_no_nan(r, "L3-B3-saturated-h4");
-  // To the driver's end time for this landslide (5.86 s), not stopped early (it stopped at 4.5 s).
+  // To the scene's end time (one impact time scale of this landslide, 5.86 s), not stopped early
+  // (it stopped at 4.5 s).
   EXPECT_GT(r.time.back(), 5.8);
   // No energy created: +5 % is the stability matrix's bound (test_mpm_stability_matrix.cpp, ten
   // times tighter than the solver's stop); measured 0.0. Numerical dissipation is not

@@ -68,6 +68,15 @@ void nodal_volume(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<Me
       });
 }
 
+// The cell of a point at (x, y) (index of its lower-left node), or -1 outside the grid (a point
+// that left it: the step that moved it there reports it, but the cell kernels may still run).
+KOKKOS_INLINE_FUNCTION int cell_of_point(double x, double y, double ox, double oy, double inv_dx,
+                                         int nx, int ny) {
+  const double fx = (x - ox) * inv_dx, fy = (y - oy) * inv_dx;
+  if (!(fx >= 0.0 && fy >= 0.0 && fx < nx - 1 && fy < ny - 1)) return -1;   // NaN: outside
+  return static_cast<int>(fx) + nx * static_cast<int>(fy);
+}
+
 // The n V weighted sums of the pore pressure per cell (cell index = index of its lower-left node)
 // into grid.smooth_value (sum n V p) and grid.smooth_weight (sum n V), over the points of each cell
 // (the cell of a point's position).
@@ -79,12 +88,12 @@ void sum_cell_pore_pressure(const TwoPhaseParticles<MemorySpace>& p,
   Kokkos::deep_copy(num, 0.0);
   Kokkos::deep_copy(den, 0.0);
   const double ox = g.solid.origin[0], oy = g.solid.origin[1], inv_dx = 1.0 / g.solid.dx;
-  const int nx = g.solid.nx;
+  const int nx = g.solid.nx, ny = g.solid.ny;
   Kokkos::parallel_for(
       "lsi::mpm::two_phase::cell_pressure_sum", Kokkos::RangePolicy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q) {
-        const int c = static_cast<int>((s.position(q, 0) - ox) * inv_dx) +
-                      nx * static_cast<int>((s.position(q, 1) - oy) * inv_dx);
+        const int c = cell_of_point(s.position(q, 0), s.position(q, 1), ox, oy, inv_dx, nx, ny);
+        if (c < 0) return;
         const double w = p.porosity(q) * s.volume(q);
         Kokkos::atomic_add(&num(c), w * p.pore_pressure(q));
         Kokkos::atomic_add(&den(c), w);
@@ -103,13 +112,12 @@ void cell_mean_pore_pressure(const TwoPhaseParticles<MemorySpace>& p,
   const auto s = p.solid;
   const auto num = g.smooth_value, den = g.smooth_weight;
   const double ox = g.solid.origin[0], oy = g.solid.origin[1], inv_dx = 1.0 / g.solid.dx;
-  const int nx = g.solid.nx;
+  const int nx = g.solid.nx, ny = g.solid.ny;
   Kokkos::parallel_for(
       "lsi::mpm::two_phase::cell_pressure_mean", Kokkos::RangePolicy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q) {
-        const int c = static_cast<int>((s.position(q, 0) - ox) * inv_dx) +
-                      nx * static_cast<int>((s.position(q, 1) - oy) * inv_dx);
-        out(q) = den(c) > 0.0 ? num(c) / den(c) : p.pore_pressure(q);
+        const int c = cell_of_point(s.position(q, 0), s.position(q, 1), ox, oy, inv_dx, nx, ny);
+        out(q) = c >= 0 && den(c) > 0.0 ? num(c) / den(c) : p.pore_pressure(q);
       });
 }
 
@@ -126,14 +134,14 @@ double project_pore_pressure(const TwoPhaseParticles<MemorySpace>& p, const TwoP
   const auto s = p.solid;
   const auto num = g.smooth_value, den = g.smooth_weight;
   const double ox = g.solid.origin[0], oy = g.solid.origin[1], inv_dx = 1.0 / g.solid.dx;
-  const int nx = g.solid.nx;
+  const int nx = g.solid.nx, ny = g.solid.ny;
   const double K_L = liquid_bulk_modulus;
   double drop = 0.0;
   Kokkos::parallel_reduce(
       "lsi::mpm::two_phase::cell_pressure_set", Kokkos::RangePolicy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q, double& d) {
-        const int c = static_cast<int>((s.position(q, 0) - ox) * inv_dx) +
-                      nx * static_cast<int>((s.position(q, 1) - oy) * inv_dx);
+        const int c = cell_of_point(s.position(q, 0), s.position(q, 1), ox, oy, inv_dx, nx, ny);
+        if (c < 0) return;
         const double w = p.porosity(q) * s.volume(q);
         const double p0 = p.pore_pressure(q), p1 = num(c) / den(c);
         d += w * (p0 * p0 - p1 * p1) / (2.0 * K_L);
