@@ -10,6 +10,7 @@
 #include "kernels/closed_form/empirical_model.hpp"
 #include "kernels/closed_form/face_resolution.hpp"
 #include "kernels/closed_form/inverse_design.hpp"
+#include "kernels/closed_form/momentum_barrier.hpp"
 #include "kernels/closed_form/peak_force_families.hpp"
 #include "kernels/closed_form/two_body_model.hpp"
 
@@ -83,6 +84,66 @@ void fill_histories(MethodResult& r, const Scene& scene, const ForcePulse& pulse
   r.extra["overturning_resultant_height"] = s.resultant_height;
 }
 
+// The momentum-consistent barrier (kernels/closed_form/momentum_barrier.hpp) under a
+// fixed-barrier pulse: the face resolved with the scene's face friction.
+MomentumBarrierSetup momentum_setup(const Scene& scene, const ForcePulse& fixed_pulse,
+                                    double barrier_mass) {
+  MomentumBarrierSetup s;
+  s.fixed_pulse = fixed_pulse;
+  s.landslide_mass = scene.landslide.mass_kg_per_m();
+  s.velocity = scene.landslide.velocity_m_s;
+  s.barrier_mass = scene.barrier.fixed ? std::numeric_limits<double>::infinity() : barrier_mass;
+  s.base_friction = scene.barrier.base_friction;
+  s.face = resolve_face_force(math::degrees_to_radians(scene.barrier.face_angle_deg),
+                              scene.barrier.face_friction);
+  return s;
+}
+
+// Histories and summaries of the momentum-consistent barrier: the force the barrier receives
+// (not the fixed pulse), the flow's horizontal kinetic energy, the barrier's motion.
+void fill_momentum_histories(MethodResult& r, const Scene& scene, const MomentumBarrierSetup& s) {
+  const MomentumBarrierResult first = momentum_barrier(s);
+  if (!first.ok)
+    throw InputError("the momentum-consistent barrier could not be integrated for this scene "
+                     "(a non-finite model input)");
+  const double end = std::isfinite(first.stop_time) ? std::max(first.contact_end, first.stop_time)
+                                                    : 2.0 * first.contact_end;
+  r.time = time_grid(1.1 * end, {first.rise_time, first.contact_end, first.start_time,
+                                 first.stop_time});
+  std::vector<MomentumBarrierState> st(r.time.size());
+  const MomentumBarrierResult res = momentum_barrier(s, r.time.data(), int(r.time.size()), st.data());
+  const double m1 = s.landslide_mass;
+  for (const MomentumBarrierState& x : st) {
+    r.force.push_back(x.force);
+    r.force_horizontal.push_back(x.force * s.face.horizontal);
+    r.force_vertical.push_back(x.force * s.face.vertical_down);
+    r.landslide_kinetic_energy.push_back(0.5 * m1 * x.landslide_velocity * x.landslide_velocity);
+    r.barrier_velocity.push_back(x.barrier_velocity);
+    r.barrier_displacement.push_back(x.barrier_displacement);
+  }
+  r.peak_force = res.peak_force;
+  r.rise_time = res.rise_time;
+  r.impact_duration = res.contact_end;
+  r.final_displacement = scene.barrier.fixed ? 0.0 : res.final_displacement;
+  r.barrier_model = "momentum";
+  r.extra["peak_force_horizontal"] = res.peak_force * s.face.horizontal;
+  // The barrier's impulse: the flow's loss of horizontal momentum, over h.
+  r.extra["impulse"] = m1 * (s.velocity - res.final_landslide_velocity) / s.face.horizontal;
+  r.extra["largest_barrier_velocity"] = res.largest_barrier_velocity;
+  if (!scene.barrier.fixed) {
+    r.extra["barrier_start_time"] = res.start_time >= 0.0 ? res.start_time : nan;
+    r.extra["barrier_stop_time"] = res.start_time >= 0.0 ? res.stop_time : nan;
+  }
+  const double mass = scene.barrier.mass();
+  const StabilityCheck stab =
+      barrier_stability(r.time.data(), r.force.data(), static_cast<int>(r.time.size()),
+                        geometry_of(scene.barrier), s.face, mass, scene.barrier.base_friction,
+                        0.5 * scene.landslide.thickness_m);
+  r.extra["min_sliding_safety"] = stab.min_sliding_safety;
+  r.extra["min_overturning_safety"] = stab.min_overturning_safety;
+  r.extra["overturning_resultant_height"] = stab.resultant_height;
+}
+
 EmpiricalCoefficients empirical_coefficients(const Scene& scene) {
   EmpiricalCoefficients c;
   if (scene.methods.empirical) {
@@ -94,8 +155,16 @@ EmpiricalCoefficients empirical_coefficients(const Scene& scene) {
   return c;
 }
 
+bool momentum(const std::optional<EmpiricalParameters>& p) {
+  return p && p->barrier_model == BarrierModel::Momentum;
+}
+bool momentum(const std::optional<AnalyticalParameters>& p) {
+  return p && p->barrier_model == BarrierModel::Momentum;
+}
+
 TwoBodyCoefficients two_body_coefficients(const Scene& scene, bool fixed) {
-  TwoBodyCoefficients c = default_two_body_coefficients(fixed);
+  // The momentum-consistent variant's pulse is the fixed barrier's, free barrier or not.
+  TwoBodyCoefficients c = default_two_body_coefficients(fixed || momentum(scene.methods.analytical));
   if (scene.methods.analytical) {
     if (scene.methods.analytical->lambda) c.lambda = *scene.methods.analytical->lambda;
     if (scene.methods.analytical->tau) c.tau = *scene.methods.analytical->tau;
@@ -123,8 +192,13 @@ MethodResult empirical_with_mass(const Scene& scene, double barrier_mass) {
   const EmpiricalImpact imp = empirical_impact_of(scene);
   MethodResult r;
   r.method = "empirical";
-  fill_histories(r, scene, imp.pulse, resolve_face_force(face_angle(scene)), barrier_mass,
-                 [&](double t) { return imp.landslide_kinetic_energy(t); });
+  if (momentum(scene.methods.empirical)) {
+    fill_momentum_histories(r, scene, momentum_setup(scene, imp.pulse, barrier_mass));
+  } else {
+    r.barrier_model = "paper";
+    fill_histories(r, scene, imp.pulse, resolve_face_force(face_angle(scene)), barrier_mass,
+                   [&](double t) { return imp.landslide_kinetic_energy(t); });
+  }
   r.extra["froude_number"] = imp.froude;
   r.extra["alpha"] = imp.alpha;
   r.extra["normal_velocity"] = imp.normal_velocity;
@@ -138,9 +212,23 @@ MethodResult analytical_with_mass(const Scene& scene, double barrier_mass) {
   const bool fixed = scene.barrier.fixed;
   const double m2 = fixed ? std::numeric_limits<double>::infinity() : barrier_mass;
   const TwoBodyCoefficients c = two_body_coefficients(scene, fixed);
-  const TwoBodyImpact imp = two_body_impact_of(scene, m2);
   MethodResult r;
   r.method = "analytical";
+  if (momentum(scene.methods.analytical)) {
+    const SceneLandslide& l = scene.landslide;
+    const FaceResolution face =
+        resolve_face_force(face_angle(scene), scene.barrier.face_friction);
+    const ForcePulse pulse = momentum_two_body_pulse(l.mass_kg_per_m(), l.velocity_m_s,
+                                                     l.equivalent_length_m(), c.lambda, c.tau,
+                                                     face.horizontal);
+    fill_momentum_histories(r, scene, momentum_setup(scene, pulse, m2));
+    r.extra["lambda"] = c.lambda;
+    r.extra["tau"] = c.tau;
+    r.extra["landslide_mass"] = l.mass_kg_per_m();
+    return r;
+  }
+  r.barrier_model = "paper";
+  const TwoBodyImpact imp = two_body_impact_of(scene, m2);
   fill_histories(r, scene, imp.pulse, resolve_face_force(face_angle(scene)), m2,
                  [&](double t) { return imp.landslide_kinetic_energy(t); });
   r.extra["lambda"] = c.lambda;
@@ -228,10 +316,21 @@ std::vector<MassDesign> design_barrier_mass(const Scene& scene, double max_displ
     };
     // The search needs only the final displacement: no histories, no stability check per mass.
     const bool empirical = std::string(method) == "empirical";
+    const bool by_momentum = empirical ? momentum(scene.methods.empirical)
+                                       : momentum(scene.methods.analytical);
     const ForcePulse empirical_pulse = empirical_impact_of(scene).pulse;   // independent of m2
     const double beta = face_angle(scene), mu_b = scene.barrier.base_friction;
+    ForcePulse fixed_pulse = empirical_pulse;   // the momentum variant's, independent of m2
+    if (by_momentum && !empirical) {
+      const SceneLandslide& l = scene.landslide;
+      const TwoBodyCoefficients c = two_body_coefficients(scene, true);
+      fixed_pulse = momentum_two_body_pulse(
+          l.mass_kg_per_m(), l.velocity_m_s, l.equivalent_length_m(), c.lambda, c.tau,
+          resolve_face_force(beta, scene.barrier.face_friction).horizontal);
+    }
     const auto found = minimum_barrier_mass(
         [&](double m) {
+          if (by_momentum) return momentum_barrier(momentum_setup(scene, fixed_pulse, m)).final_displacement;
           const ForcePulse p = empirical ? empirical_pulse : two_body_impact_of(scene, m).pulse;
           return final_displacement_under(p, m, mu_b, beta);
         },
@@ -256,8 +355,9 @@ std::vector<MassDesign> design_barrier_mass(const Scene& scene, double max_displ
         if (!(g.downstream_run_out() >= -1e-9)) continue;   // face angle does not fit
         const StabilityCheck st = barrier_stability(
             at_mass.time.data(), at_mass.force.data(), static_cast<int>(at_mass.time.size()), g,
-            resolve_face_force(g.face_angle), found.mass, s.barrier.base_friction,
-            0.5 * s.landslide.thickness_m);
+            by_momentum ? resolve_face_force(g.face_angle, s.barrier.face_friction)
+                        : resolve_face_force(g.face_angle),
+            found.mass, s.barrier.base_friction, 0.5 * s.landslide.thickness_m);
         d.geometries.push_back(
             {s.barrier.height_m, s.barrier.base_width_m, b, st.min_overturning_safety});
       }

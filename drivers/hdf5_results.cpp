@@ -98,7 +98,8 @@ constexpr const char* kScalarUnits =
     "peak_force N/m; rise_time s; impact_duration s; final_displacement m";
 
 bool is_reserved_attribute(const std::string& name) {
-  if (name == "units" || name == "end_state" || name == "status") return true;
+  if (name == "units" || name == "end_state" || name == "status" || name == "barrier_model")
+    return true;
   for (const auto& s : kScalars)
     if (name == s.name) return true;
   return false;
@@ -178,6 +179,7 @@ void write_file(const std::string& file, const std::string& scene_text,
       if (r.end_state != EndState::None)
         write_string_attribute(g, "end_state", end_state_token(r.end_state));
       if (!r.status.empty()) write_string_attribute(g, "status", r.status);
+      if (!r.barrier_model.empty()) write_string_attribute(g, "barrier_model", r.barrier_model);
     } catch (const std::runtime_error& e) {
       throw std::runtime_error("group '" + r.method + "': " + e.what());
     }
@@ -245,6 +247,7 @@ MethodResult read_group(hid_t file, const std::string& name) {
     }
   }
   if (has_attribute(g, "status")) r.status = read_string_attribute(g, "status");
+  if (has_attribute(g, "barrier_model")) r.barrier_model = read_string_attribute(g, "barrier_model");
   for (const auto& a : attr_names) {
     if (is_reserved_attribute(a)) continue;
     Handle attr(H5Aopen(g, a.c_str(), H5P_DEFAULT), H5Aclose, "cannot open attribute '" + a + "'");

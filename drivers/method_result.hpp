@@ -48,6 +48,8 @@ struct MethodResult {
   // Runs (the MPM): how the run ended, and the solver's status ("finished" or why it stopped).
   EndState end_state = EndState::None;
   std::string status;
+  // Closed forms that move a barrier: "paper" or "momentum" (scene.hpp, BarrierModel).
+  std::string barrier_model;
   // Further method-specific scalars (e.g. "froude_number", "reduced_mass_kg_per_m"), SI units.
   std::map<std::string, double> extra;
   // Further method-specific histories on the same `time` axis (e.g. the MPM's energies).

@@ -81,6 +81,7 @@ nlohmann::json summary_json(const std::vector<MethodResult>& results) {
     for (const auto& [k, v] : r.extra) put(m, k, v);
     if (r.end_state != EndState::None) m["end_state"] = end_state_token(r.end_state);
     if (!r.status.empty()) m["status"] = r.status;
+    if (!r.barrier_model.empty()) m["barrier_model"] = r.barrier_model;
     j[r.method] = m;
   }
   return j;
@@ -260,9 +261,24 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_
     }
     o << "\n";
   }
-  o << "E displacement: rigid-block sliding under the empirical (fixed-barrier) pulse; A: the "
-       "two-body model; M: the MPM (docs/mpm.md). \"any\": no mass exceeds the tolerance "
-       "(docs/models.md).\n";
+  // How each closed form moved the barrier (the barrier model of its results).
+  auto model_of = [&](const char* m) {
+    std::string model;
+    for (const auto& row : rows)
+      if (const MethodResult* r = find(row.results, m); r && !r->barrier_model.empty())
+        model = model.empty() || model == r->barrier_model ? r->barrier_model : "mixed";
+    return model;
+  };
+  auto described = [](const std::string& model, const char* paper) {
+    return model == "momentum" ? std::string("the barrier pushed by the flow at their relative "
+                                             "velocity (momentum-consistent)")
+           : model == "mixed"  ? std::string("paper and momentum-consistent, by scene")
+                               : std::string(paper);
+  };
+  o << "E displacement: " << described(model_of("empirical"),
+                                       "rigid-block sliding under the empirical (fixed-barrier) pulse")
+    << "; A: " << described(model_of("analytical"), "the two-body model")
+    << "; M: the MPM (docs/mpm.md). \"any\": no mass exceeds the tolerance (docs/models.md).\n";
   for (const auto& row : rows)
     for (const auto& r : row.results) {
       const std::string note = end_note(r);

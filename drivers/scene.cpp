@@ -39,8 +39,9 @@ const std::vector<std::string> kBarrierKeys = {
     "height_m",      "base_width_m",  "top_width_m",   "face_angle_deg", "density_kg_m3",
     "mass_kg_per_m", "base_friction", "face_friction", "fixed"};
 const std::vector<std::string> kMethodKeys = {"empirical", "analytical", "literature", "mpm"};
-const std::vector<std::string> kEmpiricalKeys = {"a1", "a2", "tau", "kappa"};
-const std::vector<std::string> kAnalyticalKeys = {"lambda", "tau"};
+const std::vector<std::string> kEmpiricalKeys = {"a1", "a2", "tau", "kappa", "barrier_model"};
+const std::vector<std::string> kAnalyticalKeys = {"lambda", "tau", "barrier_model"};
+const std::vector<std::string> kBarrierModels = {"paper", "momentum"};
 const std::vector<std::string> kLiteratureKeys = {"family", "hydrostatic_k", "hydrodynamic_alpha"};
 const std::vector<std::string> kLiteratureFamilies = {"hydrostatic", "hydrodynamic", "mixed"};
 
@@ -182,6 +183,14 @@ EmpiricalParameters parse_empirical(const ObjectReader& methods) {
   p.a2 = r.number_or("a2", p.a2, interval('[', -5, 5, ']'));
   p.tau = r.number_or("tau", p.tau, interval('(', 0, 1, ')'));
   p.kappa = r.number_or("kappa", p.kappa, at_least(0));
+  p.barrier_model = r.choice("barrier_model", kBarrierModels, std::string("paper")) == "momentum"
+                        ? BarrierModel::Momentum
+                        : BarrierModel::Paper;
+  // The momentum-consistent barrier takes a pulse of destroyed momentum; a static residual load
+  // after it is a different mechanism (docs/models.md, "Momentum-consistent barrier").
+  if (p.barrier_model == BarrierModel::Momentum && p.kappa > 0.0)
+    r.fail_at("kappa", "must be 0 with \"barrier_model\": \"momentum\" (the static load after the "
+                       "pulse is not modelled there)");
   return p;
 }
 
@@ -190,6 +199,9 @@ AnalyticalParameters parse_analytical(const ObjectReader& methods) {
   AnalyticalParameters p;
   p.lambda = r.optional_number("lambda", interval('(', 0, 1, ']'));
   p.tau = r.optional_number("tau", interval('(', 0, 1, ')'));
+  p.barrier_model = r.choice("barrier_model", kBarrierModels, std::string("paper")) == "momentum"
+                        ? BarrierModel::Momentum
+                        : BarrierModel::Paper;
   return p;
 }
 

@@ -66,16 +66,27 @@ struct SceneBarrier {
   double mass() const { return mass_kg_per_m ? *mass_kg_per_m : *density_kg_m3 * area_m2(); }
 };
 
+// How a closed form moves a free barrier: the paper's construction ("paper": the two-body pulse
+// with base friction, or the rigid block under the empirical fixed-barrier pulse) or the
+// momentum-consistent barrier pushed by the flow at their relative velocity ("momentum",
+// kernels/closed_form/momentum_barrier.hpp; docs/models.md).
+enum class BarrierModel { Paper, Momentum };
+
 // Method blocks: present means "run this method"; their keys override model parameters.
 struct EmpiricalParameters {
   double a1 = 1.781;
   double a2 = -0.515;
   double tau = 0.14;
   double kappa = 0.0;
+  BarrierModel barrier_model = BarrierModel::Paper;
 };
 struct AnalyticalParameters {
-  std::optional<double> lambda;   // default 0.72 (fixed barrier) or 0.41 (free barrier)
-  std::optional<double> tau;      // default 0.17 (fixed) or 0.25 (free)
+  // Defaults: "paper" 0.72 / 0.17 for a fixed barrier and 0.41 / 0.25 for a free one;
+  // "momentum" 0.72 / 0.17 for both (its pulse is the fixed barrier's; the barrier's motion is
+  // modelled, not calibrated into lambda and tau).
+  std::optional<double> lambda;
+  std::optional<double> tau;
+  BarrierModel barrier_model = BarrierModel::Paper;
 };
 // Literature peak-force families with user-given coefficients (docs/models.md, "Literature
 // peak-force families").

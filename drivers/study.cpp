@@ -34,7 +34,8 @@ constexpr double kMaxSamples = 9.0e15;
 constexpr double kMaxChunk = 1 << 24;
 
 // Which method needs a scene field: closed forms read the geometry and the landslide's bulk
-// values, only the MPM reads the material and the face friction.
+// values, only the MPM reads the material and the face friction (and the closed forms with the
+// momentum-consistent barrier, below).
 bool only_mpm_reads(int field) {
   using namespace sweeps;
   return (field >= porosity && field <= liquid_viscosity_kpa_s) || field == face_friction;
@@ -305,9 +306,11 @@ sweeps::SceneValues scene_values(const Scene& sc) {
   v.value[empirical_a2] = e.a2;
   v.value[empirical_tau] = e.tau;
   v.value[empirical_kappa] = e.kappa;
+  v.empirical_momentum = e.barrier_model == BarrierModel::Momentum;
   const AnalyticalParameters a = sc.methods.analytical.value_or(AnalyticalParameters{});
   v.analytical_lambda_given = a.lambda.has_value();
   v.analytical_tau_given = a.tau.has_value();
+  v.analytical_momentum = a.barrier_model == BarrierModel::Momentum;
   // Unused values must still pass the range check: 1 is inside both (0, 1] and (0, 1).
   v.value[analytical_lambda] = a.lambda.value_or(1.0);
   v.value[analytical_tau] = a.tau.value_or(0.5);
@@ -371,7 +374,20 @@ Study parse_study(const json& j, const std::string& base_dir) {
     for (const auto& other : s.inputs)
       if (other.path == in.path) fail(at + ".path = \"" + in.path + "\": sampled twice");
     const std::string reader = method_reading(in.field);
-    if (!reader.empty() && !s.runs(reader))
+    // The face friction also enters the closed forms that move the barrier by momentum.
+    bool read_by_momentum = false;
+    if (in.field == sweeps::face_friction) {
+      try {
+        const Scene base = parse_scene(s.scene_document);
+        read_by_momentum = (s.runs("empirical") && base.methods.empirical &&
+                            base.methods.empirical->barrier_model == BarrierModel::Momentum) ||
+                           (s.runs("analytical") && base.methods.analytical &&
+                            base.methods.analytical->barrier_model == BarrierModel::Momentum);
+      } catch (const InputError&) {
+        // an invalid base scene is reported below, with the typical value
+      }
+    }
+    if (!reader.empty() && !s.runs(reader) && !read_by_momentum)
       fail(at + ".path = \"" + in.path + "\": only the " + reader +
            " method reads it, and the study does not run it (methods: " + join(s.methods) + ")");
     // The scene must accept the key: check once with a typical value.

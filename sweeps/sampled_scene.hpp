@@ -10,6 +10,8 @@
 
 #include "kernels/closed_form/barrier_sliding.hpp"
 #include "kernels/closed_form/empirical_model.hpp"
+#include "kernels/closed_form/face_resolution.hpp"
+#include "kernels/closed_form/momentum_barrier.hpp"
 #include "kernels/closed_form/two_body_model.hpp"
 #include "kernels/common/math.hpp"
 
@@ -94,6 +96,8 @@ struct SceneValues {
   bool barrier_given_by_mass = false;
   bool fixed = false;
   bool analytical_lambda_given = false, analytical_tau_given = false;
+  // The barrier model of each closed form (drivers/scene.hpp, BarrierModel): false = the paper's.
+  bool empirical_momentum = false, analytical_momentum = false;
 };
 
 KOKKOS_INLINE_FUNCTION bool in_range(double v, const FieldRange& r) {
@@ -117,6 +121,9 @@ KOKKOS_INLINE_FUNCTION int first_invalid_field(const SceneValues& s) {
       continue;
     }
     if (!in_range(s.value[f], scene_field_range(f))) return f;
+    // The momentum-consistent empirical variant has no static load after the pulse (the parser:
+    // methods.empirical.kappa must be 0 with it).
+    if (f == empirical_kappa && s.empirical_momentum && s.value[f] > 0.0) return f;
   }
   // The upstream face runs out H / tan(beta) horizontally; it must fit in B - b.
   const double beta_deg = s.value[face_angle_deg];
@@ -163,6 +170,25 @@ KOKKOS_INLINE_FUNCTION void store_pulse(const ForcePulse& p, const ModelInputs& 
       final_displacement_under(p, m.barrier_mass, s.value[base_friction], m.face_angle_rad);
 }
 
+// The momentum-consistent barrier under a fixed-barrier pulse (momentum_barrier.hpp), with the
+// face resolved with the face friction.
+KOKKOS_INLINE_FUNCTION void store_momentum(const ForcePulse& fixed_pulse, const ModelInputs& m,
+                                           const SceneValues& s, const FaceResolution& face,
+                                           double* out) {
+  MomentumBarrierSetup b;
+  b.fixed_pulse = fixed_pulse;
+  b.landslide_mass = m.landslide_mass;
+  b.velocity = s.value[velocity_m_s];
+  b.barrier_mass = m.barrier_mass;
+  b.base_friction = s.value[base_friction];
+  b.face = face;
+  const MomentumBarrierResult r = momentum_barrier(b);
+  out[peak_force] = r.peak_force;
+  out[rise_time] = r.rise_time;
+  out[impact_duration] = r.contact_end;
+  out[final_displacement] = s.fixed ? 0.0 : r.final_displacement;
+}
+
 // Empirical model (Di Perna et al. 2022) of a valid sample.
 KOKKOS_INLINE_FUNCTION void evaluate_empirical(const SceneValues& s, double* out) {
   const ModelInputs m = model_inputs(s);
@@ -174,16 +200,26 @@ KOKKOS_INLINE_FUNCTION void evaluate_empirical(const SceneValues& s, double* out
   const EmpiricalImpact imp = empirical_impact(s.value[thickness_m], s.value[velocity_m_s],
                                                s.value[density_kg_m3], m.landslide_mass,
                                                m.face_angle_rad, c);
-  store_pulse(imp.pulse, m, s, out);
+  if (s.empirical_momentum)
+    store_momentum(imp.pulse, m, s, resolve_face_force(m.face_angle_rad, s.value[face_friction]), out);
+  else
+    store_pulse(imp.pulse, m, s, out);
 }
 
 // Analytical two-body model (Cuomo et al. 2022) of a valid sample; lambda and tau default to the
 // paper's values for the barrier kind unless the scene (or the study) gives them.
 KOKKOS_INLINE_FUNCTION void evaluate_analytical(const SceneValues& s, double* out) {
   const ModelInputs m = model_inputs(s);
-  TwoBodyCoefficients c = default_two_body_coefficients(s.fixed);
+  TwoBodyCoefficients c = default_two_body_coefficients(s.fixed || s.analytical_momentum);
   if (s.analytical_lambda_given) c.lambda = s.value[analytical_lambda];
   if (s.analytical_tau_given) c.tau = s.value[analytical_tau];
+  if (s.analytical_momentum) {
+    const FaceResolution face = resolve_face_force(m.face_angle_rad, s.value[face_friction]);
+    store_momentum(momentum_two_body_pulse(m.landslide_mass, s.value[velocity_m_s],
+                                           m.equivalent_length, c.lambda, c.tau, face.horizontal),
+                   m, s, face, out);
+    return;
+  }
   const TwoBodyImpact imp = two_body_impact(m.landslide_mass, s.value[velocity_m_s],
                                             m.equivalent_length, m.barrier_mass, c);
   store_pulse(imp.pulse, m, s, out);

@@ -327,6 +327,23 @@ TEST(SceneDocs, CompleteExampleInTheSchemaParses) {
 
 // ---- bad inputs: unknown keys -----------------------------------------------------------------
 
+TEST(SceneParse, BarrierModelOfTheClosedForms) {
+  const Scene paper = lsi::parse_scene(base_scene());
+  EXPECT_EQ(paper.methods.analytical->barrier_model, lsi::BarrierModel::Paper);
+  EXPECT_EQ(paper.methods.empirical->barrier_model, lsi::BarrierModel::Paper);
+  json j = with(with(base_scene(), "/methods/analytical/barrier_model", "momentum"),
+                "/methods/empirical/barrier_model", "momentum");
+  const Scene m = lsi::parse_scene(j);
+  EXPECT_EQ(m.methods.analytical->barrier_model, lsi::BarrierModel::Momentum);
+  EXPECT_EQ(m.methods.empirical->barrier_model, lsi::BarrierModel::Momentum);
+  EXPECT_CONTAINS(error_of(with(base_scene(), "/methods/analytical/barrier_model", "newton")),
+                  "methods.analytical.barrier_model = \"newton\"");
+  // The momentum variant has no static load after the pulse.
+  EXPECT_CONTAINS(error_of(with(with(base_scene(), "/methods/empirical/barrier_model", "momentum"),
+                                "/methods/empirical/kappa", 0.5)),
+                  "methods.empirical.kappa = 0.5: must be 0 with \"barrier_model\": \"momentum\"");
+}
+
 TEST(SceneErrors, UnknownTopLevelKey) {
   EXPECT_EQ(error_of(with(base_scene(), "/nme", "x")),
             "nme: unknown key (allowed: name, landslide, barrier, methods)");
@@ -358,9 +375,9 @@ TEST(SceneErrors, UnknownBarrierKey) {
 
 TEST(SceneErrors, UnknownMethodParameterKeys) {
   EXPECT_CONTAINS(error_of(with(base_scene(), "/methods/empirical/a3", 1)),
-                  "methods.empirical.a3: unknown key (allowed: a1, a2, tau, kappa)");
+                  "methods.empirical.a3: unknown key (allowed: a1, a2, tau, kappa, barrier_model)");
   EXPECT_CONTAINS(error_of(with(base_scene(), "/methods/analytical/lamda", 0.5)),
-                  "methods.analytical.lamda: unknown key (allowed: lambda, tau)");
+                  "methods.analytical.lamda: unknown key (allowed: lambda, tau, barrier_model)");
   EXPECT_CONTAINS(error_of(with(base_scene(), "/methods/literature",
                                 {{"hydrostatic_k", 1}, {"hydrodynamic_alpha", 1}, {"k", 1}})),
                   "methods.literature.k: unknown key");

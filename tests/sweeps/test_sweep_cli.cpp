@@ -462,3 +462,45 @@ TEST(SweepCli, MpmRunsAtQuantilesOfAClosedFormOutput) {
 }
 
 }  // namespace
+
+namespace {
+// The momentum-consistent barrier (the scene's "barrier_model") runs in the sweep's kernel: each
+// sample's outputs equal the scene-level model's (drivers/closed_form_methods.cpp) for the same
+// inputs; the same adaptive integration on both sides, so to round-off (1e-9: the error control
+// may take other steps where an input differs in its last bits through the sampler).
+TEST(SweepCli, MomentumBarrierModelRunsInTheSweepKernel) {
+  json scene;
+  std::ifstream(source_dir / "scenes/reference/L2-B1.json") >> scene;
+  scene["methods"] = {{"empirical", {{"barrier_model", "momentum"}}},
+                      {"analytical", {{"barrier_model", "momentum"}}}};
+  const fs::path study = write_study(
+      "momentum", {{"scene", scene},
+                   {"samples", 24},
+                   {"correlation", nullptr},
+                   {"thresholds", nullptr},
+                   {"inputs", {{{"path", "/landslide/velocity_m_s"}, {"distribution", "uniform"}, {"min", 4}, {"max", 12}},
+                               {{"path", "/barrier/face_friction"}, {"distribution", "uniform"}, {"min", 0}, {"max", 0.5}}}}});
+  const fs::path out = temp_dir() / "momentum.h5";
+  const Outcome r = run("sweep " + study.string() + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const lsi::SweepFile f = lsi::read_sweep_file(out.string());
+  const lsi::Study st = lsi::load_study(study.string());
+  ASSERT_EQ(f.table.rows(), 24u);
+  int sliding = 0;
+  for (std::size_t i = 0; i < 24; ++i) {
+    ASSERT_EQ(f.table.status[i], 0);
+    const double x[2] = {f.table.inputs[0][i], f.table.inputs[1][i]};
+    const lsi::Scene s = lsi::parse_scene(lsi::sample_scene_document(st, x));
+    const lsi::MethodResult e = lsi::run_empirical(s), a = lsi::run_analytical(s);
+    EXPECT_EQ(a.barrier_model, "momentum");
+    // Columns: empirical peak, rise, duration, displacement, then the analytical's.
+    const double want[8] = {e.peak_force, e.rise_time, e.impact_duration, e.final_displacement,
+                            a.peak_force, a.rise_time, a.impact_duration, a.final_displacement};
+    for (int c = 0; c < 8; ++c)
+      EXPECT_NEAR(f.table.outputs[c][i], want[c], 1e-9 * std::fabs(want[c]) + 1e-12)
+          << "sample " << i << " column " << f.table.output_columns[c];
+    sliding += a.final_displacement > 0.01;
+  }
+  EXPECT_GT(sliding, 10);   // most samples slide: the comparison covers the sliding phases
+}
+}  // namespace
