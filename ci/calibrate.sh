@@ -4,8 +4,9 @@
 # the paper's, the closed forms' errors against the MPM with each method's run time, and the
 # misfit maps, for both objectives.
 #
-#   bash ci/calibrate.sh    -> results/calibration/{nrms,peak-duration}.{h5,txt}, *_maps.png,
-#                              and the tables of docs/calibration_results.md
+#   bash ci/calibrate.sh    -> results/calibration/<model>-<objective>.{h5,txt}, *_maps.png for
+#                              both barrier models (paper, momentum) and both objectives (nrms,
+#                              peak-duration), and the tables of docs/calibration_results.md
 #
 # The MPM histories are those of results/reference/ (bash ci/main.sh, run first if they are
 # missing); `lsi calibrate` runs the MPM itself for any case whose stored run is of other settings.
@@ -27,13 +28,18 @@ for s in "${scenes[@]}"; do
 done
 out="$root/results/calibration"
 mkdir -p "$out"
-for objective in nrms peak-duration; do
-  "$build/drivers/lsi" calibrate "${scenes[@]}" --results-dir "$runs" --objective "$objective" \
-    --out "$out/$objective.h5" > "$out/$objective.txt"
-  MPLCONFIGDIR="$out/.mplconfig" /usr/bin/python3 "$root/drivers/lsi_calibration_plot.py" \
-    "$out/$objective.h5" --out-dir "$out" > /dev/null
+files=()
+for model in paper momentum; do
+  for objective in nrms peak-duration; do
+    f="$out/$model-$objective"
+    "$build/drivers/lsi" calibrate "${scenes[@]}" --results-dir "$runs" --objective "$objective" \
+      --barrier-model "$model" --out "$f.h5" > "$f.txt"
+    MPLCONFIGDIR="$out/.mplconfig" /usr/bin/python3 "$root/drivers/lsi_calibration_plot.py" \
+      "$f.h5" --out-dir "$out" > /dev/null
+    files+=("$f.h5")
+  done
 done
 rm -rf "$out/.mplconfig"
 /usr/bin/python3 "$root/ci/calibration_report.py" --out "$root/docs/calibration_results.md" \
-  "$out/nrms.h5" "$out/peak-duration.h5"
+  "${files[@]}"
 echo "calibration written to ${out#$root/}/ and docs/calibration_results.md"

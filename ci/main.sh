@@ -7,15 +7,17 @@
 #
 #   bash ci/main.sh                      the study as shipped (saturated MPM landslide, 8 cells
 #                                        through the flow's thickness, base friction 0.2)
-#   bash ci/main.sh [--cells N] [--dry] [--smooth-base]
+#   bash ci/main.sh [--cells N] [--dry] [--smooth-base] [--paper-barrier]
 #                                        a variant: N cells through the thickness, the dry
 #                                        (single-phase) landslide, the paper's smooth base
-#                                        (F1 = 0); into results/reference-<variant>/ (its scenes
+#                                        (F1 = 0), the paper's closed forms for a free barrier
+#                                        (instead of the momentum-consistent barrier);
+#                                        into results/reference-<variant>/ (its scenes
 #                                        in scenes/ there); no error bars (the convergence study
 #                                        is of the shipped settings: ci/reference_convergence.py)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-usage="usage: bash ci/main.sh [--cells N] [--dry] [--smooth-base]"
+usage="usage: bash ci/main.sh [--cells N] [--dry] [--smooth-base] [--paper-barrier]"
 variant=() tag=""
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -29,6 +31,7 @@ while [ $# -gt 0 ]; do
       variant+=(--cells "$cells"); tag+="-$cells"; shift 2 ;;
     --dry) variant+=(--dry); tag+="-dry"; shift ;;
     --smooth-base) variant+=(--smooth-base); tag+="-smooth"; shift ;;
+    --paper-barrier) variant+=(--paper-barrier); tag+="-paper"; shift ;;
     *) echo "ci/main.sh: unknown argument '$1' ($usage)" >&2; exit 2 ;;
   esac
 done

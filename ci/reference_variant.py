@@ -1,13 +1,16 @@
 #!/usr/bin/python3
 """Writes the reference scenes as a variant of the study (used by `ci/main.sh` with options).
 
-usage: ci/reference_variant.py OUT_DIR [--cells N] [--dry] [--smooth-base] SCENE.json ...
+usage: ci/reference_variant.py OUT_DIR [--cells N] [--dry] [--smooth-base] [--paper-barrier] SCENE.json ...
 
 Each scene is copied to OUT_DIR with methods.mpm changed as asked, everything else kept:
   --cells N       N cells through the landslide's thickness (cell_size_m = thickness_m / N), N a
                   whole number >= 4 (the MPM's limit: a cell at most a quarter of the thickness)
   --dry           the single-phase landslide with the mixture's density ("phases": "dry")
-  --smooth-base   the paper's smooth base under the flow (F1 = 0: "base_friction": 0)
+  --smooth-base   the paper's smooth base under the flow (F1 = 0: landslide.base_friction 0)
+  --paper-barrier the closed forms move a free barrier as the paper does ("barrier_model":
+                  "paper": the two-body model with base friction, the rigid block under the
+                  empirical pulse) instead of the momentum-consistent barrier
 """
 import json
 import os
@@ -24,7 +27,7 @@ def main(argv):
     if not args:
         fail("usage: " + __doc__.strip().splitlines()[2].split("usage: ")[1])
     out, args = args[0], args[1:]
-    cells, dry, smooth, paths = None, False, False, []
+    cells, dry, smooth, paper, paths = None, False, False, False, []
     while args:
         a = args.pop(0)
         if a == "--cells":
@@ -37,6 +40,8 @@ def main(argv):
             dry = True
         elif a == "--smooth-base":
             smooth = True
+        elif a == "--paper-barrier":
+            paper = True
         elif a.startswith("--"):
             fail("unknown option '%s'" % a)
         else:
@@ -57,7 +62,11 @@ def main(argv):
             for key in ("drag", "pore_pressure", "pore_pressure_output"):
                 mpm.pop(key, None)
         if smooth:
-            mpm["base_friction"] = 0
+            scene["landslide"]["base_friction"] = 0
+        if paper:
+            for method in ("empirical", "analytical"):
+                if method in scene["methods"]:
+                    scene["methods"][method]["barrier_model"] = "paper"
         with open(os.path.join(out, os.path.basename(path)), "w") as f:
             json.dump(scene, f, indent=2)
             f.write("\n")

@@ -73,6 +73,7 @@ struct Options {
   std::string grid = "41x41";
   std::string out;
   std::string format = "table";
+  std::string barrier_model = "paper";   // the closed forms' barrier model (scene.hpp)
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -94,6 +95,9 @@ sweeps::CalibrationOptions calibration_options(const Options& o) {
   c.tau_cells = static_cast<int>(k);
   if (o.format != "table" && o.format != "json")
     throw InputError("--format " + o.format + ": allowed: table, json");
+  if (o.barrier_model != "paper" && o.barrier_model != "momentum")
+    throw InputError("--barrier-model " + o.barrier_model + ": allowed: paper, momentum");
+  c.momentum = o.barrier_model == "momentum";
   if (!o.results_dir.empty() && !fs::is_directory(o.results_dir))
     throw InputError("--results-dir " + o.results_dir + ": not a directory");
   return c;
@@ -136,6 +140,9 @@ sweeps::ImpactInputs impact_inputs(const Scene& s) {
   in.density = l.density_kg_m3;
   in.face_angle = math::degrees_to_radians(s.barrier.face_angle_deg);
   in.kappa = s.methods.empirical ? s.methods.empirical->kappa : 0.0;
+  in.base_friction = s.barrier.base_friction;
+  in.face_friction = s.barrier.face_friction;
+  in.flow_friction = flow_friction_deceleration(s);
   return in;
 }
 
@@ -242,19 +249,21 @@ Row closed_form_row(const Case& c, const std::string& method, const std::string&
   return r;
 }
 
-Scene with_analytical(const Scene& s, double lambda, double tau) {
+Scene with_analytical(const Scene& s, double lambda, double tau, BarrierModel model) {
   Scene x = s;
   AnalyticalParameters p;
+  p.barrier_model = model;
   if (std::isfinite(lambda)) p.lambda = lambda;
   if (std::isfinite(tau)) p.tau = tau;
   x.methods.analytical = p;
   return x;
 }
 
-Scene with_empirical(const Scene& s, double a1, double a2, double tau) {
+Scene with_empirical(const Scene& s, double a1, double a2, double tau, BarrierModel model) {
   Scene x = s;
   EmpiricalParameters p;   // defaults: the paper's a1, a2, tau, kappa 0
-  if (s.methods.empirical) p.kappa = s.methods.empirical->kappa;
+  p.barrier_model = model;
+  if (s.methods.empirical && model == BarrierModel::Paper) p.kappa = s.methods.empirical->kappa;
   if (std::isfinite(a1)) p.a1 = a1;
   if (std::isfinite(a2)) p.a2 = a2;
   if (std::isfinite(tau)) p.tau = tau;
@@ -354,8 +363,8 @@ std::string table(const std::vector<Case>& cases, const std::vector<sweeps::Grou
   std::ostringstream t;
   char line[512];
   t << "Calibration of the closed forms against the MPM (objective " << objective_name(o.objective)
-    << ", map " << o.lambda_cells << " x " << o.tau_cells << " lambda x tau, then "
-    << "Levenberg-Marquardt)\n";
+    << ", barrier model " << (o.momentum ? "momentum" : "paper") << ", map " << o.lambda_cells
+    << " x " << o.tau_cells << " lambda x tau, then Levenberg-Marquardt)\n";
   t << "Analytical model, per case (sigma: linearised, optimistic; range: misfit within "
     << fmt("%.0f", 100 * o.profile_tolerance) << " % of the minimum, at the map's resolution)\n";
   std::snprintf(line, sizeof line, "%-14s %-5s %-7s %-7s %-16s %-7s %-7s %-16s %-9s %-9s %s\n",
@@ -526,6 +535,7 @@ void write_contents(hid_t file, const std::vector<Case>& cases,
                     const std::vector<sweeps::GroupSummary>& groups, const std::vector<Row>& rows,
                     const sweeps::CalibrationOptions& o, const json& report) {
   attr(file, "objective", std::string(objective_name(o.objective)));
+  attr(file, "barrier_model", std::string(o.momentum ? "momentum" : "paper"));
   attr(file, "lambda_cells", static_cast<double>(o.lambda_cells));
   attr(file, "tau_cells", static_cast<double>(o.tau_cells));
   attr(file, "profile_tolerance", o.profile_tolerance);
@@ -742,14 +752,17 @@ int run_calibrate(const Options& opt) {
       a1 = std::exp(s / n);
       a2 = 0.0;
     }
-    rows.push_back(closed_form_row(c, "empirical", "default", with_empirical(c.scene, nan, nan, nan)));
+    const BarrierModel bm = co.momentum ? BarrierModel::Momentum : BarrierModel::Paper;
+    rows.push_back(closed_form_row(c, "empirical", "default",
+                                   with_empirical(c.scene, nan, nan, nan, bm)));
     rows.push_back(closed_form_row(c, "empirical", "calibrated",
-                                   with_empirical(c.scene, a1, a2, g.empirical_tau.mean)));
-    rows.push_back(closed_form_row(c, "analytical", "default", with_analytical(c.scene, nan, nan)));
+                                   with_empirical(c.scene, a1, a2, g.empirical_tau.mean, bm)));
+    rows.push_back(closed_form_row(c, "analytical", "default",
+                                   with_analytical(c.scene, nan, nan, bm)));
     rows.push_back(closed_form_row(c, "analytical", "calibrated",
-                                   with_analytical(c.scene, g.lambda.mean, g.tau.mean)));
+                                   with_analytical(c.scene, g.lambda.mean, g.tau.mean, bm)));
     rows.push_back(closed_form_row(c, "analytical", "case fit",
-                                   with_analytical(c.scene, c.fit.lambda, c.fit.tau)));
+                                   with_analytical(c.scene, c.fit.lambda, c.fit.tau, bm)));
     Row m;
     m.case_name = c.scene.name;
     m.method = "mpm";
@@ -762,6 +775,7 @@ int run_calibrate(const Options& opt) {
   }
 
   json report = {{"objective", objective_name(co.objective)},
+                 {"barrier_model", opt.barrier_model},
                  {"grid", {co.lambda_cells, co.tau_cells}},
                  {"profile_tolerance", co.profile_tolerance},
                  {"cases", json::array()},
@@ -799,6 +813,10 @@ Subcommand add_calibrate_command(CLI::App& app) {
   s.command->add_option("--out", opt->out, "Write fits, misfit maps and the comparison to this "
                                            "HDF5 file (atomically)");
   s.command->add_option("--format", opt->format, "Report format: table or json");
+  s.command->add_option("--barrier-model", opt->barrier_model,
+                        "How the closed forms move a free barrier: paper (default) or momentum "
+                        "(the momentum-consistent barrier; its lambda and tau are fitted to the "
+                        "force it receives)");
   s.run = [opt] { return run_calibrate(*opt); };
   return s;
 }

@@ -13,6 +13,7 @@
 #include "kernels/closed_form/momentum_barrier.hpp"
 #include "kernels/closed_form/peak_force_families.hpp"
 #include "kernels/closed_form/two_body_model.hpp"
+#include "sweeps/sampled_scene.hpp"
 
 namespace lsi {
 namespace {
@@ -96,6 +97,7 @@ MomentumBarrierSetup momentum_setup(const Scene& scene, const ForcePulse& fixed_
   s.base_friction = scene.barrier.base_friction;
   s.face = resolve_face_force(math::degrees_to_radians(scene.barrier.face_angle_deg),
                               scene.barrier.face_friction);
+  s.flow_friction = flow_friction_deceleration(scene);
   return s;
 }
 
@@ -127,8 +129,11 @@ void fill_momentum_histories(MethodResult& r, const Scene& scene, const Momentum
   r.final_displacement = scene.barrier.fixed ? 0.0 : res.final_displacement;
   r.barrier_model = "momentum";
   r.extra["peak_force_horizontal"] = res.peak_force * s.face.horizontal;
-  // The barrier's impulse: the flow's loss of horizontal momentum, over h.
-  r.extra["impulse"] = m1 * (s.velocity - res.final_landslide_velocity) / s.face.horizontal;
+  double impulse = 0.0;   // the barrier's, from the force it received
+  for (size_t i = 1; i < r.time.size(); ++i)
+    impulse += 0.5 * (r.force[i] + r.force[i - 1]) * (r.time[i] - r.time[i - 1]);
+  r.extra["impulse"] = impulse;
+  r.extra["flow_friction_deceleration"] = s.flow_friction;
   r.extra["largest_barrier_velocity"] = res.largest_barrier_velocity;
   if (!scene.barrier.fixed) {
     r.extra["barrier_start_time"] = res.start_time >= 0.0 ? res.start_time : nan;
@@ -243,6 +248,14 @@ MethodResult analytical_with_mass(const Scene& scene, double barrier_mass) {
 }
 
 }  // namespace
+
+double flow_friction_deceleration(const Scene& scene) {
+  const SceneLandslide& l = scene.landslide;
+  const bool dry = scene.methods.mpm &&
+                   scene.methods.mpm->value("phases", std::string("saturated")) == "dry";
+  return sweeps::flow_friction_deceleration(l.base_friction, l.material.porosity, l.density_kg_m3,
+                                            !dry);
+}
 
 MethodResult run_empirical(const Scene& scene) {
   return empirical_with_mass(scene, scene.barrier.mass());

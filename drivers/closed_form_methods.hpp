@@ -17,6 +17,11 @@ MethodResult run_analytical(const Scene& scene);
 // meaning "not given by this method", and are neither printed nor stored.
 MethodResult run_literature(const Scene& scene);
 
+// The flow's base friction as the momentum-consistent closed forms take it, F1 / m1 (m/s^2):
+// landslide.base_friction g on the grains' share of the weight (saturated unless the scene's MPM
+// runs it dry; sweeps/sampled_scene.hpp, flow_friction_deceleration).
+double flow_friction_deceleration(const Scene& scene);
+
 // Runs the methods the scene selects (or `only`, if non-empty), in the order empirical,
 // analytical, literature. Throws InputError for a requested method the scene cannot run.
 std::vector<MethodResult> run_closed_form_methods(const Scene& scene,

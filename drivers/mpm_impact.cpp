@@ -136,7 +136,7 @@ MpmCase impact_case(const Scene& scene) {
   c.upper = {snap_up(x_right), snap_up(y_top)};
   check_grid_size(c, h);
   c.gravity = {0.0, -g};
-  c.walls.bottom = {true, 0.0, c.settings.base_friction, false};
+  c.walls.bottom = {true, 0.0, l.base_friction, false};
   // Upstream: a smooth wall far behind the tail. Downstream and above: no-slip walls that catch
   // what overtops or splashes (a smooth wall would send a fast overtopping flow up the wall and
   // out of the grid); they are far from the barrier and do not touch what acts on it.

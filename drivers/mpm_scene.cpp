@@ -28,8 +28,12 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
                                    "flip_ratio", "scatter", "snapshot_interval_s",
                                    "small_mass_fraction", "transfer_dissipation"};
   if (impact)
-    keys.insert(keys.end(), {"base_friction", "phases", "drag", "pore_pressure",
-                             "pore_pressure_output", "peak_force_window_s"});
+    keys.insert(keys.end(), {"phases", "drag", "pore_pressure", "pore_pressure_output",
+                             "peak_force_window_s"});
+  if (impact && block.is_object() && block.contains("base_friction"))
+    jf::fail(jf::join_path(path, "base_friction") + " = " + jf::format_value(block["base_friction"]) +
+             ": moved to landslide.base_friction (the flow's friction on its base is the "
+             "landslide's, read by the MPM and the momentum-consistent closed forms)");
   const jf::ObjectReader r(block, path, keys);
   MpmSettings s;
   s.cell_size_m = r.number("cell_size_m", jf::greater_than(0, "m"));
@@ -42,7 +46,6 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
     const auto t = r.optional_number("end_time_s", jf::greater_than(0, "s"));
     s.end_time_given = t.has_value();
     s.end_time_s = t.value_or(1.0);   // replaced by the impact scene's default
-    s.base_friction = r.number_or("base_friction", 0.0, jf::at_least(0));
     s.saturated = r.choice("phases", {"saturated", "dry"}, std::string("saturated")) == "saturated";
     s.semi_implicit_drag =
         r.choice("drag", {"semi-implicit", "explicit"}, std::string("semi-implicit")) == "semi-implicit";

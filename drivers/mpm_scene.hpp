@@ -38,8 +38,8 @@ struct MpmSettings {
   double small_mass_fraction = 0.0;   // dry solver: nodes below this x lightest point: no force
   double snapshot_interval_s = 0.0;   // particle snapshots every this many seconds; 0 = none
   bool transfer_dissipation = false;  // account the energy lost in the grid transfers
-  // Impact scenes only (a landslide scene with `methods.mpm`):
-  double base_friction = 0.0;         // Coulomb coefficient of the base under the flow (paper: 0)
+  // Impact scenes only (a landslide scene with `methods.mpm`; the flow's base friction is the
+  // landslide's, SceneLandslide::base_friction):
   bool saturated = true;              // "phases": "saturated" (two-phase, the paper) or "dry"
   bool semi_implicit_drag = true;     // "drag": "semi-implicit" or "explicit" (saturated only)
   bool cell_pore_pressure = false;    // "pore_pressure": "point" or "cell" (saturated only)
@@ -78,7 +78,7 @@ struct MpmCase {
 };
 
 // Parses `methods.mpm` (path names the block in messages). Throws InputError. `impact`: the block
-// of a landslide scene (accepts base_friction; end_time_s optional).
+// of a landslide scene (accepts phases, drag, ...; end_time_s optional).
 MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& path,
                                bool impact = false);
 bool is_mpm_case(const nlohmann::json& scene);

@@ -29,7 +29,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 const std::vector<std::string> kTopKeys = {"name", "landslide", "barrier", "methods"};
 const std::vector<std::string> kLandslideKeys = {"thickness_m", "velocity_m_s", "density_kg_m3",
-                                                 "shape", "material"};
+                                                 "shape", "material", "base_friction"};
 const std::vector<std::string> kShapeKeys = {"kind", "body_squares", "length_m"};
 const std::vector<std::string> kMaterialKeys = {
     "porosity",         "friction_angle_deg",         "cohesion_kpa",
@@ -103,6 +103,7 @@ SceneLandslide parse_landslide(const ObjectReader& root) {
   s.density_kg_m3 = r.number("density_kg_m3", greater_than(0, "kg/m^3"));
   s.shape = parse_shape(r);
   s.material = parse_material(r);
+  s.base_friction = r.number_or("base_friction", 0.0, at_least(0));
   // Each value is in range, but their product may not be: L1,0 = (2 + i) h (or the rectangle's
   // length), the cross-section L1,0 h and the mass per metre rho_m L1,0 h overflow a double for
   // huge values (h = 1e308) and underflow to 0 for tiny ones; the methods need them finite.

@@ -46,6 +46,10 @@ struct SceneLandslide {
   double density_kg_m3 = 0.0;    // rho_m, mixture density
   LandslideShape shape;
   LandslideMaterial material;
+  // tan(phi_b): Coulomb friction of the flow on its base (the paper's F1, Fig. 1); 0 is the
+  // paper's smooth base. The MPM applies it to the skeleton's contact force with the base; the
+  // momentum-consistent closed forms to the flow's weight, as that force (docs/models.md).
+  double base_friction = 0.0;
   // Derived from shape: L1,0 (equivalent length, m) and cross-section area (m^2).
   double equivalent_length_m() const;
   double area_m2() const;

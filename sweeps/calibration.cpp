@@ -9,6 +9,8 @@
 #include <string>
 
 #include "kernels/closed_form/empirical_model.hpp"
+#include "kernels/closed_form/face_resolution.hpp"
+#include "kernels/closed_form/momentum_barrier.hpp"
 #include "kernels/closed_form/two_body_model.hpp"
 #include "kernels/common/constants.hpp"
 #include "sweeps/levenberg_marquardt.hpp"
@@ -217,23 +219,70 @@ double mpm_alpha(const ImpactInputs& in, double mpm_peak_force) {
   return (mpm_peak_force - f_stat) / (in.density * vn * vn * in.thickness);
 }
 
-std::vector<double> residuals(const CalibrationCase& c, const ImpactSummary& mpm, const ForcePulse& p,
-                              Objective o) {
+size_t compared_samples(const CalibrationCase& c, const ImpactSummary& mpm) {
+  // The samples up to the MPM's impact duration (at least the first two). What follows is the
+  // static load of the retained flow, outside the models, and as long as the run goes on at rest.
+  size_t n = 0;
+  while (n < c.time.size() && c.time[n] <= mpm.impact_duration) ++n;
+  return std::max<size_t>(n, 2);
+}
+
+ModelHistory two_body_history(const CalibrationCase& c, size_t samples, double lambda, double tau,
+                              bool momentum) {
+  const ImpactInputs& in = c.inputs;
+  ModelHistory h;
+  h.force.resize(samples);
+  if (!momentum) {
+    const ForcePulse p = two_body_pulse(in, lambda, tau);
+    for (size_t i = 0; i < samples; ++i) h.force[i] = p.force(c.time[i]);
+    h.peak = p.peak;
+    h.rise_time = p.rise_time;
+    h.duration = p.duration;
+    return h;
+  }
+  MomentumBarrierSetup s;
+  s.face = resolve_face_force(in.face_angle, in.face_friction);
+  s.fixed_pulse = momentum_two_body_pulse(in.landslide_mass, in.velocity, in.equivalent_length,
+                                          lambda, tau, s.face.horizontal);
+  s.landslide_mass = in.landslide_mass;
+  s.velocity = in.velocity;
+  s.barrier_mass = in.fixed ? std::numeric_limits<double>::infinity() : in.barrier_mass;
+  s.base_friction = in.base_friction;
+  s.flow_friction = in.flow_friction;
+  std::vector<MomentumBarrierState> st(samples);
+  const MomentumBarrierResult r =
+      momentum_barrier(s, c.time.data(), static_cast<int>(samples), st.data());
+  for (size_t i = 0; i < samples; ++i) h.force[i] = st[i].force;
+  h.peak = r.peak_force;
+  h.rise_time = r.rise_time;
+  h.duration = r.contact_end;
+  return h;
+}
+
+std::vector<double> residuals(const CalibrationCase& c, const ImpactSummary& mpm,
+                              const ModelHistory& h, Objective o) {
   if (o == Objective::NormalisedRms) {
-    // sum r_i^2 = mean (F_model - F_mpm)^2 / F_peak^2 = nrms^2, over the MPM's impact: the
-    // samples up to its impact duration (at least the first two). What follows is the static
-    // load of the retained flow, outside the model, and as long as the run goes on at rest.
-    size_t n = 0;
-    while (n < c.time.size() && c.time[n] <= mpm.impact_duration) ++n;
-    n = std::max<size_t>(n, 2);
+    // sum r_i^2 = mean (F_model - F_mpm)^2 / F_peak^2 = nrms^2, over the MPM's impact.
+    const size_t n = h.force.size();
     const double scale = 1.0 / (mpm.peak_force * std::sqrt(static_cast<double>(n)));
     std::vector<double> r(n);
-    for (size_t i = 0; i < n; ++i) r[i] = (p.force(c.time[i]) - c.force[i]) * scale;
+    for (size_t i = 0; i < n; ++i) r[i] = (h.force[i] - c.force[i]) * scale;
     return r;
   }
-  return {(p.peak - mpm.peak_force) / mpm.peak_force,
-          (p.duration - mpm.impact_duration) / mpm.impact_duration,
-          (p.rise_time - mpm.rise_time) / mpm.impact_duration};
+  return {(h.peak - mpm.peak_force) / mpm.peak_force,
+          (h.duration - mpm.impact_duration) / mpm.impact_duration,
+          (h.rise_time - mpm.rise_time) / mpm.impact_duration};
+}
+
+std::vector<double> residuals(const CalibrationCase& c, const ImpactSummary& mpm, const ForcePulse& p,
+                              Objective o) {
+  ModelHistory h;
+  h.force.resize(o == Objective::NormalisedRms ? compared_samples(c, mpm) : 0);
+  for (size_t i = 0; i < h.force.size(); ++i) h.force[i] = p.force(c.time[i]);
+  h.peak = p.peak;
+  h.rise_time = p.rise_time;
+  h.duration = p.duration;
+  return residuals(c, mpm, h, o);
 }
 
 double misfit(const CalibrationCase& c, const ImpactSummary& mpm, const ForcePulse& p, Objective o) {
@@ -247,7 +296,15 @@ TwoBodyFit fit_two_body(const CalibrationCase& c, const CalibrationOptions& o) {
   validate(c);
   TwoBodyFit f;
   f.mpm = mpm_summary_of(c);
-  const ImpactInputs& in = c.inputs;
+  const size_t samples = o.objective == Objective::NormalisedRms ? compared_samples(c, f.mpm) : 0;
+  auto model_residuals = [&](double lambda, double tau) {
+    return residuals(c, f.mpm, two_body_history(c, samples, lambda, tau, o.momentum), o.objective);
+  };
+  auto model_misfit = [&](double lambda, double tau) {
+    double s = 0.0;
+    for (double r : model_residuals(lambda, tau)) s += r * r;
+    return std::sqrt(s);
+  };
 
   // 1. Grid scan: the misfit map.
   f.map.lambda = lambda_axis(o.lambda_cells);
@@ -257,7 +314,7 @@ TwoBodyFit fit_two_body(const CalibrationCase& c, const CalibrationOptions& o) {
   for (size_t i = 0; i < f.map.lambda.size(); ++i)
     for (size_t j = 0; j < f.map.tau.size(); ++j) {
       const size_t k = i * f.map.tau.size() + j;
-      f.map.misfit[k] = misfit(c, f.mpm, two_body_pulse(in, f.map.lambda[i], f.map.tau[j]), o.objective);
+      f.map.misfit[k] = model_misfit(f.map.lambda[i], f.map.tau[j]);
       if (f.map.misfit[k] < f.map.misfit[best]) best = k;
     }
   f.grid_lambda = f.map.lambda[best / f.map.tau.size()];
@@ -266,7 +323,7 @@ TwoBodyFit fit_two_body(const CalibrationCase& c, const CalibrationOptions& o) {
 
   // 2. Levenberg-Marquardt from the best node, on u = logit(theta) (bounds by transform).
   auto r_of_theta = [&](const Eigen::VectorXd& th) {
-    return to_eigen(residuals(c, f.mpm, two_body_pulse(in, th[0], th[1]), o.objective));
+    return to_eigen(model_residuals(th[0], th[1]));
   };
   auto r_of_u = [&](const Eigen::VectorXd& u) {
     Eigen::VectorXd th(2);

@@ -47,6 +47,10 @@ struct ImpactInputs {
   double face_angle = 0.0;         // beta, rad
   double kappa = 0.0;              // static coefficient of the empirical model (eq. 5)
   bool fixed = true;
+  // The momentum-consistent barrier (kernels/closed_form/momentum_barrier.hpp) only:
+  double base_friction = 0.0;      // tan(delta_b)
+  double face_friction = 0.0;      // tan(delta) on the face
+  double flow_friction = 0.0;      // F1 / m1, m/s^2
 };
 
 // One MPM history and its inputs. peak_force / rise_time / impact_duration are the MPM's own
@@ -71,6 +75,10 @@ ImpactSummary impact_summary(const std::vector<double>& time, const std::vector<
 
 struct CalibrationOptions {
   Objective objective = Objective::NormalisedRms;
+  // The analytical model fitted: the paper's two-body pulse (false) or the momentum-consistent
+  // barrier under the fixed-barrier two-body pulse (true), whose force on a free barrier is not
+  // a triangle (docs/models.md).
+  bool momentum = false;
   int lambda_cells = 41;          // N: lambda axis (i+1)/N, i = 0..N-1
   int tau_cells = 41;             // M: tau axis (j+1)/(M+1), j = 0..M-1
   int max_iterations = 200;       // LM
@@ -91,9 +99,23 @@ ForcePulse empirical_pulse(const ImpactInputs& in, double alpha, double tau);
 double froude_number(const ImpactInputs& in);        // eq. 1, Fr = v_n / sqrt(g h)
 double mpm_alpha(const ImpactInputs& in, double mpm_peak_force);   // eqs. 3-5 solved for alpha
 
-// The objective's residual vector and misfit for one pulse against one case.
+// A model's force at the first `force.size()` MPM output times and its summaries.
+struct ModelHistory {
+  std::vector<double> force;
+  double peak = 0.0, rise_time = 0.0, duration = 0.0;
+};
+// The MPM samples the nrms objective compares: those of its impact (at least two).
+size_t compared_samples(const CalibrationCase& c, const ImpactSummary& mpm);
+// The analytical model's history for (lambda, tau): the paper's pulse, or the force the
+// momentum-consistent barrier receives.
+ModelHistory two_body_history(const CalibrationCase& c, size_t samples, double lambda, double tau,
+                              bool momentum);
+
+// The objective's residual vector and misfit for one pulse (or model history) against one case.
 std::vector<double> residuals(const CalibrationCase& c, const ImpactSummary& mpm, const ForcePulse& p,
                               Objective o);
+std::vector<double> residuals(const CalibrationCase& c, const ImpactSummary& mpm,
+                              const ModelHistory& h, Objective o);
 double misfit(const CalibrationCase& c, const ImpactSummary& mpm, const ForcePulse& p, Objective o);
 
 struct MisfitMap {

@@ -13,13 +13,14 @@
 #include "kernels/closed_form/face_resolution.hpp"
 #include "kernels/closed_form/momentum_barrier.hpp"
 #include "kernels/closed_form/two_body_model.hpp"
+#include "kernels/common/constants.hpp"
 #include "kernels/common/math.hpp"
 
 namespace lsi::sweeps {
 
 // The numeric scene keys a study may sample (JSON pointers in scene_field_pointer).
 enum SceneField : int {
-  thickness_m, velocity_m_s, density_kg_m3, body_squares, length_m,
+  thickness_m, velocity_m_s, density_kg_m3, body_squares, length_m, flow_base_friction,
   porosity, friction_angle_deg, cohesion_kpa, young_modulus_mpa, poisson_ratio,
   hydraulic_conductivity_m_s, liquid_bulk_modulus_mpa, liquid_viscosity_kpa_s,
   height_m, base_width_m, top_width_m, face_angle_deg, barrier_density_kg_m3,
@@ -31,7 +32,7 @@ enum SceneField : int {
 
 inline constexpr const char* scene_field_pointer[scene_field_count] = {
     "/landslide/thickness_m", "/landslide/velocity_m_s", "/landslide/density_kg_m3",
-    "/landslide/shape/body_squares", "/landslide/shape/length_m",
+    "/landslide/shape/body_squares", "/landslide/shape/length_m", "/landslide/base_friction",
     "/landslide/material/porosity", "/landslide/material/friction_angle_deg",
     "/landslide/material/cohesion_kpa", "/landslide/material/young_modulus_mpa",
     "/landslide/material/poisson_ratio", "/landslide/material/hydraulic_conductivity_m_s",
@@ -77,6 +78,7 @@ KOKKOS_INLINE_FUNCTION constexpr FieldRange scene_field_range(int field) {
     case barrier_mass_kg_per_m: return {0, unbounded, false, false, false};     // > 0
     case base_friction: return {0, unbounded, true, false, false};              // >= 0
     case face_friction: return {0, unbounded, true, false, false};              // >= 0
+    case flow_base_friction: return {0, unbounded, true, false, false};         // >= 0
     case empirical_a1: return {0, unbounded, false, false, false};              // > 0
     case empirical_a2: return {-5, 5, true, true, false};                       // [-5, 5]
     case empirical_tau: return {0, 1, false, false, false};                     // (0, 1)
@@ -98,7 +100,18 @@ struct SceneValues {
   bool analytical_lambda_given = false, analytical_tau_given = false;
   // The barrier model of each closed form (drivers/scene.hpp, BarrierModel): false = the paper's.
   bool empirical_momentum = false, analytical_momentum = false;
+  bool saturated_flow = true;   // the flow's base friction acts on its grains' share of the weight
 };
+
+// The flow's base friction as a deceleration of the flow, F1 / m1 (m/s^2): tan(phi_b) g times the
+// share of the weight its grains carry onto the base: 1 - n rho_L / rho_m for a saturated flow at
+// hydrostatic pore pressure (what the MPM's Coulomb base acts on, the effective stress plus
+// (1 - n) p), 1 for a dry one (drivers/closed_form_methods.cpp uses the same).
+KOKKOS_INLINE_FUNCTION double flow_friction_deceleration(double base_friction, double porosity,
+                                                         double density, bool saturated) {
+  const double share = saturated ? 1.0 - porosity * 1000.0 / density : 1.0;
+  return base_friction * gravity * (share > 0.0 ? share : 0.0);
+}
 
 KOKKOS_INLINE_FUNCTION bool in_range(double v, const FieldRange& r) {
   if (!(v == v) || v == unbounded || v == -unbounded) return false;   // NaN, inf: never valid
@@ -182,6 +195,8 @@ KOKKOS_INLINE_FUNCTION void store_momentum(const ForcePulse& fixed_pulse, const 
   b.barrier_mass = m.barrier_mass;
   b.base_friction = s.value[base_friction];
   b.face = face;
+  b.flow_friction = flow_friction_deceleration(s.value[flow_base_friction], s.value[porosity],
+                                               s.value[density_kg_m3], s.saturated_flow);
   const MomentumBarrierResult r = momentum_barrier(b);
   out[peak_force] = r.peak_force;
   out[rise_time] = r.rise_time;

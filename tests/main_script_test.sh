@@ -46,7 +46,7 @@ if [ "$rc" -ne 2 ] || [[ "$err" != *"at least 4"* ]]; then
 fi
 
 /usr/bin/python3 "$src/ci/reference_variant.py" "$out/scenes" --cells 6 --dry --smooth-base \
-  "$src"/scenes/reference/L?-B?*.json
+  --paper-barrier "$src"/scenes/reference/L?-B?*.json
 /usr/bin/python3 - "$src/scenes/reference" "$out/scenes" <<'PY'
 import glob, json, os, sys
 ref, out = sys.argv[1], sys.argv[2]
@@ -58,8 +58,12 @@ for path in paths:
     mpm = got["methods"]["mpm"]
     h = want["landslide"]["thickness_m"]
     assert abs(mpm["cell_size_m"] - h / 6) <= 1e-12 * h, (path, mpm)
-    assert mpm["phases"] == "dry" and mpm["base_friction"] == 0, (path, mpm)
-    want["methods"]["mpm"].update(cell_size_m=mpm["cell_size_m"], phases="dry", base_friction=0)
+    assert mpm["phases"] == "dry" and got["landslide"]["base_friction"] == 0, (path, got)
+    want["methods"]["mpm"].update(cell_size_m=mpm["cell_size_m"], phases="dry")
+    want["landslide"]["base_friction"] = 0
+    for m in ("empirical", "analytical"):
+        assert got["methods"][m]["barrier_model"] == "paper", (path, got["methods"])
+        want["methods"][m]["barrier_model"] = "paper"
     assert got == want, path   # nothing else changed
 print("variant scenes: 18 checked")
 PY

@@ -479,10 +479,11 @@ TEST(Cli, MpmImpactSummaryGivesTheVolumes) {
 // cut short by end_time_s while it slides, the run says so (table, JSON, HDF5) and gives no
 // final displacement, only how far the barrier got; left to run, with the flow's base friction,
 // it ends at rest before the default end time and gives its final displacement.
-std::string sliding_barrier_scene(const std::string& mpm) {
+std::string sliding_barrier_scene(const std::string& mpm, double flow_base_friction = 0.0) {
   return R"({"name": "sliding",
  "landslide": {"thickness_m": 1.0, "velocity_m_s": 4, "density_kg_m3": 1800,
-   "shape": {"kind": "rectangle", "length_m": 3.0},
+   "shape": {"kind": "rectangle", "length_m": 3.0}, "base_friction": )" +
+         std::to_string(flow_base_friction) + R"(,
    "material": {"friction_angle_deg": 20, "young_modulus_mpa": 2, "poisson_ratio": 0.25}},
  "barrier": {"height_m": 2, "base_width_m": 1.5, "top_width_m": 1.0, "face_angle_deg": 90,
    "density_kg_m3": 400, "base_friction": 0.5, "face_friction": 0.3, "fixed": false},
@@ -518,7 +519,7 @@ TEST(Cli, MpmRunCutShortWhileTheBarrierSlidesHasNoFinalDisplacement) {
 TEST(Cli, MpmRunEndsWhenTheLandslideAndTheBarrierAreAtRest) {
   const fs::path scene = write_file(
       "at_rest.json",
-      sliding_barrier_scene(R"({"cell_size_m": 0.25, "phases": "dry", "base_friction": 0.4})"));
+      sliding_barrier_scene(R"({"cell_size_m": 0.25, "phases": "dry"})", 0.4));
   const fs::path out = temp_dir() / "at_rest.h5";
   const Outcome r = run("run " + scene.string() + " --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.out;
@@ -578,12 +579,12 @@ TEST(Cli, MpmSnapshotPorePressureIsTheCellMeanByDefault) {
 // not reproduce (stale), gives no error bars and says why; a malformed study is an input error.
 // The scene: the sliding-barrier flow at 4 cells, run to rest (well under a second).
 TEST(Cli, CompareAttachesTheErrorBarsOfAConvergenceStudy) {
-  const std::string mpm = R"({"cell_size_m": 0.25, "phases": "dry", "base_friction": 0.4})";
-  const fs::path scene = write_file("bars.json", sliding_barrier_scene(mpm));
+  const std::string mpm = R"({"cell_size_m": 0.25, "phases": "dry"})";
+  const fs::path scene = write_file("bars.json", sliding_barrier_scene(mpm, 0.4));
   const Outcome first = run("run " + scene.string() + " --format json");
   ASSERT_EQ(first.code, 0) << first.out;
   const auto m = nlohmann::json::parse(first.out.substr(first.out.find('{')))["mpm"];
-  const auto doc = nlohmann::json::parse(sliding_barrier_scene(mpm));
+  const auto doc = nlohmann::json::parse(sliding_barrier_scene(mpm, 0.4));
   auto study = [&](double peak_scale, const nlohmann::json& mpm_block) {
     nlohmann::json outputs = {
         {"peak_force", {{"value", peak_scale * m["peak_force"].get<double>()}, {"spread", 1234.0},
@@ -695,7 +696,8 @@ TEST(Cli, MpmImpactErrorsNameTheField) {
       // Saturated (the default phases): no small-mass threshold.
       {R"({"cell_size_m": 0.1, "small_mass_fraction": 0.001})",
        "methods.mpm.small_mass_fraction = 0.001: only used with \"phases\": \"dry\""},
-      {R"({"cell_size_m": 0.1, "base_friction": -1})", "methods.mpm.base_friction = -1"},
+      {R"({"cell_size_m": 0.1, "base_friction": 0.2})",
+       "methods.mpm.base_friction = 0.2: moved to landslide.base_friction"},
       {R"({"cell_size_m": 0.1, "end_time_s": 0})", "methods.mpm.end_time_s = 0"},
   };
   int k = 0;

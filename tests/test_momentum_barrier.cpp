@@ -19,8 +19,9 @@ constexpr double kPi = 3.14159265358979323846;
 // A triangle of a fixed barrier whose horizontal impulse stops the flow: F_peak T2 / 2 =
 // m1 v0 / h (the analytical model's pulse with lambda, tau, made momentum-consistent).
 MomentumBarrierSetup setup(double m1, double v0, double L, double m2, double mu_b, double beta_deg,
-                           double mu_f, double lambda = 0.72, double tau = 0.17) {
+                           double mu_f, double lambda = 0.72, double tau = 0.17, double f1 = 0.0) {
   MomentumBarrierSetup s;
+  s.flow_friction = f1;
   s.face = resolve_face_force(beta_deg * kPi / 180.0, mu_f);
   s.landslide_mass = m1;
   s.velocity = v0;
@@ -41,11 +42,12 @@ std::vector<double> grid(double t_end, int n) {
 
 // The model's equations integrated as written, in the physical variables, by the classical
 // Runge-Kutta method with a small fixed step:
-//   m1 v1' = -h N,  m2 v2' = c N - mu_b m2 g (sliding, v2 > 0 or c N > mu_b m2 g), x2' = v2,
+//   m1 v1' = -h N - m1 f1,  m2 v2' = c N - mu_b m2 g (sliding, v2 > 0 or c N > mu_b m2 g), x2' = v2,
 //   N = Phi(w), w = v0 - v1 + v2, on the rising branch until N reaches the peak.
 // Phi(w) = sqrt(2 F_p (m1 w / h) / T1) rising, sqrt(2 F_p (J - m1 w / h) / (T2 - T1)) decaying.
-// It starts inside the first sticking phase (where the fixed pulse is exact), or, without base
-// friction, a moment after t = 0 from the exact start of the slide; returns the final
+// On a smooth flow base it starts inside the first sticking phase (where the fixed pulse is
+// exact), or, without base friction, a moment after t = 0 from the exact start of the slide;
+// with the flow's base friction at t = 0 (w grows from the first instant). Returns the final
 // displacement and fills v2 at `times`.
 double direct_integration(const MomentumBarrierSetup& s, const std::vector<double>& times,
                           std::vector<double>& v2_at, double dt_max) {
@@ -59,8 +61,12 @@ double direct_integration(const MomentumBarrierSetup& s, const std::vector<doubl
     if (!decay) return std::sqrt(std::max(0.0, 2.0 * p.peak * (m1 * w / h) / p.rise_time));
     return std::sqrt(std::max(0.0, 2.0 * p.peak * (J - m1 * w / h) / (p.duration - p.rise_time)));
   };
+  const double f1 = s.flow_friction;
   double t, v1, v2 = 0.0, x2 = 0.0;
-  if (gf > 0.0) {
+  if (f1 > 0.0) {
+    t = 0.0;
+    v1 = v0;
+  } else if (gf > 0.0) {
     t = 0.5 * (gf * m2 / c) / (p.peak / p.rise_time);   // half way to the slip
     v1 = v0 - h * p.impulse(t) / m1;
   } else {
@@ -71,12 +77,12 @@ double direct_integration(const MomentumBarrierSetup& s, const std::vector<doubl
     v2 = c * kappa * a2 * t * t / (4.0 * m2);
     x2 = c * kappa * a2 * t * t * t / (12.0 * m2);
   }
-  bool sliding = gf == 0.0;
+  bool sliding = gf == 0.0 && f1 == 0.0;
   size_t k = 0;
   while (k < times.size() && times[k] <= t) v2_at[k++] = v2;
   auto rhs = [&](double v1_, double v2_, double* d) {
     const double N = Phi(v0 - v1_ + v2_);
-    d[0] = -h * N / m1;
+    d[0] = -h * N / m1 - f1;
     d[1] = sliding ? (c * N - gf * m2) / m2 : 0.0;
     d[2] = v2_;
   };
@@ -115,11 +121,15 @@ double direct_integration(const MomentumBarrierSetup& s, const std::vector<doubl
 // branches and decelerates together with the flow after the pulse.
 TEST(MomentumBarrier, MatchesADirectIntegrationOfItsEquations) {
   struct Case {
-    double m1, v0, L, m2, mu_b, beta, mu_f;
+    double m1, v0, L, m2, mu_b, beta, mu_f, f1;
   };
-  for (const Case& c : {Case{90000, 9, 20, 26400, 0.5, 80, 0.3}, Case{57600, 6, 16, 26400, 0.5, 80, 0.3},
-                        Case{97200, 12.5, 18, 82000, 0.5, 60, 0.3}, Case{57600, 6, 16, 26400, 0.2, 90, 0.0}}) {
-    const MomentumBarrierSetup s = setup(c.m1, c.v0, c.L, c.m2, c.mu_b, c.beta, c.mu_f);
+  // The last three with the flow braked by its base (f1 = 0.2 g x 0.72: the reference study's
+  // flow base on a saturated flow's grain contacts).
+  for (const Case& c : {Case{90000, 9, 20, 26400, 0.5, 80, 0.3, 0}, Case{57600, 6, 16, 26400, 0.5, 80, 0.3, 0},
+                        Case{97200, 12.5, 18, 82000, 0.5, 60, 0.3, 0}, Case{57600, 6, 16, 26400, 0.2, 90, 0.0, 0},
+                        Case{90000, 9, 20, 26400, 0.5, 80, 0.3, 1.416}, Case{97200, 12.5, 18, 26400, 0.5, 80, 0.3, 1.416},
+                        Case{57600, 6, 16, 26400, 0.2, 90, 0.0, 1.416}}) {
+    const MomentumBarrierSetup s = setup(c.m1, c.v0, c.L, c.m2, c.mu_b, c.beta, c.mu_f, 0.72, 0.17, c.f1);
     const MomentumBarrierResult r0 = momentum_barrier(s);
     ASSERT_TRUE(r0.ok);
     ASSERT_GT(r0.start_time, 0.0) << "the case must slide";
@@ -234,4 +244,32 @@ TEST(MomentumBarrier, TheFaceFrictionAndTheVerticalLoadEnterTheDrive) {
   EXPECT_GT(slide(90, 0.3), slide(90, 0.0));
 }
 
+}  // namespace
+
+namespace {
+// The flow's base friction (F1 = m1 f1) takes its share of the flow's momentum: against a fixed
+// barrier the flow ends at rest with h J + m1 f1 t_c = m1 v0 (J the barrier's impulse, t_c the
+// contact), the pulse is shorter and lower in impulse than on a smooth base, and a free barrier
+// slides less.
+TEST(MomentumBarrier, TheFlowsBaseFrictionTakesItsShareOfTheMomentum) {
+  const double m1 = 90000, v0 = 9, f1 = 1.416;
+  const MomentumBarrierSetup fixed = setup(m1, v0, 20, std::numeric_limits<double>::infinity(), 0.5,
+                                           80, 0.3, 0.72, 0.17, f1);
+  const MomentumBarrierResult r0 = momentum_barrier(fixed);
+  ASSERT_TRUE(r0.ok);
+  EXPECT_LT(r0.contact_end, fixed.fixed_pulse.duration);
+  const std::vector<double> t = grid(r0.contact_end, 20001);
+  std::vector<MomentumBarrierState> st(t.size());
+  momentum_barrier(fixed, t.data(), int(t.size()), st.data());
+  double J = 0.0;   // trapezoids on 20001 samples: 1e-6 of the impulse
+  for (size_t i = 1; i < t.size(); ++i) J += 0.5 * (st[i].force + st[i - 1].force) * (t[i] - t[i - 1]);
+  EXPECT_NEAR(fixed.face.horizontal * J + m1 * f1 * r0.contact_end, m1 * v0, 1e-6 * m1 * v0);
+  EXPECT_NEAR(r0.final_landslide_velocity, 0.0, 1e-9 * v0);
+  // A free barrier slides less when the flow's base brakes it too.
+  const double smooth = momentum_barrier(setup(m1, v0, 20, 26400, 0.5, 80, 0.3)).final_displacement;
+  const double rough =
+      momentum_barrier(setup(m1, v0, 20, 26400, 0.5, 80, 0.3, 0.72, 0.17, f1)).final_displacement;
+  EXPECT_LT(rough, 0.8 * smooth);
+  EXPECT_GT(rough, 0.0);
+}
 }  // namespace

@@ -150,8 +150,11 @@ TEST(SceneReference, AllEighteenFilesParseWithTheStudyValues) {
         EXPECT_DOUBLE_EQ(s.barrier.base_friction, 0.5);
         EXPECT_DOUBLE_EQ(s.barrier.face_friction, 0.3);
         EXPECT_EQ(s.barrier.fixed, fixed);
-        EXPECT_TRUE(s.methods.empirical.has_value());
-        EXPECT_TRUE(s.methods.analytical.has_value());
+        // The closed forms move a free barrier by momentum (docs/models.md).
+        ASSERT_TRUE(s.methods.empirical.has_value());
+        ASSERT_TRUE(s.methods.analytical.has_value());
+        EXPECT_EQ(s.methods.empirical->barrier_model, lsi::BarrierModel::Momentum);
+        EXPECT_EQ(s.methods.analytical->barrier_model, lsi::BarrierModel::Momentum);
         EXPECT_FALSE(s.methods.literature.has_value());
         // The MPM column of the study: saturated, APIC, 8 cells through the thickness, the flow's
         // base friction 0.2 (README; docs/reference_convergence.md).
@@ -159,7 +162,7 @@ TEST(SceneReference, AllEighteenFilesParseWithTheStudyValues) {
         EXPECT_DOUBLE_EQ(s.methods.mpm->at("cell_size_m").get<double>(), s.landslide.thickness_m / 8);
         EXPECT_EQ(s.methods.mpm->at("phases"), "saturated");
         EXPECT_EQ(s.methods.mpm->at("transfer"), "apic");
-        EXPECT_DOUBLE_EQ(s.methods.mpm->at("base_friction").get<double>(), 0.2);
+        EXPECT_DOUBLE_EQ(s.landslide.base_friction, 0.2);
         EXPECT_EQ(s.source.at("name"), name);
         ++parsed;
       }
@@ -354,7 +357,7 @@ TEST(SceneErrors, UnknownLandslideKey) {
   j["landslide"]["thicknes_m"] = 2.0;
   EXPECT_EQ(error_of(j),
             "landslide.thicknes_m: unknown key (allowed: thickness_m, velocity_m_s, density_kg_m3, "
-            "shape, material)");
+            "shape, material, base_friction)");
 }
 
 TEST(SceneErrors, UnknownShapeKey) {

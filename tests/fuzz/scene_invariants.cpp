@@ -43,6 +43,7 @@ void check_landslide(const SceneLandslide& l) {
   positive("landslide.thickness_m", l.thickness_m);
   positive("landslide.velocity_m_s", l.velocity_m_s);
   positive("landslide.density_kg_m3", l.density_kg_m3);
+  at_least("landslide.base_friction", l.base_friction, 0);
   if (l.shape.kind == LandslideShape::Kind::FrontBodyTail) {
     between("landslide.shape.body_squares", l.shape.body_squares, '[', 0, 1000000, ']');
     require(l.shape.length_m == 0.0, "front-body-tail landslide with a length_m");
@@ -136,10 +137,8 @@ void check_settings(const MpmSettings& s, MpmCaseKind kind) {
   between("methods.mpm.flip_ratio", s.flip_ratio, '[', 0, 1, ']');
   between("methods.mpm.small_mass_fraction", s.small_mass_fraction, '[', 0, 0.1, ']');
   at_least("methods.mpm.snapshot_interval_s", s.snapshot_interval_s, 0);
-  at_least("methods.mpm.base_friction", s.base_friction, 0);
   if (kind == MpmCaseKind::Verification) {
     require(s.end_time_given, "verification scene without end_time_s");
-    require(s.base_friction == 0.0, "verification scene with an impact-only key");
     require(!s.cell_pore_pressure, "verification scene with an impact-only key");
   }
   require(!s.cell_pore_pressure || s.saturated,
