@@ -9,6 +9,8 @@
 #include <limits>
 
 #include "drivers/impact_summary.hpp"
+#include "kernels/closed_form/barrier_geometry.hpp"
+#include "kernels/common/constants.hpp"
 #include "drivers/progress.hpp"
 #include "kernels/mpm/momentum.hpp"
 #include "kernels/mpm/overtopping.hpp"
@@ -49,6 +51,39 @@ MpmSnapshot take_snapshot(const mpm::Particles<Mem>& p, double time) {
   return s;
 }
 
+// The barrier's safety under the MPM's loads, as the closed forms check it
+// (kernels/closed_form/barrier_stability.hpp) but from the MPM's own histories: sliding,
+// tan(delta_b) (W + F_down) / F_h with every face's load; overturning, the weight's restoring
+// moment about the downstream toe over the upstream face's moment (from the face's load
+// distribution). The resultant height of the face load at the largest moment is beside them,
+// for the closed forms' assumption (half the flow's thickness).
+void barrier_safety(MethodResult& r, const mpm::Barrier& b) {
+  const auto& M = r.series.at("overturning_moment").values;
+  const double W = b.motion.mass * lsi::gravity, mu = b.motion.base_friction;
+  BarrierGeometry g;
+  g.height = b.shape.height;
+  g.base_width = b.shape.base_width;
+  g.top_width = b.shape.top_width;
+  g.face_angle = b.shape.face_angle;
+  const double restoring = W * (g.base_width - g.centroid_x());
+  double fs_slide = std::numeric_limits<double>::infinity(), fs_over = fs_slide;
+  size_t worst = 0;
+  for (size_t i = 0; i < r.time.size(); ++i) {
+    if (r.force_horizontal[i] > 0.0)
+      fs_slide = std::min(fs_slide, mu * (W + r.force_vertical[i]) / r.force_horizontal[i]);
+    if (M[i] > 0.0 && restoring / M[i] < fs_over) {
+      fs_over = restoring / M[i];
+      worst = i;
+    }
+  }
+  r.extra["min_sliding_safety"] = fs_slide;
+  r.extra["min_overturning_safety"] = fs_over;
+  r.extra["overturning_moment_max"] = M.empty() ? 0.0 : M[worst];
+  r.extra["overturning_resultant_height"] =
+      M.empty() ? std::numeric_limits<double>::quiet_NaN()
+                : r.series.at("face_resultant_height").values[worst];
+}
+
 // The impact's scalar outputs (impact_summary.hpp): the peak force normal to the upstream face
 // (the largest mean over one output interval) and its time (rise time), the peak averaged over
 // the scene's window, the impact duration and the impulse delivered during it; the volumes at the
@@ -72,6 +107,7 @@ void summarize_impact(MethodResult& r, const mpm::Barrier& barrier, double windo
   r.extra["peak_force_horizontal"] =
       *std::max_element(r.force_horizontal.begin(), r.force_horizontal.end());
   r.extra["displacement_at_end"] = barrier.motion.displacement;
+  barrier_safety(r, barrier);
   const auto& over = r.series.at("overtopped_volume").values;
   r.extra["overtopped_volume_m2"] = over.back();
   r.extra["overtopped_inside_barrier_m2"] = r.series.at("overtopped_inside_barrier").values.back();
@@ -247,6 +283,22 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
     r.force.push_back(fn);
     r.force_horizontal.push_back(fx);
     r.force_vertical.push_back(-fy);
+    const double moment = solver.take_barrier_moment_impulse() * inv;
+    add("overturning_moment", "N m/m",
+        "moment of the upstream face's load about the barrier's downstream toe (positive tips it "
+        "downstream), from where along the face the flow pushes; mean over the output interval",
+        moment);
+    // Where on the face the upstream face's resultant acts: the height z at which its force
+    // (F_x, F_y) gives that moment, z F_x - (z / tan(beta) - B) F_y = M (0 without a load).
+    const auto& sh = c.barrier->shape;
+    const double fx0 = imp[0][0] * inv, fy0 = imp[0][1] * inv;
+    const double cot = std::fabs(sh.face_angle - 0.5 * M_PI) < 1e-12 ? 0.0 : 1.0 / std::tan(sh.face_angle);
+    const double denominator = fx0 - fy0 * cot;
+    add("face_resultant_height", "m",
+        "height above the base of the resultant of the upstream face's load (0 without a load)",
+        denominator > 1e-9 * (std::fabs(fx0) + std::fabs(fy0)) && denominator > 0.0
+            ? (moment - sh.base_width * fy0) / denominator
+            : 0.0);
     r.landslide_kinetic_energy.push_back(kinetic);
     const auto& motion = solver.barrier().motion;
     r.barrier_velocity.push_back(motion.velocity);

@@ -635,6 +635,35 @@ TEST(Cli, CompareAttachesTheErrorBarsOfAConvergenceStudy) {
   EXPECT_NE(b.out.find("finer.courant = -1"), std::string::npos) << b.out;
 }
 
+// The overturning moment of the face load (from where along the face the flow pushes): a dry
+// block (1 m x 3 m, phi 30 deg) resting against a fixed vertical smooth wall from its geostatic
+// state, K0 = 1 - sin(phi), loads the wall with the triangle K0 rho g h^2 / 2 whose resultant acts
+// at h / 3. The grid contact acts at the face's nodes, which shifts the resultant up by a part of
+// a cell: within 25 % of h / 3 at 16 cells through the block, and closer to it than at 8 cells.
+TEST(Cli, MpmFaceLoadResultantOfARestingBlockIsNearAThirdOfItsHeight) {
+  auto resultant = [&](double dx) {
+    const std::string scene = R"({"name": "at-rest",
+      "landslide": {"thickness_m": 1.0, "velocity_m_s": 0.01, "density_kg_m3": 1800,
+        "shape": {"kind": "rectangle", "length_m": 3.0}, "base_friction": 0.5,
+        "material": {"friction_angle_deg": 30, "young_modulus_mpa": 20, "poisson_ratio": 0.3}},
+      "barrier": {"height_m": 2, "base_width_m": 1.5, "top_width_m": 1.5, "face_angle_deg": 90,
+        "density_kg_m3": 2400, "base_friction": 0.5, "face_friction": 0.0, "fixed": true},
+      "methods": {"mpm": {"cell_size_m": )" + std::to_string(dx) +
+                              R"(, "phases": "dry", "end_time_s": 1.0}}})";
+    const fs::path p = write_file("at_rest_" + std::to_string(int(1 / dx)) + ".json", scene);
+    const Outcome r = run("run " + p.string() + " --format json");
+    EXPECT_EQ(r.code, 0) << r.out;
+    const auto m = nlohmann::json::parse(r.out.substr(r.out.find('{')))["mpm"];
+    // The moment is that of the horizontal load at the resultant's height (vertical face, no
+    // face friction: no vertical load), and positive: it tips the wall downstream.
+    EXPECT_GT(m["overturning_moment_max"].get<double>(), 0.0);
+    return m["overturning_resultant_height"].get<double>();
+  };
+  const double coarse = resultant(0.125), fine = resultant(0.0625);
+  EXPECT_NEAR(fine, 1.0 / 3.0, 0.25 / 3.0);
+  EXPECT_LT(std::fabs(fine - 1.0 / 3.0), std::fabs(coarse - 1.0 / 3.0));
+}
+
 TEST(Cli, MpmSaturatedImpactReportsPorePressureOnTheFace) {
   const fs::path scene = write_file(
       "impact_sat.json", impact_scene(R"({"cell_size_m": 0.125, "end_time_s": 0.6})"));

@@ -9,7 +9,9 @@
 // The impulse the nodes receive, summed, is minus the impulse on the barrier (paper eq. 26: the
 // force on the barrier is the sum of the contact forces): returned per face as a force (N/m),
 // with the work the contact took from the material, measured with the mid-step node velocity as
-// for the walls (grid_update.hpp).
+// for the walls (grid_update.hpp), and the moment of the upstream face's forces about the
+// barrier's downstream toe (the overturning moment of the face load, from where along the face
+// each node pushes).
 #pragma once
 #include <Kokkos_Core.hpp>
 
@@ -23,6 +25,9 @@ struct BarrierContactReport {
   double force[3][2] = {{0, 0}, {0, 0}, {0, 0}};   // N/m on the barrier, per face, (x, y)
   double work = 0.0;   // J/m taken from the material this step (> 0: dissipated or given to the barrier)
   int nodes = 0;       // nodes in contact this step
+  // N m/m: sum over the upstream face's nodes of (y - y_toe) f_x - (x - x_downstream_toe) f_y,
+  // positive where it tips the barrier downstream about its downstream toe.
+  double upstream_moment = 0.0;
   double total(int d) const { return force[0][d] + force[1][d] + force[2][d]; }
 };
 
@@ -34,8 +39,9 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
   const int nx = g.nx;
   const BarrierShape b = shape;
   BarrierContactReport r;
-  double f[6] = {0, 0, 0, 0, 0, 0}, work = 0.0;
+  double f[6] = {0, 0, 0, 0, 0, 0}, work = 0.0, moment = 0.0;
   int nodes = 0;
+  const double x_downstream_toe = b.toe[0] + b.base_width;
   // Only the nodes that may hold mass (Grid::mass_box, set by P2G).
   const NodeBox region = g.mass_box();
   if (region.empty()) return r;
@@ -43,7 +49,7 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
   Kokkos::parallel_reduce(
       "lsi::mpm::barrier_contact", Kokkos::RangePolicy<ExecSpace>(0, items.count()),
       KOKKOS_LAMBDA(const int item, double& f0, double& f1, double& f2, double& f3, double& f4,
-                    double& f5, double& w, int& count) {
+                    double& f5, double& w, double& mo, int& count) {
         int j, i_begin, i_end;
         items.nodes(item, j, i_begin, i_end);
         for (int i = i_begin; i <= i_end; ++i) {   // a row of the region, or one node
@@ -74,19 +80,24 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
             g.velocity(n, d) = vnew[d];
           }
           const double fx = -imp[0] / dt, fy = -imp[1] / dt;   // on the barrier
-          if (k == 0) { f0 += fx; f1 += fy; }
+          if (k == 0) {
+            f0 += fx;
+            f1 += fy;
+            mo += (y - b.toe[1]) * fx - (x - x_downstream_toe) * fy;
+          }
           else if (k == 1) { f2 += fx; f3 += fy; }
           else { f4 += fx; f5 += fy; }
           ++count;
         }
       },
-      f[0], f[1], f[2], f[3], f[4], f[5], work, nodes);
+      f[0], f[1], f[2], f[3], f[4], f[5], work, moment, nodes);
   for (int k = 0; k < 3; ++k) {
     r.force[k][0] = f[2 * k];
     r.force[k][1] = f[2 * k + 1];
   }
   r.work = work;
   r.nodes = nodes;
+  r.upstream_moment = moment;
   return r;
 }
 

@@ -24,6 +24,7 @@ class BarrierCoupling {
     contact_ = contact;
     for (int k = 0; k < 3; ++k)
       for (int d = 0; d < 2; ++d) impulse_[k][d] += contact_.force[k][d] * dt;
+    moment_impulse_ += contact_.upstream_moment * dt;
     if (!barrier_.fixed) barrier_.motion.advance(contact_.total(0), contact_.total(1), dt);
     return contact_.work;
   }
@@ -36,12 +37,20 @@ class BarrierCoupling {
         impulse_[k][d] = 0.0;
       }
   }
+  // The time integral of the upstream face's overturning moment (N m s/m) since the last call;
+  // resets it.
+  double take_moment_impulse() {
+    const double m = moment_impulse_;
+    moment_impulse_ = 0.0;
+    return m;
+  }
 
  private:
   bool active_ = false;
   Barrier barrier_;
   BarrierContactReport contact_;
   double impulse_[3][2] = {{0, 0}, {0, 0}, {0, 0}};
+  double moment_impulse_ = 0.0;
 };
 
 }  // namespace lsi::mpm

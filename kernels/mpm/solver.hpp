@@ -163,6 +163,7 @@ class Solver {
   const Barrier& barrier() const { return barrier_.barrier(); }
   const BarrierContactReport& barrier_contact_report() const { return barrier_.contact(); }
   void take_barrier_impulse(double impulse[3][2]) { barrier_.take_impulse(impulse); }
+  double take_barrier_moment_impulse() { return barrier_.take_moment_impulse(); }
 
   double time() const { return time_; }
   double time_step() const { return dt_; }

@@ -7,7 +7,8 @@
 //  * the contact of an elastic block with a fixed barrier (barrier_contact.hpp) against
 //    one-dimensional wave theory and momentum conservation;
 //  * a free, frictionless barrier hit by the block: momentum of block + barrier conserved;
-//  * the volume of points inside the barrier (overtopping.hpp, the contact-leak diagnostic).
+//  * the volume of points inside the barrier (overtopping.hpp, the contact-leak diagnostic);
+//  * the moment of the contact forces about the downstream toe (barrier_contact.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -235,6 +236,55 @@ TYPED_TEST(MpmBarrier, FreeBarrierConservesMomentum) {
               r.momentum_change, r.barrier_momentum);
   EXPECT_GT(r.barrier_momentum, 0.3 * block_mass * 2.0);   // it did push the barrier
   EXPECT_NEAR(r.barrier_momentum / r.momentum_change, 1.0, 1e-9);
+}
+
+// Three grid nodes on the upstream face of a trapezoid (H 4, B 3, b 1 m, face 80 deg, toe at
+// x = 1 m, displaced 0.25 m) moving into it at known velocities, one more moving away: the contact
+// stops the normal components, and the moment about the downstream toe is the sum of
+// (y - y_toe) f_x - (x - x_toe,down) f_y over the stopped nodes' forces, with the forces the
+// projection gives (computed here by hand): to round-off.
+TYPED_TEST(MpmBarrier, UpstreamFaceMomentIsTheSumOverTheNodesForces) {
+  using Mem = typename TypeParam::memory_space;
+  const double beta = 80.0 * kPi / 180.0, dx = 0.25, dt = 1e-3, shift = 0.25;
+  const BarrierShape shape(1.0, 0.0, 4.0, 3.0, 1.0, beta);
+  const double lo[2] = {0.0, 0.0}, hi[2] = {6.0, 6.0};
+  Grid<Mem> grid(lo, hi, dx);
+  grid.mark_all_active();
+  const double n[2] = {-std::sin(beta), std::cos(beta)};   // the face's outward normal
+  struct Node {
+    int i, j;
+    double m, vx, vy;
+  };
+  // Nodes on the face's line (x = toe + shift + y / tan(beta)), rounded to the grid: at y = 1, 2,
+  // 3 m the face is at x = 1.426, 1.603, 1.779; the nodes at 1.5, 1.75 and 2.0 lie inside.
+  const Node nodes[] = {{6, 4, 3.0, 2.0, 0.0}, {7, 8, 2.0, 3.0, -0.5}, {8, 12, 1.0, 1.0, 0.2},
+                        {6, 5, 5.0, -2.0, 0.0}};   // the last moves away: no contact
+  auto m_h = Kokkos::create_mirror_view(grid.mass);
+  auto v_h = Kokkos::create_mirror_view(grid.velocity);
+  Kokkos::deep_copy(m_h, 0.0);
+  Kokkos::deep_copy(v_h, 0.0);
+  double want = 0.0;
+  const double x_down = 1.0 + 3.0;   // the downstream toe, in the barrier's frame
+  for (const Node& q : nodes) {
+    const int k = q.i + grid.nx * q.j;
+    m_h(k) = q.m;
+    v_h(k, 0) = q.vx;
+    v_h(k, 1) = q.vy;
+    const double vn = q.vx * n[0] + q.vy * n[1];
+    if (vn >= 0.0) continue;
+    // Smooth face (friction 0): the normal velocity is removed; the force on the barrier is
+    // -m dv / dt = m vn n / dt.
+    const double fx = q.m * vn * n[0] / dt, fy = q.m * vn * n[1] / dt;
+    const double x = q.i * dx - shift, y = q.j * dx;
+    want += y * fx - (x - x_down) * fy;
+  }
+  Kokkos::deep_copy(grid.mass, m_h);
+  Kokkos::deep_copy(grid.velocity, v_h);
+  Kokkos::deep_copy(grid.velocity_old, v_h);
+  const BarrierContactReport r = barrier_contact<TypeParam>(grid, shape, shift, 0.0, 0.0, dt);
+  EXPECT_EQ(r.nodes, 3);
+  EXPECT_GT(want, 0.0);   // pushed downstream above the base: it tips the barrier
+  EXPECT_NEAR(r.upstream_moment, want, 1e-12 * std::fabs(want));
 }
 
 // Points placed around a trapezoid (H 4, B 2, b 1 m, face 80 deg, toe at x = 1 m), at rest and

@@ -240,6 +240,7 @@ class TwoPhaseSolver {
   const Barrier& barrier() const { return barrier_.barrier(); }
   const BarrierContactReport& barrier_contact_report() const { return barrier_.contact(); }
   void take_barrier_impulse(double impulse[3][2]) { barrier_.take_impulse(impulse); }
+  double take_barrier_moment_impulse() { return barrier_.take_moment_impulse(); }
 
   double time() const { return time_; }
   double time_step() const { return dt_; }
@@ -269,6 +270,7 @@ class TwoPhaseSolver {
       for (int d = 0; d < 2; ++d) both.force[k][d] += l.force[k][d];
     both.work += l.work;
     both.nodes += l.nodes;
+    both.upstream_moment += l.upstream_moment;
     boundary_ += barrier_.apply(both, dt_);
   }
 
