@@ -48,7 +48,8 @@ if [ ${#variant[@]} -gt 0 ]; then
 fi
 mkdir -p "$out"
 "$build/drivers/lsi" compare "${scenes[@]}" --out-dir "$out" --max-displacement 0.5 \
-  "${bars[@]}" --summary-json "$out/comparison.json" | tee "$out/comparison.txt"
+  "${bars[@]}" --verify-design analytical --summary-json "$out/comparison.json" \
+  | tee "$out/comparison.txt"
 MPLCONFIGDIR="$out/.mplconfig" /usr/bin/python3 "$root/drivers/lsi_plot.py" "$out"/L?-B?*.h5 \
   --out-dir "$out/plots" >/dev/null
 rm -rf "$out/.mplconfig"

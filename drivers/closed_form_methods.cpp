@@ -90,13 +90,13 @@ void fill_histories(MethodResult& r, const Scene& scene, const ForcePulse& pulse
 MomentumBarrierSetup momentum_setup(const Scene& scene, const ForcePulse& fixed_pulse,
                                     double barrier_mass) {
   MomentumBarrierSetup s;
-  s.fixed_pulse = fixed_pulse;
   s.landslide_mass = scene.landslide.mass_kg_per_m();
   s.velocity = scene.landslide.velocity_m_s;
   s.barrier_mass = scene.barrier.fixed ? std::numeric_limits<double>::infinity() : barrier_mass;
   s.base_friction = scene.barrier.base_friction;
   s.face = resolve_face_force(math::degrees_to_radians(scene.barrier.face_angle_deg),
                               scene.barrier.face_friction);
+  s.fixed_pulse = momentum_capped_pulse(fixed_pulse, s.landslide_mass, s.velocity, s.face.horizontal);
   s.flow_friction = flow_friction_deceleration(scene);
   return s;
 }

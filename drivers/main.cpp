@@ -175,6 +175,10 @@ int main(int argc, char** argv) {
       ->required();
   design->add_option("--methods", methods_list, "empirical and/or analytical");
   design->add_option("--format", format, "table or json");
+  bool verify = false;
+  design->add_flag("--verify", verify,
+                   "Run the MPM (the scene's methods.mpm) on each designed barrier and report its "
+                   "displacement and safety beside the tolerance");
 
   std::vector<std::string> compare_scenes;
   std::string out_dir;
@@ -189,6 +193,10 @@ int main(int argc, char** argv) {
   std::string summary_json_path;
   compare->add_option("--summary-json", summary_json_path,
                       "Also write the comparison as JSON to this file (written atomically)");
+  std::string verify_design;
+  compare->add_option("--verify-design", verify_design,
+                      "Comma-separated closed forms (empirical, analytical) whose designed "
+                      "barrier the MPM runs, for the column beside the masses");
   std::string convergence_path;
   compare->add_option("--convergence", convergence_path,
                       "A convergence study of these scenes (ci/reference_convergence.py): the MPM "
@@ -246,8 +254,13 @@ int main(int argc, char** argv) {
     } else if (*design) {
       const lsi::Scene scene = load(design_scene);
       const auto designs = lsi::design_barrier_mass(scene, max_displacement, only);
-      if (format == "json") std::cout << lsi::design_json(designs, max_displacement).dump(2) << "\n";
-      else std::cout << lsi::design_table(scene, designs, max_displacement);
+      const auto checks = verify ? with_path(design_scene, [&] {
+                                     return lsi::verify_designs(scene, designs, max_displacement);
+                                   })
+                                 : std::vector<lsi::DesignCheck>{};
+      if (format == "json")
+        std::cout << lsi::design_json(designs, max_displacement, checks).dump(2) << "\n";
+      else std::cout << lsi::design_table(scene, designs, max_displacement, checks);
     } else if (*compare) {
       std::vector<lsi::ComparisonRow> rows;
       bool unstable = false;
@@ -274,11 +287,17 @@ int main(int argc, char** argv) {
         }
       }
       if (!out_dir.empty()) lsi::check_output_directory("--out-dir", out_dir);
+      std::vector<std::string> checked_methods;
+      for (const auto& m : parse_methods(verify_design)) {
+        if (m != "empirical" && m != "analytical")
+          throw lsi::InputError("--verify-design " + m + ": allowed: empirical, analytical");
+        checked_methods.push_back(m);
+      }
       for (size_t k = 0; k < compare_scenes.size(); ++k) {
         const std::string& path = compare_scenes[k];
         const lsi::Scene& scene = scenes[k];
         std::string mpm_status;
-        lsi::ComparisonRow row{scene.name, run_scene(path, scene, only, mpm_status), {}};
+        lsi::ComparisonRow row{scene.name, run_scene(path, scene, only, mpm_status), {}, {}};
         if (!mpm_status.empty()) {
           std::cerr << "lsi: " << path << ": the MPM run stopped: " << mpm_status << "\n";
           unstable = true;
@@ -291,6 +310,10 @@ int main(int argc, char** argv) {
                         << why << "\n";
           }
         if (!scene.barrier.fixed) row.designs = lsi::design_barrier_mass(scene, max_displacement, only);
+        if (!checked_methods.empty() && !scene.barrier.fixed)
+          row.checks = with_path(path, [&] {
+            return lsi::verify_designs(scene, row.designs, max_displacement, checked_methods);
+          });
         if (!out_dir.empty()) {
           const auto file = std::filesystem::path(out_dir) / (scene.name + ".h5");
           lsi::write_results(file.string(), scene.source, row.results);

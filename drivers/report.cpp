@@ -123,7 +123,34 @@ std::string summary_table(const Scene& scene, const std::vector<MethodResult>& r
   return o.str();
 }
 
-nlohmann::json design_json(const std::vector<MassDesign>& designs, double max_displacement_m) {
+namespace {
+const DesignCheck* check_of(const std::vector<DesignCheck>& checks, const std::string& method) {
+  for (const auto& c : checks)
+    if (c.method == method) return &c;
+  return nullptr;
+}
+
+nlohmann::json check_json(const DesignCheck& c) {
+  if (!c.skipped.empty()) return {{"skipped", c.skipped}};
+  nlohmann::json j = {{"barrier", {{"height", c.barrier.height_m},
+                                   {"base_width", c.barrier.base_width_m},
+                                   {"top_width", c.barrier.top_width_m},
+                                   {"mass", c.barrier.mass()}}},
+                      {"within_tolerance", c.within},
+                      {"end_state", end_state_token(c.mpm.end_state)}};
+  put(j, "final_displacement", c.mpm.final_displacement);
+  put(j, "displacement_at_end", extra_or_nan(c.mpm, "displacement_at_end"));
+  put(j, "peak_force", c.mpm.peak_force);
+  put(j, "min_sliding_safety", extra_or_nan(c.mpm, "min_sliding_safety"));
+  put(j, "min_overturning_safety", extra_or_nan(c.mpm, "min_overturning_safety"));
+  put(j, "overturning_resultant_height", extra_or_nan(c.mpm, "overturning_resultant_height"));
+  put(j, "solver_seconds", extra_or_nan(c.mpm, "solver_seconds"));
+  return j;
+}
+}  // namespace
+
+nlohmann::json design_json(const std::vector<MassDesign>& designs, double max_displacement_m,
+                           const std::vector<DesignCheck>& checks) {
   nlohmann::json j = nlohmann::json::object();
   for (const auto& d : designs) {
     nlohmann::json m = {{"status", d.status}, {"max_displacement", max_displacement_m}};
@@ -136,13 +163,14 @@ nlohmann::json design_json(const std::vector<MassDesign>& designs, double max_di
       put(gj, "min_overturning_safety", g.min_overturning_safety);
       m["geometries"].push_back(gj);
     }
+    if (const DesignCheck* c = check_of(checks, d.method)) m["mpm_check"] = check_json(*c);
     j[d.method] = m;
   }
   return j;
 }
 
 std::string design_table(const Scene& scene, const std::vector<MassDesign>& designs,
-                         double max_displacement_m) {
+                         double max_displacement_m, const std::vector<DesignCheck>& checks) {
   std::ostringstream o;
   o << "scene " << scene.name << ": minimum barrier mass for a final displacement <= "
     << fmt(max_displacement_m) << " m (current barrier: " << fmt(scene.barrier.mass(), "%.0f")
@@ -156,6 +184,20 @@ std::string design_table(const Scene& scene, const std::vector<MassDesign>& desi
         o << "      H = " << fmt(g.height_m, "%.2f") << " m, B = " << fmt(g.base_width_m, "%.2f")
           << " m, b = " << fmt(g.top_width_m, "%.2f")
           << " m; overturning safety factor " << fmt(g.min_overturning_safety, "%.2f") << "\n";
+      if (const DesignCheck* c = check_of(checks, d.method); c && !c->skipped.empty()) {
+        o << "      MPM check not run: " << c->skipped << "\n";
+      } else if (c) {
+        const std::string note = end_note(c->mpm);
+        o << "      MPM check (H = " << fmt(c->barrier.height_m, "%.2f") << " m, B = "
+          << fmt(c->barrier.base_width_m, "%.2f") << " m, b = " << fmt(c->barrier.top_width_m, "%.2f")
+          << " m): displacement " << displacement_cell(c->mpm) << " m against "
+          << fmt(max_displacement_m) << " m: " << (c->within ? "within" : "NOT within")
+          << " the tolerance; safety under the MPM's loads: sliding "
+          << fmt(extra_or_nan(c->mpm, "min_sliding_safety"), "%.2f") << ", overturning "
+          << fmt(extra_or_nan(c->mpm, "min_overturning_safety"), "%.2f") << " (resultant at "
+          << fmt(extra_or_nan(c->mpm, "overturning_resultant_height"), "%.2f") << " m)"
+          << (note.empty() ? "" : "; " + note) << "\n";
+      }
     } else {
       o << d.status << "\n";
     }
@@ -235,10 +277,20 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_
   std::ostringstream o;
   o << "Comparison of the design methods (E: empirical, A: analytical"
     << (mpm ? ", M: MPM" : "") << "); forces normal to the face\n";
+  std::vector<std::string> checked;   // methods whose designs the MPM checked, in table order
+  for (const char* m : {"empirical", "analytical"})
+    for (const auto& row : rows)
+      if (check_of(row.checks, m)) {
+        checked.push_back(m);
+        break;
+      }
   o << pad("case", case_w) << pad("peak force [kN/m]", group) << pad("impact period [s]", group)
-    << pad("final displ. [m]", group) << "mass for " << fmt(max_displacement_m) << " m [t/m]\n";
+    << pad("final displ. [m]", group) << "mass for " << fmt(max_displacement_m) << " m [t/m]"
+    << (checked.empty() ? "" : "   M displ. at that mass [m]") << "\n";
   o << pad("", case_w) << pad(heads, group) << pad(heads, group) << pad(heads, group)
-    << "E        A\n";
+    << "E        A        ";
+  for (const auto& m : checked) o << pad(m == "empirical" ? "E's" : "A's", 10);
+  o << "\n";
   for (const auto& row : rows) {
     auto cols = [&](const std::string& key, const char* format, double scale) {
       std::string out;
@@ -258,6 +310,10 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_
       o << pad(!d ? "-" : d->status == "found" ? fmt(d->mass_kg_per_m / 1e3, "%.1f")
                         : d->status == "any mass works" ? "any" : "none",
                9);
+    }
+    for (const auto& m : checked) {
+      const DesignCheck* c = check_of(row.checks, m);
+      o << pad(c && c->skipped.empty() ? displacement_cell(c->mpm) : "-", 10);
     }
     o << "\n";
   }
@@ -279,6 +335,9 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_
                                        "rigid-block sliding under the empirical (fixed-barrier) pulse")
     << "; A: " << described(model_of("analytical"), "the two-body model")
     << "; M: the MPM (docs/mpm.md). \"any\": no mass exceeds the tolerance (docs/models.md).\n";
+  if (!checked.empty())
+    o << "M displ. at that mass: the MPM on the barrier of that minimum mass (the scene's height, "
+         "top width and face angle; the base width from the mass).\n";
   for (const auto& row : rows)
     for (const auto& r : row.results) {
       const std::string note = end_note(r);
@@ -326,7 +385,7 @@ nlohmann::json comparison_json(const std::vector<ComparisonRow>& rows, double ma
   nlohmann::json j = nlohmann::json::object();
   for (const auto& row : rows) {
     j[row.scene] = {{"results", summary_json(row.results)},
-                    {"design", design_json(row.designs, max_displacement_m)}};
+                    {"design", design_json(row.designs, max_displacement_m, row.checks)}};
   }
   return j;
 }

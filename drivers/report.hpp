@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "drivers/closed_form_methods.hpp"
+#include "drivers/design_verify.hpp"
 #include "drivers/method_result.hpp"
 #include "drivers/scene.hpp"
 
@@ -17,9 +18,11 @@ namespace lsi {
 nlohmann::json summary_json(const std::vector<MethodResult>& results);
 std::string summary_table(const Scene& scene, const std::vector<MethodResult>& results);
 
-nlohmann::json design_json(const std::vector<MassDesign>& designs, double max_displacement_m);
+// With `checks` (design_verify.hpp): the MPM's displacement and safety for each checked design.
+nlohmann::json design_json(const std::vector<MassDesign>& designs, double max_displacement_m,
+                           const std::vector<DesignCheck>& checks = {});
 std::string design_table(const Scene& scene, const std::vector<MassDesign>& designs,
-                         double max_displacement_m);
+                         double max_displacement_m, const std::vector<DesignCheck>& checks = {});
 
 // One row per scene: peak force, impact duration, final displacement per method, and the mass
 // that limits the displacement to `max_displacement_m` (the paper's Tables 4 and 6).
@@ -27,6 +30,7 @@ struct ComparisonRow {
   std::string scene;
   std::vector<MethodResult> results;
   std::vector<MassDesign> designs;
+  std::vector<DesignCheck> checks;   // the MPM on designed barriers (compare --verify-design)
 };
 std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_displacement_m);
 nlohmann::json comparison_json(const std::vector<ComparisonRow>& rows, double max_displacement_m);

@@ -189,7 +189,8 @@ KOKKOS_INLINE_FUNCTION void store_momentum(const ForcePulse& fixed_pulse, const 
                                            const SceneValues& s, const FaceResolution& face,
                                            double* out) {
   MomentumBarrierSetup b;
-  b.fixed_pulse = fixed_pulse;
+  b.fixed_pulse = momentum_capped_pulse(fixed_pulse, m.landslide_mass, s.value[velocity_m_s],
+                                        face.horizontal);
   b.landslide_mass = m.landslide_mass;
   b.velocity = s.value[velocity_m_s];
   b.barrier_mass = m.barrier_mass;

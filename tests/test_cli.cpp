@@ -856,3 +856,60 @@ TEST(Cli, OutputsNeverReplaceDevicesInputsOrLeaveTheirDirectory) {
   EXPECT_NE(r.out.find("which the output would destroy"), std::string::npos) << r.out;
   EXPECT_EQ(file_text(study), study_text);
 }
+
+// The reference study's closed forms move a free barrier by momentum: no closed form drives a
+// barrier faster than the flow that pushes it (the flow's velocity from its kinetic energy,
+// sqrt(2 E / m1), at every history sample; 1e-9 of v0: the integration's tolerance).
+TEST(Cli, ReferenceClosedFormsNeverMoveTheBarrierFasterThanTheFlow) {
+  for (const char* name : {"L1-B1", "L1-B2", "L1-B3", "L2-B1", "L2-B2", "L2-B3", "L3-B1", "L3-B2",
+                           "L3-B3"}) {
+    const fs::path out = temp_dir() / (std::string(name) + "_closed.h5");
+    const Outcome r = run("run " + (source_dir / "scenes/reference" / (std::string(name) + ".json")).string() +
+                          " --methods empirical,analytical --out " + out.string());
+    ASSERT_EQ(r.code, 0) << r.out;
+    const auto stored = lsi::read_results(out.string());
+    ASSERT_EQ(stored.results.size(), 2u);
+    for (const auto& m : stored.results) {
+      EXPECT_EQ(m.barrier_model, "momentum") << name << " " << m.method;
+      const double m1 = m.extra.at("landslide_mass");
+      const double v0 = std::sqrt(2.0 * m.landslide_kinetic_energy.front() / m1);
+      for (size_t i = 0; i < m.time.size(); ++i)
+        ASSERT_LE(m.barrier_velocity[i],
+                  std::sqrt(2.0 * m.landslide_kinetic_energy[i] / m1) + 1e-9 * v0)
+            << name << " " << m.method << " t = " << m.time[i];
+    }
+  }
+}
+
+// `lsi design --verify`: each closed form's minimum mass is given a barrier of the scene's kind
+// and run through the MPM, whose displacement is set beside the tolerance (the sliding-barrier
+// scene, dry at 4 cells: under a second each).
+TEST(Cli, DesignVerifyRunsTheMpmOnEachDesignedBarrier) {
+  nlohmann::json s = nlohmann::json::parse(
+      sliding_barrier_scene(R"({"cell_size_m": 0.25, "phases": "dry"})", 0.4));
+  s["methods"]["empirical"] = {{"barrier_model", "momentum"}};
+  s["methods"]["analytical"] = {{"barrier_model", "momentum"}};
+  const fs::path scene = write_file("design_verify.json", s.dump());
+  const Outcome r = run("design " + scene.string() + " --max-displacement 0.2 --verify --format json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out.substr(r.out.find('{')));
+  for (const char* m : {"empirical", "analytical"}) {
+    ASSERT_EQ(j[m]["status"], "found") << j.dump();
+    const auto& c = j[m]["mpm_check"];
+    ASSERT_TRUE(c.contains("final_displacement")) << c.dump();
+    // The barrier the MPM ran has the designed mass (the base width solved for it).
+    EXPECT_NEAR(c["barrier"]["mass"].get<double>(), j[m]["barrier_mass"].get<double>(),
+                1e-9 * j[m]["barrier_mass"].get<double>());
+    EXPECT_EQ(c["within_tolerance"].get<bool>(), c["final_displacement"].get<double>() <= 0.2);
+    EXPECT_GT(c["min_sliding_safety"].get<double>(), 0.0);
+  }
+  const Outcome t = run("design " + scene.string() + " --max-displacement 0.2 --verify");
+  ASSERT_EQ(t.code, 0) << t.out;
+  EXPECT_NE(t.out.find("MPM check (H = "), std::string::npos) << t.out;
+  // Without methods.mpm the check cannot run: an input error naming it.
+  s["methods"].erase("mpm");
+  const fs::path no_mpm = write_file("design_verify_no_mpm.json", s.dump());
+  const Outcome e = run("design " + no_mpm.string() + " --max-displacement 0.2 --verify");
+  EXPECT_EQ(e.code, 2) << e.out;
+  EXPECT_NE(e.out.find("methods.mpm: missing"), std::string::npos) << e.out;
+}

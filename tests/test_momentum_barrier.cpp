@@ -273,3 +273,31 @@ TEST(MomentumBarrier, TheFlowsBaseFrictionTakesItsShareOfTheMomentum) {
   EXPECT_GT(rough, 0.0);
 }
 }  // namespace
+
+namespace {
+// A pulse whose horizontal impulse exceeds the flow's momentum (the empirical pulse with face
+// friction on a steep face) is shortened to h J = m1 v0, its peak and tau kept; one within it is
+// left as it is.
+TEST(MomentumBarrier, PulsesAreCappedAtTheFlowsMomentum) {
+  ForcePulse p;
+  p.peak = 5e5;
+  p.duration = 2.0;
+  p.rise_time = 0.3;
+  const double m1 = 90000, v0 = 9, h = 1.04;
+  const ForcePulse same = momentum_capped_pulse(p, m1, v0, h);   // h J = 5.2e5 < m1 v0 = 8.1e5
+  EXPECT_EQ(same.duration, p.duration);
+  p.duration = 4.0;   // h J = 1.04e6 > 8.1e5
+  p.rise_time = 0.6;
+  const ForcePulse c = momentum_capped_pulse(p, m1, v0, h);
+  EXPECT_NEAR(h * c.pulse_impulse(), m1 * v0, 1e-9 * m1 * v0);
+  EXPECT_EQ(c.peak, p.peak);
+  EXPECT_NEAR(c.rise_time / c.duration, 0.15, 1e-12);
+  // The barrier then never outruns the flow: a light barrier on a vertical face with friction.
+  MomentumBarrierSetup s = setup(m1, v0, 20, 5000, 0.5, 90, 0.3);
+  s.fixed_pulse = momentum_capped_pulse(p, m1, v0, s.face.horizontal);
+  const std::vector<double> t = grid(3.0, 601);
+  std::vector<MomentumBarrierState> st(t.size());
+  ASSERT_TRUE(momentum_barrier(s, t.data(), int(t.size()), st.data()).ok);
+  for (const auto& x : st) EXPECT_LE(x.barrier_velocity, x.landslide_velocity + 1e-9 * v0);
+}
+}  // namespace

@@ -82,6 +82,21 @@ KOKKOS_INLINE_FUNCTION ForcePulse momentum_two_body_pulse(double landslide_mass,
   return p;
 }
 
+// A fixed-barrier pulse made to destroy no more than the flow's horizontal momentum: where its
+// horizontal impulse h J exceeds m1 v0 (the empirical pulse's normal impulse m1 v_n with face
+// friction on a steep face: h sin(beta) > 1) it is shortened, peak and tau kept, to
+// h J = m1 v0; otherwise it is returned as it is. The momentum-consistent barrier takes such a
+// pulse (the flow cannot be pushed back by the face).
+KOKKOS_INLINE_FUNCTION ForcePulse momentum_capped_pulse(ForcePulse p, double landslide_mass,
+                                                        double velocity, double horizontal) {
+  const double J = p.pulse_impulse(), most = landslide_mass * velocity / horizontal;
+  if (!(J > most)) return p;
+  const double tau = p.rise_time / p.duration;
+  p.duration *= most / J;   // residual 0: J = peak T2 / 2, linear in T2
+  p.rise_time = tau * p.duration;
+  return p;
+}
+
 namespace momentum_detail {
 
 enum class Branch { Rise, Decay };
@@ -219,9 +234,11 @@ KOKKOS_INLINE_FUNCTION MomentumBarrierResult momentum_barrier(const MomentumBarr
     r.final_displacement = r.contact_end = r.stop_time = math::quiet_nan();
     return r;
   };
-  if (!(setup.fixed_pulse.residual == 0.0) || !(m.h > 0.0) || !(m.m1 > 0.0) || !(m.f1 >= 0.0))
+  if (!(setup.fixed_pulse.residual == 0.0) || !(m.h > 0.0) || !(m.m1 > 0.0) || !(m.f1 >= 0.0) ||
+      !(m.W <= m.v0 * (1.0 + 1e-12)))
     // A static residual load is not a pulse of destroyed momentum (not modelled); a face that
-    // does not push the flow back cannot stop it.
+    // does not push the flow back cannot stop it; a pulse that destroys more than the flow's
+    // momentum would push it back (momentum_capped_pulse).
     return fail();
   Recorder rec{sample_times, count, samples};
   const double T1 = setup.fixed_pulse.rise_time, T2 = setup.fixed_pulse.duration;
