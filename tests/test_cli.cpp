@@ -913,3 +913,27 @@ TEST(Cli, DesignVerifyRunsTheMpmOnEachDesignedBarrier) {
   EXPECT_EQ(e.code, 2) << e.out;
   EXPECT_NE(e.out.find("methods.mpm: missing"), std::string::npos) << e.out;
 }
+
+// An impact run that stops unstable (Courant 5) keeps what it computed, says why, and gives no
+// summary that could pass for a result: exit 3, end_state "unstable" and the solver's status in
+// the file, no peak force or final displacement.
+TEST(Cli, MpmUnstableImpactStoresItsStatusAndNoSummary) {
+  const fs::path scene = write_file(
+      "impact_unstable.json",
+      sliding_barrier_scene(R"({"cell_size_m": 0.25, "phases": "dry", "courant": 5})", 0.4));
+  const fs::path out = temp_dir() / "impact_unstable.h5";
+  const Outcome r = run("run " + scene.string() + " --out " + out.string());
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_NE(r.out.find("stopped unstable at t = "), std::string::npos) << r.out;
+  const auto stored = lsi::read_results(out.string());
+  ASSERT_EQ(stored.results.size(), 1u);
+  const auto& m = stored.results[0];
+  EXPECT_EQ(m.end_state, lsi::EndState::Unstable);
+  EXPECT_FALSE(m.status.empty());
+  EXPECT_NE(m.status, "finished");
+  EXPECT_TRUE(std::isnan(m.peak_force));
+  EXPECT_TRUE(std::isnan(m.final_displacement));
+  EXPECT_EQ(m.extra.count("impulse"), 0u);
+  EXPECT_EQ(m.extra.at("finished"), 0.0);
+  EXPECT_FALSE(m.time.empty());   // the histories up to the stop
+}
