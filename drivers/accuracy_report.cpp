@@ -77,8 +77,12 @@ double display(const std::string& output, double v) {
 
 std::vector<ClosedFormTiming> time_closed_forms(const AccuracyStudy& study) {
   json doc = study.scene_document;
-  doc["methods"] = {{"empirical", doc["methods"].value("empirical", json::object())},
-                    {"analytical", doc["methods"].value("analytical", json::object())}};
+  // The closed forms with the scene's parameters where it gives them (a scene without a methods
+  // block runs both with their defaults).
+  const json methods = doc.contains("methods") && doc["methods"].is_object() ? doc["methods"]
+                                                                             : json::object();
+  doc["methods"] = {{"empirical", methods.value("empirical", json::object())},
+                    {"analytical", methods.value("analytical", json::object())}};
   const Scene scene = parse_scene(doc);
   std::vector<ClosedFormTiming> out;
   for (const std::string method : {"empirical", "analytical"}) {

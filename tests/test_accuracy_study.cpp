@@ -240,3 +240,27 @@ TEST(AccuracyCommand, FollowsTheOvertoppedVolume) {
 }
 
 }  // namespace
+
+namespace {
+// A valid scene without a `methods` block (the closed forms then run with their defaults): the
+// study runs and writes its report (the closed forms' timing read the missing block as null and
+// failed after all the runs).
+TEST(AccuracyCommand, SceneWithoutAMethodsBlock) {
+  const fs::path dir = temp_dir() / "no_methods";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  json scene;
+  std::ifstream(source_dir / "scenes/former-reference/L1-B1.json") >> scene;
+  scene.erase("methods");
+  std::ofstream(dir / "scene.json") << scene.dump(1);
+  json study = small_study();
+  study["scene"] = (dir / "scene.json").string();
+  study["series"][0]["set"]["/methods/mpm/end_time_s"] = 8.47276;   // the former default
+  std::ofstream(dir / "study.json") << study.dump(1);
+  const auto r = lsi::testing::run_command(lsi_exe + " accuracy " + (dir / "study.json").string() +
+                                           " --out " + (dir / "out").string() + " 2>&1");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const json rep = read_json(dir / "out/accuracy.json");
+  EXPECT_EQ(rep["series"][0]["runs"].size(), 3u);
+}
+}  // namespace
