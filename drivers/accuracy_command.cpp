@@ -23,16 +23,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::string slug(const std::string& name) {
-  std::string s;
-  for (const char c : name) {
-    if (std::isalnum(static_cast<unsigned char>(c))) s += static_cast<char>(std::tolower(c));
-    else if (!s.empty() && s.back() != '-') s += '-';
-  }
-  while (!s.empty() && s.back() == '-') s.pop_back();
-  return s.empty() ? "series" : s;
-}
-
 // A previous run's record for exactly this scene, if any.
 bool load_record(const fs::path& file, const json& scene, AccuracyRun& run) {
   std::ifstream f(file);
@@ -99,7 +89,7 @@ Subcommand add_accuracy_command(CLI::App& app) {
       });
       for (const double v : values) {
         const json scene = accuracy_run_scene(study, series, v);
-        const std::string stem = (runs_dir / (slug(series.name) + "-" + series.parameter + "-" +
+        const std::string stem = (runs_dir / (series_file_stem(series.name) + "-" + series.parameter + "-" +
                                               json_fields::format_number(v))).string();
         AccuracyRun run;
         if ((args->resume || !selected) && load_record(stem + ".json", scene, run)) {

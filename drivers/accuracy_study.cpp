@@ -1,6 +1,7 @@
 #include "drivers/accuracy_study.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -112,6 +113,16 @@ double accuracy_spacing(const std::string& parameter, double value) {
   return value;                                                             // dt ∝ Courant
 }
 
+std::string series_file_stem(const std::string& name) {
+  std::string s;
+  for (const char c : name) {
+    if (std::isalnum(static_cast<unsigned char>(c))) s += static_cast<char>(std::tolower(c));
+    else if (!s.empty() && s.back() != '-') s += '-';
+  }
+  while (!s.empty() && s.back() == '-') s.pop_back();
+  return s.empty() ? "series" : s;
+}
+
 AccuracyStudy parse_accuracy_study(const json& j, const std::string& base_dir) {
   if (!j.is_object()) fail("(top level) = " + format_value(j) + ": an accuracy study must be a JSON object");
   const ObjectReader root(j, "", {"name", "scene", "outputs", "series"});
@@ -135,8 +146,13 @@ AccuracyStudy parse_accuracy_study(const json& j, const std::string& base_dir) {
   for (size_t i = 0; i < series->size(); ++i) {
     const std::string path = "series[" + std::to_string(i) + "]";
     AccuracySeries s = parse_series((*series)[i], path, st.outputs);
-    for (const auto& other : st.series)
+    for (const auto& other : st.series) {
       if (other.name == s.name) fail(path + ".name = \"" + s.name + "\": used twice");
+      if (series_file_stem(other.name) == series_file_stem(s.name))
+        fail(path + ".name = \"" + s.name + "\": its run files would have the names of series \"" +
+             other.name + "\"'s (both " + series_file_stem(s.name) +
+             "-...): names must differ in their letters or digits");
+    }
     references += s.reference ? 1 : 0;
     // Every run's scene must be valid now, not after an hour of runs.
     for (const double v : s.values) {

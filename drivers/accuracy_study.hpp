@@ -44,6 +44,10 @@ struct AccuracyStudy {
 
 // Throws InputError naming the key, its value and what is allowed.
 AccuracyStudy parse_accuracy_study(const nlohmann::json& j, const std::string& base_dir);
+// The series' name as the start of its run files' names: letters and digits in lower case, every
+// other run of characters one '-' ("Cell size / Courant" -> "cell-size-courant"). The parser
+// refuses two series whose names give the same stem.
+std::string series_file_stem(const std::string& name);
 AccuracyStudy load_accuracy_study(const std::string& path);
 
 // The spacing h that the error is assumed to scale with, for one value of a series' parameter.

@@ -25,9 +25,7 @@
 //                           case, method, coefficients (strings), lambda, tau, a1, a2,
 //                           empirical_tau, peak_force, impact_duration, final_displacement,
 //                           their *_rel_error against the MPM, run_time_s
-#include <fcntl.h>
 #include <hdf5.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -43,6 +41,7 @@
 #include <vector>
 
 #include "drivers/closed_form_methods.hpp"
+#include "drivers/hdf5_io.hpp"
 #include "drivers/hdf5_results.hpp"
 #include "drivers/mpm_impact.hpp"
 #include "drivers/mpm_runner.hpp"
@@ -440,54 +439,12 @@ std::string table(const std::vector<Case>& cases, const std::vector<sweeps::Grou
 // ---------------------------------------------------------------------------------------------
 // HDF5 output (C API; atomic like drivers/hdf5_results.cpp).
 
-class H5 {   // one hid_t, closed with its closer
- public:
-  H5(hid_t id, herr_t (*closer)(hid_t), const std::string& what) : id_(id), closer_(closer) {
-    if (id_ < 0) throw std::runtime_error("HDF5: " + what);
-  }
-  H5(H5&& o) noexcept : id_(o.id_), closer_(o.closer_) { o.id_ = -1; }
-  H5(const H5&) = delete;
-  H5& operator=(const H5&) = delete;
-  ~H5() {
-    if (id_ >= 0) closer_(id_);
-  }
-  operator hid_t() const { return id_; }   // NOLINT: passes straight into the C API
-  void close(const std::string& what) {
-    const hid_t id = id_;
-    id_ = -1;
-    if (closer_(id) < 0) throw std::runtime_error("HDF5: " + what);
-  }
+using H5 = hdf5::Handle;
+using hdf5::check;
 
- private:
-  hid_t id_;
-  herr_t (*closer_)(hid_t);
-};
-
-void check(herr_t s, const std::string& what) {
-  if (s < 0) throw std::runtime_error("HDF5: " + what);
-}
-
-H5 string_type() {
-  H5 t(H5Tcopy(H5T_C_S1), H5Tclose, "string type");
-  check(H5Tset_size(t, H5T_VARIABLE), "string type");
-  check(H5Tset_cset(t, H5T_CSET_UTF8), "string type");
-  return t;
-}
-
-void attr(hid_t obj, const std::string& name, double v) {
-  H5 space(H5Screate(H5S_SCALAR), H5Sclose, "dataspace");
-  H5 a(H5Acreate2(obj, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-       "attribute " + name);
-  check(H5Awrite(a, H5T_NATIVE_DOUBLE, &v), "attribute " + name);
-}
-
+void attr(hid_t obj, const std::string& name, double v) { hdf5::write_double_attribute(obj, name, v); }
 void attr(hid_t obj, const std::string& name, const std::string& v) {
-  H5 type = string_type();
-  H5 space(H5Screate(H5S_SCALAR), H5Sclose, "dataspace");
-  H5 a(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-       "attribute " + name);
-  const char* p = v.c_str();
-  check(H5Awrite(a, type, &p), "attribute " + name);
+  hdf5::write_string_attribute(obj, name, v);
 }
 
 void dataset(hid_t g, const std::string& name, const std::vector<double>& v,
@@ -502,7 +459,7 @@ void dataset(hid_t g, const std::string& name, const std::vector<double>& v,
 }
 
 void dataset(hid_t g, const std::string& name, const std::vector<std::string>& v) {
-  H5 type = string_type();
+  H5 type = hdf5::vlen_string_type();
   const hsize_t n = v.size();
   H5 space(H5Screate_simple(1, &n, nullptr), H5Sclose, "dataspace " + name);
   H5 d(H5Dcreate2(g, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
@@ -638,48 +595,20 @@ void write_contents(hid_t file, const std::vector<Case>& cases,
   column("run_time_s", &Row::run_time_s);
 }
 
-// Atomic: <path>.tmp.<pid> in the same directory, closed, fsync'ed, renamed onto path.
+// Atomic (hdf5::write_atomically): `path` is the old file or the complete new one.
 void write_calibration(const std::string& path, const std::vector<Case>& cases,
                        const std::vector<sweeps::GroupSummary>& groups, const std::vector<Row>& rows,
                        const sweeps::CalibrationOptions& o, const json& report) {
-  const fs::path target(path);
-  if (target.has_parent_path()) fs::create_directories(target.parent_path());
-  const std::string tmp = path + ".tmp." + std::to_string(getpid());
-  H5E_auto2_t func = nullptr;
-  void* data = nullptr;
-  H5Eget_auto2(H5E_DEFAULT, &func, &data);
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  try {
-    {
-      H5 fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "file creation properties");
-      check(H5Pset_link_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
-            "link creation order");
-      H5 file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl, H5P_DEFAULT), H5Fclose,
-              "cannot create '" + tmp + "'");
-      write_contents(file, cases, groups, rows, o, report);
-      check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush '" + tmp + "'");
-      file.close("close '" + tmp + "'");
-    }
-    const int fd = ::open(tmp.c_str(), O_RDONLY);
-    if (fd < 0 || ::fsync(fd) != 0) {
-      if (fd >= 0) ::close(fd);
-      throw std::runtime_error("cannot fsync '" + tmp + "'");
-    }
-    ::close(fd);
-    fs::rename(tmp, target);
-    const std::string dir = target.has_parent_path() ? target.parent_path().string() : ".";
-    const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
-    if (dfd >= 0) {
-      ::fsync(dfd);   // the rename itself survives a crash
-      ::close(dfd);
-    }
-  } catch (const std::exception& e) {
-    H5Eset_auto2(H5E_DEFAULT, func, data);
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw std::runtime_error(path + ": " + e.what());
-  }
-  H5Eset_auto2(H5E_DEFAULT, func, data);
+  hdf5::write_atomically(path, "lsi calibrate", [&](const std::string& tmp) {
+    H5 fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "file creation properties");
+    check(H5Pset_link_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
+          "link creation order");
+    H5 file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl, H5P_DEFAULT), H5Fclose,
+            "cannot create '" + tmp + "'");
+    write_contents(file, cases, groups, rows, o, report);
+    check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush '" + tmp + "'");
+    file.close("close '" + tmp + "'");
+  });
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -13,6 +13,7 @@
 #include "kernels/closed_form/momentum_barrier.hpp"
 #include "kernels/closed_form/peak_force_families.hpp"
 #include "kernels/closed_form/two_body_model.hpp"
+#include "drivers/json_fields.hpp"
 #include "sweeps/sampled_scene.hpp"
 
 namespace lsi {
@@ -247,6 +248,62 @@ MethodResult analytical_with_mass(const Scene& scene, double barrier_mass) {
   return r;
 }
 
+// A closed form evaluated outside the range its arithmetic can represent (a coefficient of 1e308,
+// a velocity of 1e-300) gives NaN or an infinity somewhere. Such a result is refused: it names
+// the method, the first value that is not a number and the scene's inputs of the model. The only
+// infinities that are results are a barrier that never stops (final displacement, stop time) and
+// a load that cannot make it slide or overturn (the safety factors); the "not given" values are
+// NaN by design (the literature formulas give no durations, a barrier that never moves no start
+// or stop time).
+void require_computable(const MethodResult& r, const Scene& scene) {
+  auto fail = [&](const std::string& what, double v) {
+    const SceneLandslide& l = scene.landslide;
+    const nlohmann::json& src = scene.source;
+    const nlohmann::json block = src.contains("methods") && src["methods"].contains(r.method)
+                                     ? src["methods"][r.method]
+                                     : nlohmann::json::object();
+    throw InputError("methods." + r.method + ": " + what + " = " + json_fields::format_number(v) +
+                     " for this scene: its inputs lie outside the range in which the " + r.method +
+                     " model can be computed (landslide thickness_m = " +
+                     json_fields::format_number(l.thickness_m) + ", velocity_m_s = " +
+                     json_fields::format_number(l.velocity_m_s) + ", density_kg_m3 = " +
+                     json_fields::format_number(l.density_kg_m3) + "; barrier mass " +
+                     json_fields::format_number(scene.barrier.mass()) + " kg/m, base_friction = " +
+                     json_fields::format_number(scene.barrier.base_friction) + "; methods." +
+                     r.method + " = " + block.dump() + ")");
+  };
+  const bool durations = r.method != "literature";
+  const std::pair<const char*, double> scalars[] = {{"peak_force", r.peak_force},
+                                                    {"rise_time", r.rise_time},
+                                                    {"impact_duration", r.impact_duration}};
+  for (const auto& [name, v] : scalars)
+    if ((durations || std::string(name) == "peak_force") && !std::isfinite(v)) fail(name, v);
+  if (durations && !(std::isfinite(r.final_displacement) || r.final_displacement == INFINITY))
+    fail("final_displacement", r.final_displacement);
+  for (const auto& [key, v] : r.extra) {
+    const bool may_be_infinite = key == "barrier_stop_time" || key == "min_sliding_safety" ||
+                                 key == "min_overturning_safety";
+    // A barrier that never moves has no start or stop time.
+    const bool not_given = std::isnan(v) && r.final_displacement == 0.0 &&
+                           (key == "barrier_start_time" || key == "barrier_stop_time");
+    if (!(std::isfinite(v) || (may_be_infinite && v == INFINITY) || not_given)) fail(key, v);
+  }
+  const std::pair<const char*, const std::vector<double>*> histories[] = {
+      {"time", &r.time},
+      {"force", &r.force},
+      {"force_horizontal", &r.force_horizontal},
+      {"force_vertical", &r.force_vertical},
+      {"landslide_kinetic_energy", &r.landslide_kinetic_energy},
+      {"barrier_velocity", &r.barrier_velocity},
+      {"barrier_displacement", &r.barrier_displacement}};
+  for (const auto& [name, values] : histories)
+    for (const double v : *values)
+      if (!std::isfinite(v)) fail(std::string("the history ") + name + " holds", v);
+  for (const auto& [name, series] : r.series)
+    for (const double v : series.values)
+      if (!std::isfinite(v)) fail("the history " + name + " holds", v);
+}
+
 }  // namespace
 
 double flow_friction_deceleration(const Scene& scene) {
@@ -306,6 +363,7 @@ std::vector<MethodResult> run_closed_form_methods(const Scene& scene,
                        "(it needs the family and its coefficients)");
     out.push_back(run_literature(scene));
   }
+  for (const auto& r : out) require_computable(r, scene);
   return out;
 }
 

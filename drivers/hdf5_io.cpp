@@ -1,6 +1,7 @@
 // HDF5 plumbing; see hdf5_io.hpp.
 #include "drivers/hdf5_io.hpp"
 #include "drivers/output_paths.hpp"
+#include "drivers/temporary_files.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -14,6 +15,17 @@
 namespace lsi::hdf5 {
 
 namespace fs = std::filesystem;
+
+namespace {
+// HDF5 closes what is still open in an exit handler of its own. After a write that failed (a
+// full disk) the file's close fails half-way, and that handler then crashes on it (SIGSEGV
+// instead of the exit code and message). Every file lsi writes is closed explicitly, so the
+// handler is not needed: it is switched off before the library is first used.
+const bool kNoExitHandler = [] {
+  H5dont_atexit();
+  return true;
+}();
+}  // namespace
 
 // The innermost messages of the current HDF5 error stack (which is then cleared), e.g.
 // "unable to open file: file does not exist".
@@ -33,6 +45,9 @@ std::string error_detail() {
     if (!s.empty()) s += ": ";
     s += *it;
   }
+  // One line: the driver's messages carry a line break (e.g. after the time of a failed write).
+  for (char& c : s)
+    if (static_cast<unsigned char>(c) < 0x20) c = ' ';
   return s;
 }
 
@@ -149,7 +164,7 @@ void remove_temporary(const std::string& tmp) noexcept {
 void write_atomically(const std::string& path, const std::string& who,
                       const std::function<void(const std::string& tmp)>& write) {
   const fs::path target(path);
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  const std::string tmp = temporary_path(path);
   const auto failure = [&](const std::string& what) {
     return std::runtime_error(who + ": cannot write '" + path + "': " + what);
   };
@@ -161,7 +176,9 @@ void write_atomically(const std::string& path, const std::string& who,
       throw failure("cannot create directory '" + target.parent_path().string() +
                     "': " + ec.message());
   }
+  remove_stale_temporaries(path);
   SilenceHdf5Errors silence;
+  const TemporaryFileGuard guard(tmp);
   try {
     write(tmp);
     fsync_file(tmp);

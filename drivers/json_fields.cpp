@@ -200,6 +200,10 @@ std::string ObjectReader::string(const std::string& key) const {
   if (!v.is_string()) fail_at(key, "must be a string");
   std::string s = v.get<std::string>();
   if (s.empty()) fail_at(key, "must be a non-empty string");
+  // Names and labels reach terminals and file names: no control characters (escape sequences).
+  for (const char c : s)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      fail_at(key, "must not contain control characters (a line break, a tab, an escape)");
   return s;
 }
 

@@ -68,7 +68,7 @@ class ObjectReader {
   double number_or(const std::string& key, double fallback, const Range& range) const;
   long long integer(const std::string& key, const Range& range) const;   // required
 
-  std::string string(const std::string& key) const;   // required, non-empty
+  std::string string(const std::string& key) const;   // required, non-empty, no control characters
   std::optional<std::string> optional_string(const std::string& key) const;   // non-empty if set
   // A string out of `options`; `fallback` when absent (required when fallback is nullopt).
   std::string choice(const std::string& key, const std::vector<std::string>& options,

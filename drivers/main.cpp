@@ -220,6 +220,7 @@ int main(int argc, char** argv) {
   }
 
   try {
+    lsi::reject_empty_values(app);
     for (const auto& s : subcommands)
       if (*s.command) return s.run();
     check_format(format);

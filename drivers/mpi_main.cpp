@@ -37,6 +37,7 @@
 #include "drivers/openmp_wait_policy.hpp"
 #include "drivers/scene.hpp"
 #include "drivers/study.hpp"
+#include "drivers/subcommand.hpp"
 #include "drivers/sweep_runner.hpp"
 #include "drivers/sweep_report.hpp"
 #include "drivers/sweep_table.hpp"
@@ -123,7 +124,7 @@ struct Args {
   bool resume = false;
 };
 
-int run(const Args& args, int rank, int size) {
+int run(const CLI::App& app, const Args& args, int rank, int size) {
   const auto t0 = Clock::now();
   const auto since = [](Clock::time_point t) {
     return std::chrono::duration<double>(Clock::now() - t).count();
@@ -134,6 +135,7 @@ int run(const Args& args, int rank, int size) {
   Status s = guarded([&] {
     if (args.format != "table" && args.format != "json")
       throw lsi::InputError("--format " + args.format + ": allowed: table, json");
+    lsi::reject_empty_values(app);
     if (args.out.empty()) throw lsi::InputError("--out: required (the HDF5 result file)");
     study = lsi::load_study(args.study);
   });
@@ -283,7 +285,7 @@ int main(int argc, char** argv) {
   int code = 0;
   try {
     app.parse(argc, argv);
-    code = run(args, rank, size);
+    code = run(app, args, rank, size);
   } catch (const CLI::ParseError& e) {
     // Every rank parses the same command line: all stop here, rank 0 prints.
     const bool help = dynamic_cast<const CLI::CallForHelp*>(&e) ||

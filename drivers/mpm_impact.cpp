@@ -117,8 +117,13 @@ MpmCase impact_case(const Scene& scene) {
                        json_fields::format_number(c.settings.end_time_s) +
                        " s is not finite: give methods.mpm.end_time_s");
   }
+  // The histories' default interval: 1/400 of the impact time scale, or 1/200 of a given end
+  // time when that is shorter (a bound far beyond the impact keeps the impact's resolution, and
+  // the test for rest, made at each output, stays as frequent).
   if (!(c.settings.output_interval_s > 0.0))
-    c.settings.output_interval_s = std::min(impact_time, c.settings.end_time_s) / 400;
+    c.settings.output_interval_s = c.settings.end_time_given
+                                       ? std::min(impact_time / 400, c.settings.end_time_s / 200)
+                                       : impact_time / 400;
 
   // Geometry: base y = 0, barrier toe x = 0, landslide front toe touching it.
   constexpr double kPi = 3.14159265358979323846;

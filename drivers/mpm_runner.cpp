@@ -11,6 +11,7 @@
 #include "drivers/impact_summary.hpp"
 #include "kernels/closed_form/barrier_geometry.hpp"
 #include "kernels/common/constants.hpp"
+#include "drivers/mpm_footprint.hpp"
 #include "drivers/progress.hpp"
 #include "kernels/mpm/momentum.hpp"
 #include "kernels/mpm/overtopping.hpp"
@@ -440,6 +441,7 @@ void ensure_kokkos() {
 
 
 MpmOutcome run_mpm_case(const MpmCase& c) {
+  check_mpm_fits(c);
   ensure_kokkos();
   MpmOutcome out;
   const double lo[2] = {c.lower[0], c.lower[1]}, hi[2] = {c.upper[0], c.upper[1]};

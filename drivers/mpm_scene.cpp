@@ -7,6 +7,7 @@
 
 #include "drivers/json_fields.hpp"
 #include "drivers/scene.hpp"
+#include "kernels/mpm/solver.hpp"
 
 namespace lsi {
 namespace jf = json_fields;
@@ -66,11 +67,15 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
   } else {
     s.end_time_s = r.number("end_time_s", jf::greater_than(0, "s"));
   }
-  s.max_time_step_s = r.number_or("max_time_step_s", 1e300, jf::greater_than(0, "s"));
-  // Impact scenes without end_time_s get their default interval with their default end time.
-  s.output_interval_s = r.number_or("output_interval_s", s.end_time_given ? s.end_time_s / 200 : 0.0,
+  // Not below the solvers' smallest step, under which a run stops as "the time step collapsed".
+  s.max_time_step_s =
+      r.number_or("max_time_step_s", 1e300, jf::at_least(mpm::Settings{}.min_time_step, "s"));
+  // Impact scenes get their default interval from the impact's time scale (impact_case): their
+  // end time only bounds the run, which ends at rest.
+  s.output_interval_s = r.number_or("output_interval_s",
+                                    s.end_time_given && !impact ? s.end_time_s / 200 : 0.0,
                                     jf::greater_than(0, "s"));
-  if (s.end_time_given && !(s.output_interval_s > 0))   // end_time_s / 200 underflows to 0
+  if (s.end_time_given && !(s.end_time_s / 200 > 0))   // the default interval underflows to 0
     r.fail_at("end_time_s", "too small: the default output_interval_s = end_time_s / 200 is 0 "
                             "(give output_interval_s > 0 s)");
   const std::string transfer = r.choice("transfer", {"apic", "flip", "pic"}, std::string("apic"));

@@ -291,8 +291,17 @@ json read_scene_document(const std::string& path, const std::string& kind) {
   if (fs::is_directory(path, ec)) fail(shown + ": is a directory, not a " + kind + " file");
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(shown + ": cannot open " + kind + " file: " + std::strerror(errno));
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Bounded: a device or pipe that never ends (/dev/zero) is refused, not read until memory runs
+  // out. The largest shipped input is a few kilobytes.
+  std::string text;
+  char block[1 << 16];
+  while (text.size() <= kMaxInputFileBytes && in.read(block, sizeof block).gcount() > 0)
+    text.append(block, static_cast<std::size_t>(in.gcount()));
   if (in.bad()) fail(shown + ": cannot read " + kind + " file");
+  if (text.size() > kMaxInputFileBytes)
+    fail(shown + ": the " + kind + " file is larger than " +
+         std::to_string(kMaxInputFileBytes >> 20) + " MiB (allowed: at most that; is it a " +
+         kind + " file?)");
 
   const json j = parse_json_document(text, shown);
   if (!j.is_object()) {

@@ -319,6 +319,26 @@ sweeps::SceneValues scene_values(const Scene& sc) {
   return v;
 }
 
+// A study none of whose first kValidityProbe samples is a valid scene (a lognormal with an
+// enormous sd, fractional values for an integer field) would run every sample as invalid: it is
+// refused, with the first sample's reason.
+constexpr std::uint64_t kValidityProbe = 256;
+void require_some_valid_samples(const Study& s, const std::vector<sweeps::DistributionSpec>& specs) {
+  const sweeps::Sampler<Kokkos::HostSpace> sampler(specs, s.correlation, s.design, s.seed, s.samples);
+  const std::uint64_t n = std::min(s.samples, kValidityProbe);
+  std::string first_reason;
+  double x[sweeps::Sampler<Kokkos::HostSpace>::max_dimensions];
+  for (std::uint64_t k = 0; k < n; ++k) {
+    sampler.sample(k, x);
+    const std::string why = invalid_sample_reason(s, x);
+    if (why.empty()) return;
+    if (k == 0) first_reason = why;
+  }
+  fail("inputs: none of the first " + std::to_string(n) +
+       " samples is a valid scene (sample 0: " + first_reason +
+       "); check the distributions against the scene's allowed ranges");
+}
+
 }  // namespace
 
 bool Study::runs(const std::string& method) const {
@@ -481,6 +501,7 @@ Study parse_study(const json& j, const std::string& base_dir) {
   } catch (const std::invalid_argument& e) {
     fail(std::string(root.has("correlation") ? "correlation" : "design") + ": " + e.what());
   }
+  require_some_valid_samples(s, specs);
 
   // What the results store: the study as read, with its scene inlined and the resolved values.
   s.source = j;

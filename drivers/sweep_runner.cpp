@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <Kokkos_Core.hpp>
+#include <hdf5.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -11,16 +12,19 @@
 #include <filesystem>
 #include <fstream>
 #include <numeric>
+#include <limits>
 #include <optional>
 
 #include "drivers/json_fields.hpp"
 #include "drivers/mpm_impact.hpp"
 #include "drivers/text_file.hpp"
 #include "drivers/mpm_runner.hpp"
+#include "drivers/resource_estimate.hpp"
 #include "drivers/sweep_quantile_mpm.hpp"
 #include "drivers/sweep_statistics.hpp"
 #include "drivers/sweep_table.hpp"
 #include "sweeps/closed_form_sweep.hpp"
+#include "sweeps/sampler.hpp"
 
 namespace lsi {
 namespace {
@@ -227,6 +231,87 @@ SweepHeader header_of(const Study& s, int shard, int shard_count) {
   return h;
 }
 
+// Checks the rows of shard files against their study before they are merged: every sample index
+// within the study and in a chunk of the shard that holds it, a known status, and the inputs
+// bitwise those the study's sampler draws for the index (sampling is counter-based, so a row's
+// inputs are a function of its index). A file edited or damaged since it was written fails here
+// with the first row that differs. Throws InputError.
+void check_shard_rows(const Study& study, const std::string& file, const SweepHeader& h,
+                      const SweepTable& t) {
+  auto fail = [&](std::size_t row, const std::string& why) {
+    throw InputError(file + ": row " + std::to_string(row) + " (sample " +
+                     std::to_string(t.index[row]) + ") " + why +
+                     ": the file was changed or damaged after it was written; run the shard "
+                     "again");
+  };
+  if (t.input_paths.size() != study.inputs.size())
+    throw InputError(file + ": " + std::to_string(t.input_paths.size()) + " input columns, the study has " +
+                     std::to_string(study.inputs.size()));
+  for (std::size_t d = 0; d < study.inputs.size(); ++d)
+    if (t.input_paths[d] != study.inputs[d].path)
+      throw InputError(file + ": input column " + std::to_string(d) + " is " + t.input_paths[d] +
+                       ", the study's is " + study.inputs[d].path);
+  for (std::size_t i = 0; i < t.rows(); ++i) {
+    const std::uint64_t k = t.index[i];
+    if (k >= study.samples) fail(i, "lies beyond the study's " + std::to_string(study.samples) + " samples");
+    if ((k / study.chunk_samples) % std::uint64_t(h.shard_count) != std::uint64_t(h.shard))
+      fail(i, "belongs to another shard than " + std::to_string(h.shard) + "/" +
+                  std::to_string(h.shard_count));
+    if (t.status[i] < 0 || t.status[i] > static_cast<std::int8_t>(SampleStatus::truncated))
+      fail(i, "has an unknown status " + std::to_string(int(t.status[i])));
+  }
+  ensure_kokkos();
+  std::vector<sweeps::DistributionSpec> specs;
+  for (const auto& in : study.inputs) specs.push_back(in.distribution);
+  const sweeps::Sampler<Kokkos::HostSpace> sampler(specs, study.correlation, study.design,
+                                                   study.seed, study.samples);
+  const int dims = static_cast<int>(study.inputs.size());
+  std::int64_t first_bad = std::numeric_limits<std::int64_t>::max();
+  Kokkos::parallel_reduce(
+      "lsi::check_shard_rows",
+      Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, static_cast<std::int64_t>(t.rows())),
+      [&](const std::int64_t i, std::int64_t& bad) {
+        double x[sweeps::Sampler<Kokkos::HostSpace>::max_dimensions];
+        sampler.sample(t.index[i], x);
+        for (int d = 0; d < dims; ++d)
+          if (!(x[d] == t.inputs[d][i]) && i < bad) bad = i;
+      },
+      Kokkos::Min<std::int64_t>(first_bad));
+  if (first_bad != std::numeric_limits<std::int64_t>::max()) {
+    const std::size_t i = static_cast<std::size_t>(first_bad);
+    double x[sweeps::Sampler<Kokkos::HostSpace>::max_dimensions];
+    sampler.sample(t.index[i], x);
+    int d = 0;
+    while (x[d] == t.inputs[d][i]) ++d;
+    fail(i, "has " + study.inputs[d].path + " = " + json_fields::format_number(t.inputs[d][i]) +
+                " where the study's sampler draws " + json_fields::format_number(x[d]));
+  }
+}
+
+// Refuses, before anything is written, a run whose table cannot be held in memory (the rows
+// run now and the gathered table: twice the table, plus a column for the statistics) or whose
+// files cannot fit beside `out` (the chunk files, then the result file: twice the table).
+void check_sweep_fits(const Study& s, const SweepOptions& opt) {
+  const std::uint64_t chunks = (s.samples + s.chunk_samples - 1) / s.chunk_samples;
+  const std::uint64_t n = static_cast<std::uint64_t>(opt.shard_count);
+  const std::uint64_t shard = static_cast<std::uint64_t>(opt.shard);
+  const std::uint64_t my_chunks = shard < chunks ? (chunks - shard + n - 1) / n : 0;
+  double rows = double(my_chunks) * double(s.chunk_samples);
+  if (chunks > 0 && (chunks - 1) % n == shard) rows -= double(chunks * s.chunk_samples - s.samples);
+  // index (8), status (1), wall time (4), one double per input and per output column.
+  const double row_bytes = 13.0 + 8.0 * double(s.inputs.size() + s.output_columns().size());
+  const double table = rows * row_bytes;
+  const std::string value = json_fields::format_number(double(s.samples));
+  const std::string remedy = opt.shard_count > 1
+                                 ? "more shards (--shard i/N) or fewer samples"
+                                 : "fewer samples, or shards (--shard i/N) on several machines";
+  require_fits("samples", value, "the sweep table (" + json_fields::format_number(rows) + " rows of " +
+                                     json_fields::format_number(row_bytes) + " bytes, held twice)",
+               2.0 * table + 8.0 * rows, available_memory_bytes(), "memory", remedy);
+  require_fits("samples", value, "the chunk files and the result file",
+               2.0 * table, free_disk_bytes(opt.out), "disk where --out goes", remedy + ", or another --out");
+}
+
 }  // namespace
 
 void parse_shard(const std::string& text, int& shard, int& shard_count) {
@@ -250,6 +335,28 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
                          {"shard", opt.shard},
                          {"shard_count", opt.shard_count}};
   SweepOutcome outcome;
+  // A finished run renames its parts directory before removing it; a kill during the removal
+  // leaves this, which is never needed again.
+  const fs::path removed_parts = parts.string() + ".removing";
+  if (fs::exists(removed_parts)) fs::remove_all(removed_parts);
+  // Resuming a run that already finished reports what it wrote.
+  auto finished_run = [&]() -> std::optional<SweepOutcome> {
+    if (!opt.resume || !fs::exists(opt.out)) return std::nullopt;
+    const SweepFile done = read_sweep_file(opt.out);
+    if (done.header.fingerprint != study.fingerprint)
+      throw InputError(opt.out + ": written by another study (fingerprint " +
+                       done.header.fingerprint + ", this study " + study.fingerprint + ")");
+    if (!done.header.complete || done.header.shard != opt.shard ||
+        done.header.shard_count != opt.shard_count)
+      return std::nullopt;
+    SweepOutcome o;
+    o.complete = true;
+    o.stopped_by = done.header.stopped_by;
+    o.samples_done = done.table.rows();
+    o.statistics = done.statistics;
+    if (done.statistics.is_object()) o.samples_ok = done.statistics.value("samples_ok", 0ull);
+    return o;
+  };
 
   if (fs::exists(parts)) {
     if (!opt.resume)
@@ -260,27 +367,19 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
       std::ifstream f(marker);
       found = json::parse(f);
     } catch (const std::exception&) {
+      // A finished run killed while it removed its parts (the marker may be gone first).
+      if (auto done = finished_run()) {
+        fs::remove_all(parts);
+        return *done;
+      }
       throw InputError(parts.string() + ": not a sweep's parts directory (no readable sweep.json)");
     }
     if (found != identity)
       throw InputError(parts.string() + ": left by another study or shard (" + found.dump() +
                        "; this run: " + identity.dump() + ")");
   } else {
-    if (opt.resume && fs::exists(opt.out)) {
-      // Resuming a run that already finished: report what it wrote.
-      const SweepFile done = read_sweep_file(opt.out);
-      if (done.header.fingerprint != study.fingerprint)
-        throw InputError(opt.out + ": written by another study (fingerprint " +
-                         done.header.fingerprint + ", this study " + study.fingerprint + ")");
-      if (done.header.complete) {
-        outcome.complete = true;
-        outcome.stopped_by = done.header.stopped_by;
-        outcome.samples_done = done.table.rows();
-        outcome.statistics = done.statistics;
-        if (done.statistics.is_object()) outcome.samples_ok = done.statistics.value("samples_ok", 0ull);
-        return outcome;
-      }
-    }
+    if (auto done = finished_run()) return *done;
+    check_sweep_fits(study, opt);
     fs::create_directories(parts);
     write_text_atomically(marker, identity.dump() + "\n");
   }
@@ -382,7 +481,10 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   const double quantile_mpm_s = seconds_since(ts);
   ts = Clock::now();
   write_sweep_file(opt.out, h, all, outcome.statistics.is_null() ? nullptr : &outcome.statistics);
-  if (complete) fs::remove_all(parts);
+  if (complete) {   // renamed first: a kill during the removal leaves no parts to resume
+    fs::rename(parts, removed_parts);
+    fs::remove_all(removed_parts);
+  }
   gather_s += seconds_since(ts);
   outcome.seconds = {{"evaluate", evaluate_s},
                      {"write_chunks", write_s},
@@ -397,7 +499,15 @@ SweepOutcome merge_sweeps(const std::vector<std::string>& files, const std::stri
   const auto t0 = Clock::now();
   if (files.empty()) throw InputError("merge: no shard files given");
   std::vector<SweepFile> shards;
-  for (const auto& f : files) shards.push_back(read_sweep_file(f));
+  for (const auto& f : files) {
+    std::error_code ec;
+    if (!fs::exists(f, ec)) throw InputError(f + ": shard file not found");
+    if (!fs::is_regular_file(f, ec))
+      throw InputError(f + ": not a regular file (a shard result file of lsi sweep --shard i/N)");
+    if (H5Fis_hdf5(f.c_str()) <= 0)
+      throw InputError(f + ": not an HDF5 file (a shard result file of lsi sweep --shard i/N)");
+    shards.push_back(read_sweep_file(f));
+  }
   const SweepHeader& h0 = shards.front().header;
   std::vector<bool> seen(h0.shard_count, false);
   for (std::size_t k = 0; k < shards.size(); ++k) {
@@ -426,6 +536,11 @@ SweepOutcome merge_sweeps(const std::vector<std::string>& files, const std::stri
   if (study.fingerprint != h0.fingerprint)
     throw std::runtime_error("merge: the stored study does not reproduce its fingerprint (" +
                              study.fingerprint + " vs " + h0.fingerprint + ")");
+  for (std::size_t k = 0; k < shards.size(); ++k)
+    check_shard_rows(study, files[k], shards[k].header, shards[k].table);
+  if (all.rows() != study.samples)   // each row is in its shard, none twice: a row is missing
+    throw InputError("merge: the shards hold " + std::to_string(all.rows()) + " samples, the study " +
+                     std::to_string(study.samples) + ": a shard file lost rows after it was written");
   SweepOutcome outcome;
   SweepHeader h = header_of(study, 0, 1);
   h.complete = true;

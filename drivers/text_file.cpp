@@ -11,6 +11,7 @@
 
 #include "drivers/hdf5_io.hpp"
 #include "drivers/output_paths.hpp"
+#include "drivers/temporary_files.hpp"
 
 namespace lsi {
 
@@ -19,13 +20,15 @@ void write_text_atomically(const std::string& path, const std::string& text) {
   const fs::path target(path);
   std::error_code ec;
   if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  const std::string tmp = temporary_path(path);
   const auto fail = [&](const std::string& what) {
     std::error_code ignored;
     fs::remove(tmp, ignored);
     throw std::runtime_error("cannot write '" + path + "': " + what);
   };
   if (const std::string why = unsafe_output_reason(path); !why.empty()) fail(why);
+  remove_stale_temporaries(path);
+  const TemporaryFileGuard guard(tmp);
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
     if (!f) fail("cannot create '" + tmp + "': " + std::strerror(errno));

@@ -92,6 +92,15 @@ TEST(AccuracyStudyFile, ErrorsNameTheKeyAndTheAllowedValues) {
   EXPECT_NE(parse_error(j).find("series[0] (dry PIC), cells_per_thickness = 4: "), std::string::npos)
       << parse_error(j);
   EXPECT_NE(parse_error(j).find("flipp"), std::string::npos) << parse_error(j);
+  // Two series whose run files would share their names ("x y" and "x/y" both start "x-y-").
+  j = small_study();
+  j["series"][0]["name"] = "x y";
+  j["series"].push_back(dry_series({4}, false));
+  j["series"][1]["name"] = "x/y";
+  EXPECT_NE(parse_error(j).find("series[1].name = \"x/y\": its run files would have the names of "
+                                "series \"x y\"'s (both x-y-...)"),
+            std::string::npos)
+      << parse_error(j);
 }
 
 AccuracyRun run_at(double h, double value, bool finished = true) {

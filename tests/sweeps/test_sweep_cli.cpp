@@ -6,8 +6,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <fcntl.h>
-
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -264,16 +262,8 @@ TEST(SweepCli, ResumesAfterSigkillWithIdenticalResults) {
   const fs::path full = temp_dir() / "full.h5", killed = temp_dir() / "killed.h5";
   ASSERT_EQ(run("sweep " + study.string() + " --out " + full.string()).code, 0);
 
-  const pid_t pid = fork();
+  const pid_t pid = lsi::testing::spawn_quietly({lsi_exe, "sweep", study, "--out", killed});
   ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    const int null = ::open("/dev/null", O_WRONLY);
-    dup2(null, 1);
-    dup2(null, 2);
-    execl(lsi_exe.c_str(), lsi_exe.c_str(), "sweep", study.c_str(), "--out", killed.c_str(),
-          static_cast<char*>(nullptr));
-    _exit(127);
-  }
   const fs::path parts = killed.string() + ".parts";
   auto chunks = [&] {
     std::size_t n = 0;
