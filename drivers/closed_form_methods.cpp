@@ -308,8 +308,7 @@ void require_computable(const MethodResult& r, const Scene& scene) {
 
 double flow_friction_deceleration(const Scene& scene) {
   const SceneLandslide& l = scene.landslide;
-  const bool dry = scene.methods.mpm &&
-                   scene.methods.mpm->value("phases", std::string("saturated")) == "dry";
+  const bool dry = scene.methods.mpm && !scene.methods.mpm->saturated;
   return sweeps::flow_friction_deceleration(l.base_friction, l.material.porosity, l.density_kg_m3,
                                             !dry);
 }

@@ -80,7 +80,7 @@ std::string attach_convergence(const ConvergenceStudy& study, const Scene& scene
     return "the study ran another landslide or barrier under this name";
   if (!scene.methods.mpm) return "the scene has no methods.mpm";
   // The settings that shape the solution must be the study's; what is only written out may differ.
-  MpmSettings here = parse_mpm_settings(*scene.methods.mpm, "methods.mpm", /*impact=*/true);
+  MpmSettings here = *scene.methods.mpm;
   here.snapshot_interval_s = c.mpm.snapshot_interval_s;
   here.cell_mean_pore_pressure_output = c.mpm.cell_mean_pore_pressure_output;
   here.transfer_dissipation = c.mpm.transfer_dissipation;

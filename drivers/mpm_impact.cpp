@@ -81,7 +81,7 @@ MpmCase impact_case(const Scene& scene) {
   MpmCase c;
   c.name = scene.name;
   c.source = scene.source;
-  c.settings = parse_mpm_settings(*scene.methods.mpm, "methods.mpm", /*impact=*/true);
+  c.settings = *scene.methods.mpm;
   const SceneLandslide& l = scene.landslide;
   const SceneBarrier& b = scene.barrier;
   const double dx = c.settings.cell_size_m, h = l.thickness_m, v0 = l.velocity_m_s;

@@ -247,8 +247,7 @@ SceneMethods parse_methods(const ObjectReader& root) {
     // the closed forms): a wrong key or value of the block is an error even when the MPM does
     // not run. What needs the landslide and the barrier too (the cell size against the
     // thickness, the explicit drag's cost) is checked when the MPM case is built (mpm_impact.cpp).
-    parse_mpm_settings(*mpm, r.path() + ".mpm", /*impact=*/true);
-    m.mpm = *mpm;
+    m.mpm = parse_mpm_settings(*mpm, r.path() + ".mpm", /*impact=*/true);
   }
   return m;
 }

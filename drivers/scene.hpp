@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "drivers/inertial_friction_input.hpp"
+#include "drivers/mpm_settings.hpp"
 
 namespace lsi {
 
@@ -104,7 +105,7 @@ struct SceneMethods {
   std::optional<EmpiricalParameters> empirical;
   std::optional<AnalyticalParameters> analytical;
   std::optional<LiteratureParameters> literature;
-  std::optional<nlohmann::json> mpm;   // validated by the MPM module when it exists
+  std::optional<MpmSettings> mpm;     // the `methods.mpm` block, parsed
 };
 
 struct Scene {

@@ -284,7 +284,7 @@ sweeps::SceneValues scene_values(const Scene& sc) {
   v.value[body_squares] = l.shape.body_squares;
   v.value[length_m] = l.shape.length_m;
   v.value[flow_base_friction] = l.base_friction;
-  v.saturated_flow = !(sc.methods.mpm && sc.methods.mpm->value("phases", std::string("saturated")) == "dry");
+  v.saturated_flow = !(sc.methods.mpm && !sc.methods.mpm->saturated);
   v.value[porosity] = l.material.porosity;
   v.value[friction_angle_deg] = l.material.friction_angle_deg;
   v.value[cohesion_kpa] = l.material.cohesion_kpa;

@@ -159,9 +159,9 @@ TEST(SceneReference, AllEighteenFilesParseWithTheStudyValues) {
         // The MPM column of the study: saturated, APIC, 8 cells through the thickness, the flow's
         // base friction 0.2 (README; docs/reference_convergence.md).
         ASSERT_TRUE(s.methods.mpm.has_value());
-        EXPECT_DOUBLE_EQ(s.methods.mpm->at("cell_size_m").get<double>(), s.landslide.thickness_m / 8);
-        EXPECT_EQ(s.methods.mpm->at("phases"), "saturated");
-        EXPECT_EQ(s.methods.mpm->at("transfer"), "apic");
+        EXPECT_DOUBLE_EQ(s.methods.mpm->cell_size_m, s.landslide.thickness_m / 8);
+        EXPECT_TRUE(s.methods.mpm->saturated);
+        EXPECT_TRUE(s.methods.mpm->apic);
         EXPECT_DOUBLE_EQ(s.landslide.base_friction, 0.2);
         EXPECT_EQ(s.source.at("name"), name);
         ++parsed;
@@ -251,8 +251,8 @@ TEST(SceneParse, OverridesAndOptionalMethods) {
   EXPECT_DOUBLE_EQ(s.methods.literature->hydrostatic_k.value(), 1.5);
   EXPECT_FALSE(s.methods.literature->hydrodynamic_alpha.has_value());
   ASSERT_TRUE(s.methods.mpm.has_value());
-  EXPECT_EQ(s.methods.mpm->at("cell_size_m"), 0.1);   // kept as written, for the MPM run
-  EXPECT_EQ(s.methods.mpm->at("phases"), "dry");
+  EXPECT_EQ(s.methods.mpm->cell_size_m, 0.1);
+  EXPECT_FALSE(s.methods.mpm->saturated);
   EXPECT_EQ(s.source, j);
   // The block is checked when the scene is read, whichever methods then run.
   j["methods"]["mpm"] = {{"cell_size_m", 0.1}, {"anything", {1, 2}}};

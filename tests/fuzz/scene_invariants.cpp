@@ -121,7 +121,7 @@ void check_methods(const SceneMethods& m) {
     if (m.literature->hydrodynamic_alpha)
       positive("methods.literature.hydrodynamic_alpha", *m.literature->hydrodynamic_alpha);
   }
-  if (m.mpm) require(m.mpm->is_object(), "methods.mpm is not an object");
+  // m.mpm: checked as the impact case's settings (check_mpm_case), its defaults filled in.
 }
 
 void check_settings(const MpmSettings& s, MpmCaseKind kind) {
