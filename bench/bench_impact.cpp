@@ -71,14 +71,15 @@
 #include <string>
 #include <vector>
 
-#include "drivers/mpm_impact.hpp"
-#include "drivers/mpm_runner.hpp"
-#include "drivers/scene.hpp"
+#include "model/mpm_impact.hpp"
+#include "model/mpm_runner.hpp"
+#include "model/scene.hpp"
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
 #include "kernels/mpm/two_phase/two_phase_builder.hpp"
 #include "kernels/mpm/two_phase/two_phase_solver.hpp"
 #include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
+#include "io/scene_parser.hpp"
 
 namespace {
 using namespace lsi;

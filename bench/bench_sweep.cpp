@@ -9,7 +9,7 @@
 //   BM_sweep_overhead/methods:M  the overhead of the sweep machinery: time = sweep kernel - models
 //                              only, both timed in the same iteration on the same samples; counter
 //                              overhead_ns_per_sample (sampling + scene check + the per-sample copies)
-//   BM_chunk_write / BM_chunk_read  write_sweep_file / read_sweep_file (drivers/sweep_table.hpp) of a
+//   BM_chunk_write / BM_chunk_read  write_sweep_file / read_sweep_file (model/sweep_table.hpp) of a
 //                              2^20-row table (5 inputs, 4 output columns) in /tmp, fsync included
 // items_per_second = samples per second; per-sample cost = 1 / items_per_second.
 // Run (docs/performance.md, "Sweeps", has the numbers and the machine):
@@ -26,11 +26,13 @@
 #include <utility>
 #include <vector>
 
-#include "drivers/study.hpp"
-#include "drivers/sweep_table.hpp"
+#include "model/study.hpp"
+#include "model/sweep_table.hpp"
 #include "kernels/closed_form/batch.hpp"
 #include "sweeps/closed_form_sweep.hpp"
 #include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
+#include "io/study_parser.hpp"
+#include "io/sweep_file.hpp"
 
 namespace {
 using namespace lsi;
@@ -67,7 +69,7 @@ sweeps::ClosedFormSweep<Mem> sweep_of(const Study& s, int methods) {
 
 const char* methods_label(int m) { return m == 1 ? "empirical" : m == 2 ? "analytical" : "both"; }
 
-// The chunk buffers of the sweep kernel (as drivers/sweep_runner.cpp allocates them).
+// The chunk buffers of the sweep kernel (as app/sweep_runner.cpp allocates them).
 struct Chunk {
   Matrix inputs, outputs;
   Kokkos::View<int*, Mem> invalid;

@@ -16,8 +16,8 @@ study="${1:-$root/scenes/studies/accuracy.json}"
 out="$root/results/$(basename "$study" .json)"   # results/accuracy for the default study
 mkdir -p "$out"
 OMP_NUM_THREADS="${OMP_NUM_THREADS:-$(nproc)}" OMP_PROC_BIND=false OMP_WAIT_POLICY=passive \
-  "$build/drivers/lsi" accuracy "$study" --out "$out" --resume
-MPLCONFIGDIR="$out/.mplconfig" /usr/bin/python3 "$root/drivers/lsi_accuracy_plot.py" \
+  "$build/app/lsi" accuracy "$study" --out "$out" --resume
+MPLCONFIGDIR="$out/.mplconfig" /usr/bin/python3 "$root/app/lsi_accuracy_plot.py" \
   "$out/accuracy.json" >/dev/null
 rm -rf "$out/.mplconfig"
 echo "accuracy tables and plots written to ${out#$root/}/"

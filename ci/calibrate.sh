@@ -32,9 +32,9 @@ files=()
 for model in paper momentum; do
   for objective in nrms peak-duration; do
     f="$out/$model-$objective"
-    "$build/drivers/lsi" calibrate "${scenes[@]}" --results-dir "$runs" --objective "$objective" \
+    "$build/app/lsi" calibrate "${scenes[@]}" --results-dir "$runs" --objective "$objective" \
       --barrier-model "$model" --out "$f.h5" > "$f.txt"
-    MPLCONFIGDIR="$out/.mplconfig" /usr/bin/python3 "$root/drivers/lsi_calibration_plot.py" \
+    MPLCONFIGDIR="$out/.mplconfig" /usr/bin/python3 "$root/app/lsi_calibration_plot.py" \
       "$f.h5" --out-dir "$out" > /dev/null
     files+=("$f.h5")
   done

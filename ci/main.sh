@@ -47,10 +47,10 @@ if [ ${#variant[@]} -gt 0 ]; then
   bars=()
 fi
 mkdir -p "$out"
-"$build/drivers/lsi" compare "${scenes[@]}" --out-dir "$out" --max-displacement 0.5 \
+"$build/app/lsi" compare "${scenes[@]}" --out-dir "$out" --max-displacement 0.5 \
   "${bars[@]}" --verify-design analytical --summary-json "$out/comparison.json" \
   | tee "$out/comparison.txt"
-MPLCONFIGDIR="$out/.mplconfig" /usr/bin/python3 "$root/drivers/lsi_plot.py" "$out"/L?-B?*.h5 \
+MPLCONFIGDIR="$out/.mplconfig" /usr/bin/python3 "$root/app/lsi_plot.py" "$out"/L?-B?*.h5 \
   --out-dir "$out/plots" >/dev/null
 rm -rf "$out/.mplconfig"
 echo "results, comparison tables and plots written to ${out#$root/}/"

@@ -29,7 +29,7 @@ def main():
     ap.add_argument("--drag", default="semi-implicit")
     ap.add_argument("--set", nargs="*", default=[], metavar="KEY=JSON",
                     help="further methods.mpm keys, e.g. transfer='\"pic\"'")
-    ap.add_argument("--lsi", default=os.path.join(root, "build", "drivers", "lsi"))
+    ap.add_argument("--lsi", default=os.path.join(root, "build", "app", "lsi"))
     ap.add_argument("--out", default=os.path.join(root, "results", "mpm_resolution"))
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)

@@ -89,7 +89,7 @@ def run_one(lsi, work, s, threads):
 
 def windowed_peak(t, f, w):
     """Largest mean of the piecewise-constant force (f[i] over (t[i-1], t[i]]) over a window w;
-    w = 0: the largest sample (as drivers/impact_summary.cpp)."""
+    w = 0: the largest sample (as model/impact_summary.cpp)."""
     if w <= 0:
         return max(f)
     J = [0.0]
@@ -175,7 +175,7 @@ def main():
     ap.add_argument("--base-cells", type=int, default=8)
     ap.add_argument("--courant", nargs="+", type=float, default=[0.5, 0.25],
                     help="Courant numbers at the base cells; the first is the base")
-    ap.add_argument("--lsi", default=os.path.join(root, "build", "drivers", "lsi"))
+    ap.add_argument("--lsi", default=os.path.join(root, "build", "app", "lsi"))
     ap.add_argument("--work", default=os.path.join(root, "results", "convergence"))
     ap.add_argument("--out", default=os.path.join(root, "ci", "reference_convergence.json"))
     ap.add_argument("--tables", default=os.path.join(root, "docs", "reference_convergence.md"))

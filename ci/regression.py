@@ -3,8 +3,8 @@
 sample's inputs, status and outputs with the golden values in ci/regression/golden.json, within
 the tolerances (and their reasons) in ci/regression/tolerances.json.
 
-  ci/regression.py --lsi build/drivers/lsi [--work DIR]          compare (exit 1 on a difference)
-  ci/regression.py --lsi build/drivers/lsi --update-golden       rewrite golden.json deliberately
+  ci/regression.py --lsi build/app/lsi [--work DIR]          compare (exit 1 on a difference)
+  ci/regression.py --lsi build/app/lsi --update-golden       rewrite golden.json deliberately
 
 Uses Debian's python3-h5py (installed by ci/setup.sh).
 """

@@ -54,7 +54,7 @@ struct ImpactInputs {
 };
 
 // One MPM history and its inputs. peak_force / rise_time / impact_duration are the MPM's own
-// summaries (drivers/mpm_runner.cpp); NaN means "derive them from the history" with the same
+// summaries (model/mpm_runner.cpp); NaN means "derive them from the history" with the same
 // definitions (impact_summary below).
 struct CalibrationCase {
   std::string name;

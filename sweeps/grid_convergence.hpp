@@ -46,7 +46,7 @@ struct GridConvergence {
   // Roache's asymptotic-range check GCI^32 / (r21^p GCI^21), with the GCIs relative to phi2 and
   // phi1. With the order observed from these same three runs the absolute GCIs satisfy
   // GCI^32 = r21^p GCI^21 exactly, so the ratio reduces to |phi1 / phi2|: ~1 by construction, and
-  // no evidence of the asymptotic range on its own. The accuracy study (drivers/accuracy_study.cpp)
+  // no evidence of the asymptotic range on its own. The accuracy study (app/accuracy_study.cpp)
   // therefore also compares the order of the three finest runs with that of the next three.
   double asymptotic_ratio = std::numeric_limits<double>::quiet_NaN();
   int iterations = 0;

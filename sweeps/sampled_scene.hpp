@@ -1,9 +1,9 @@
 // One sample of a sweep as the closed-form models see it: the numeric scene values in a flat,
 // device-copyable struct, their validity check (the same ranges as the scene parser,
-// drivers/scene.cpp) and the evaluation of the empirical and analytical models. Used inside the
-// batched sweep kernel (drivers/sweep_closed_form.hpp): no allocation, no strings, no I/O.
+// io/scene_parser.cpp) and the evaluation of the empirical and analytical models. Used inside the
+// batched sweep kernel (sweeps/closed_form_sweep.hpp): no allocation, no strings, no I/O.
 //
-// The ranges below mirror drivers/scene.cpp; tests/sweeps/test_sweep_study.cpp checks on random
+// The ranges below mirror io/scene_parser.cpp; tests/sweeps/test_sweep_study.cpp checks on random
 // samples that a sample is valid here exactly when the scene parser accepts it.
 #pragma once
 #include <Kokkos_Core.hpp>
@@ -98,7 +98,7 @@ struct SceneValues {
   bool barrier_given_by_mass = false;
   bool fixed = false;
   bool analytical_lambda_given = false, analytical_tau_given = false;
-  // The barrier model of each closed form (drivers/scene.hpp, BarrierModel): false = the paper's.
+  // The barrier model of each closed form (model/scene.hpp, BarrierModel): false = the paper's.
   bool empirical_momentum = false, analytical_momentum = false;
   bool saturated_flow = true;   // the flow's base friction acts on its grains' share of the weight
 };
@@ -106,7 +106,7 @@ struct SceneValues {
 // The flow's base friction as a deceleration of the flow, F1 / m1 (m/s^2): tan(phi_b) g times the
 // share of the weight its grains carry onto the base: 1 - n rho_L / rho_m for a saturated flow at
 // hydrostatic pore pressure (what the MPM's Coulomb base acts on, the effective stress plus
-// (1 - n) p), 1 for a dry one (drivers/closed_form_methods.cpp uses the same).
+// (1 - n) p), 1 for a dry one (model/closed_form_methods.cpp uses the same).
 KOKKOS_INLINE_FUNCTION double flow_friction_deceleration(double base_friction, double porosity,
                                                          double density, bool saturated) {
   const double share = saturated ? 1.0 - porosity * 1000.0 / density : 1.0;
@@ -148,7 +148,7 @@ KOKKOS_INLINE_FUNCTION int first_invalid_field(const SceneValues& s) {
   return -1;
 }
 
-// Model inputs derived from the scene values (as drivers/closed_form_methods.cpp derives them).
+// Model inputs derived from the scene values (as model/closed_form_methods.cpp derives them).
 struct ModelInputs {
   double landslide_mass, equivalent_length, barrier_mass, face_angle_rad;
 };

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <string>
 
-#include "drivers/hdf5_results.hpp"
+#include "io/hdf5_results.hpp"
 
 namespace {
 

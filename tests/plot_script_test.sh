@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # plot_script_test.sh MAKE_SAMPLE_RESULT LSI_PLOT_PY OUT_DIR
-# Writes a fresh result file, plots it with drivers/lsi_plot.py and checks the PNG.
+# Writes a fresh result file, plots it with app/lsi_plot.py and checks the PNG.
 set -euo pipefail
 if [ $# -ne 3 ]; then
   echo "usage: $0 MAKE_SAMPLE_RESULT LSI_PLOT_PY OUT_DIR" >&2

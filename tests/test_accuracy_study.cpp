@@ -1,4 +1,4 @@
-// The accuracy study (drivers/accuracy_study.hpp, `lsi accuracy`): the study file's errors, the
+// The accuracy study (app/accuracy_study.hpp, `lsi accuracy`): the study file's errors, the
 // convergence bookkeeping of a series, and the command end to end on coarse runs of L1-B1 (4-6
 // cells through the thickness, dry PIC: about a second of MPM in all), including --resume.
 #include <gtest/gtest.h>
@@ -11,9 +11,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "drivers/accuracy_study.hpp"
-#include "drivers/hdf5_io.hpp"
-#include "drivers/scene.hpp"
+#include "app/accuracy_study.hpp"
+#include "io/hdf5_io.hpp"
+#include "model/scene.hpp"
 #include "support/run_command.hpp"
 
 namespace {

@@ -16,10 +16,11 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 
-#include "drivers/closed_form_methods.hpp"
-#include "drivers/hdf5_results.hpp"
-#include "drivers/scene.hpp"
+#include "model/closed_form_methods.hpp"
+#include "io/hdf5_results.hpp"
+#include "model/scene.hpp"
 #include "support/run_command.hpp"
+#include "io/scene_parser.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -774,7 +775,7 @@ TEST(Cli, CompareWritesOneFilePerSceneAndPrintsTheTable) {
 }
 }  // namespace
 
-// Where the commands write (drivers/output_paths.hpp): never onto a device, a directory or a
+// Where the commands write (io/output_paths.hpp): never onto a device, a directory or a
 // pipe, never onto one of their inputs, never outside --out-dir through a scene's name; each is
 // refused before anything runs, exit 2 with the option or field named, and the file there is left
 // as it was. Closed-form scenes only (instant).

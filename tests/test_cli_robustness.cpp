@@ -18,11 +18,12 @@
 #include <thread>
 #include <vector>
 
-#include "drivers/mpm_footprint.hpp"
-#include "drivers/mpm_impact.hpp"
-#include "drivers/mpm_runner.hpp"
-#include "drivers/scene.hpp"
+#include "model/mpm_footprint.hpp"
+#include "model/mpm_impact.hpp"
+#include "model/mpm_runner.hpp"
+#include "model/scene.hpp"
 #include "support/run_command.hpp"
+#include "io/scene_parser.hpp"
 
 namespace {
 namespace fs = std::filesystem;

@@ -1,5 +1,5 @@
 // HDF5 result files: round trip, validation, atomic replacement.
-#include "drivers/hdf5_results.hpp"
+#include "io/hdf5_results.hpp"
 
 #include <gtest/gtest.h>
 #include <hdf5.h>

@@ -1,4 +1,4 @@
-// The scalar outputs of a simulated impact from its force history (drivers/impact_summary.hpp):
+// The scalar outputs of a simulated impact from its force history (model/impact_summary.hpp):
 // the peak averaged over a window, the impulse, the impact duration. The force samples are means
 // over the interval ending at each output time, so the force is piecewise constant and every
 // answer here is exact up to round-off.
@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "drivers/impact_summary.hpp"
+#include "model/impact_summary.hpp"
 
 namespace {
 using lsi::impact_duration;

@@ -1,10 +1,10 @@
 // The progress line of long runs and the one-line estimate of a run that projects to more than
-// Progress::kLongRunSeconds (drivers/progress.hpp).
+// Progress::kLongRunSeconds (model/progress.hpp).
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "drivers/progress.hpp"
+#include "model/progress.hpp"
 
 namespace {
 

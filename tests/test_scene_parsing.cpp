@@ -1,4 +1,4 @@
-// Scene parsing and validation (drivers/scene.hpp): the reference study files, derived values,
+// Scene parsing and validation (model/scene.hpp): the reference study files, derived values,
 // defaults, and one-line InputError messages naming the JSON path, the value and the range.
 #include <gtest/gtest.h>
 
@@ -11,9 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "drivers/mpm_impact.hpp"
-#include "drivers/mpm_scene.hpp"
-#include "drivers/scene.hpp"
+#include "model/mpm_impact.hpp"
+#include "io/mpm_scene.hpp"
+#include "model/scene.hpp"
+#include "io/scene_parser.hpp"
 
 namespace {
 
@@ -492,7 +493,7 @@ TEST(SceneErrors, MaterialRanges) {
 }
 
 // mu(I) in an impact scene's landslide: the same block as in an mpm_case material
-// (drivers/inertial_friction_input.hpp), carried into the MPM material in SI units.
+// (model/inertial_friction_input.hpp), carried into the MPM material in SI units.
 json landslide_with_inertial_friction() {
   return with(with(base_scene(), "/landslide/material",
                    {{"friction_angle_deg", 25},

@@ -1,10 +1,10 @@
 // ensure_kokkos() for the libFuzzer build (tests/fuzz/CMakeLists.txt, LSI_FUZZ_LIBFUZZER), which
-// compiles the parser sources without drivers/mpm_runner.cpp (the MPM solver, not fuzzed): the
+// compiles the parser sources without model/mpm_runner.cpp (the MPM solver, not fuzzed): the
 // same behaviour as the runner's, Kokkos started once and finalised at exit.
 #include <Kokkos_Core.hpp>
 #include <cstdlib>
 
-#include "drivers/mpm_runner.hpp"
+#include "model/mpm_runner.hpp"
 
 namespace lsi {
 

@@ -1,4 +1,4 @@
-// Fuzz target: the scene parser, as `lsi run SCENE.json` reaches it (drivers/main.cpp).
+// Fuzz target: the scene parser, as `lsi run SCENE.json` reaches it (app/main.cpp).
 //
 //   bytes -> json_fields::parse_json_document (malformed JSON, overflow, duplicate keys)
 //         -> an MPM verification scene (`mpm_case`): parse_mpm_case
@@ -11,12 +11,13 @@
 // scene (the HDF5 results keep it as text).
 #include <string>
 
-#include "drivers/json_fields.hpp"
-#include "drivers/mpm_impact.hpp"
-#include "drivers/mpm_scene.hpp"
-#include "drivers/scene.hpp"
+#include "io/json_fields.hpp"
+#include "model/mpm_impact.hpp"
+#include "io/mpm_scene.hpp"
+#include "model/scene.hpp"
 #include "fuzz_target.hpp"
 #include "scene_invariants.hpp"
+#include "io/scene_parser.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Fuzz target: the study parser, as `lsi sweep STUDY.json` reaches it (drivers/study.cpp).
+// Fuzz target: the study parser, as `lsi sweep STUDY.json` reaches it (io/study_parser.cpp).
 //
 //   bytes -> json_fields::parse_json_document -> parse_study
 //
@@ -9,10 +9,11 @@
 // accepted must satisfy tests/fuzz/study_invariants.hpp.
 #include <string>
 
-#include "drivers/json_fields.hpp"
-#include "drivers/study.hpp"
+#include "io/json_fields.hpp"
+#include "model/study.hpp"
 #include "fuzz_target.hpp"
 #include "study_invariants.hpp"
+#include "io/study_parser.hpp"
 
 #ifndef LSI_FUZZ_STUDY_DIR
 #error \

@@ -14,7 +14,7 @@
 #include <string>
 #include <string_view>
 
-#include "drivers/scene.hpp"  // lsi::InputError
+#include "model/scene.hpp"  // lsi::InputError
 
 namespace lsi::fuzz {
 

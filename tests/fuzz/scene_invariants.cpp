@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "drivers/json_fields.hpp"
+#include "io/json_fields.hpp"
 #include "fuzz_target.hpp"
 
 namespace lsi::fuzz {

@@ -1,11 +1,11 @@
 // What a successfully parsed scene must satisfy (docs/scene_schema.md): every number finite and
 // inside its documented range, the derived quantities the methods use (lengths, areas, masses)
-// finite and positive, and the MPM case built from it (drivers/mpm_impact.hpp, mpm_scene.hpp)
+// finite and positive, and the MPM case built from it (model/mpm_impact.hpp, mpm_scene.hpp)
 // free of non-finite values and small enough for the solver's int indices. A violation is a bug
 // of the parser: it calls lsi::fuzz::bug (tests/fuzz/fuzz_target.hpp), which aborts.
 #pragma once
-#include "drivers/mpm_scene.hpp"
-#include "drivers/scene.hpp"
+#include "io/mpm_scene.hpp"
+#include "model/scene.hpp"
 
 namespace lsi::fuzz {
 

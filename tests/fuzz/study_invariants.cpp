@@ -7,9 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "drivers/json_fields.hpp"
+#include "io/json_fields.hpp"
 #include "fuzz_target.hpp"
 #include "scene_invariants.hpp"
+#include "io/study_parser.hpp"
 
 namespace lsi::fuzz {
 namespace {

@@ -5,7 +5,8 @@
 // go through sample_scene_document / invalid_sample_reason (what `lsi sweep` does with every
 // sample) without any exception other than lsi::InputError. A violation calls lsi::fuzz::bug.
 #pragma once
-#include "drivers/study.hpp"
+#include "model/study.hpp"
+#include "io/study_parser.hpp"
 
 namespace lsi::fuzz {
 

@@ -21,8 +21,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "drivers/mpm_runner.hpp"
-#include "drivers/mpm_scene.hpp"
+#include "model/mpm_runner.hpp"
+#include "io/mpm_scene.hpp"
 
 namespace {
 

@@ -9,8 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "drivers/method_result.hpp"
-#include "drivers/scene.hpp"
+#include "model/method_result.hpp"
+#include "model/scene.hpp"
+#include "io/scene_parser.hpp"
 
 namespace lsi::stability {
 

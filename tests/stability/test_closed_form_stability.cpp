@@ -1,4 +1,4 @@
-// The closed-form models (empirical and analytical, drivers/closed_form_methods.hpp on parsed
+// The closed-form models (empirical and analytical, model/closed_form_methods.hpp on parsed
 // scenes) over the stability matrix's extremes (docs/stability.md): barrier masses m2/m1 from 1e-2
 // to 1e4, base friction from 0 to 3, face angles from 5 to 90 deg, velocities from 0.1 to 30 m/s,
 // thicknesses from 0.2 to 10 m, tau from 1e-6 to 1 - 1e-6, lambda from 1e-6 to 1, a2 at +-5.
@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "drivers/closed_form_methods.hpp"
+#include "model/closed_form_methods.hpp"
 #include "stability/stability_support.hpp"
 
 namespace {

@@ -1,5 +1,5 @@
 // mu(I) in an impact scene (landslide.material.inertial_friction; the law in
-// kernels/mpm/constitutive/inertial_friction.hpp, its parsing in drivers/inertial_friction_input.hpp):
+// kernels/mpm/constitutive/inertial_friction.hpp, its parsing in model/inertial_friction_input.hpp):
 // the reference flow L1-B1 (scenes/former-reference/L1-B1.json, dry, at h / 8) against its sliding
 // barrier. The law spans two rate-independent materials: with a reference inertial number I0 far
 // above any inertial number of the flow the friction stays at the static angle (20 deg), with I0
@@ -13,8 +13,8 @@
 #include <iostream>
 #include <string>
 
-#include "drivers/mpm_impact.hpp"
-#include "drivers/mpm_runner.hpp"
+#include "model/mpm_impact.hpp"
+#include "model/mpm_runner.hpp"
 #include "stability/stability_support.hpp"
 
 namespace {

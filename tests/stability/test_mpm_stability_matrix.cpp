@@ -29,10 +29,11 @@
 #include <string>
 #include <vector>
 
-#include "drivers/mpm_impact.hpp"
-#include "drivers/mpm_runner.hpp"
+#include "model/mpm_impact.hpp"
+#include "model/mpm_runner.hpp"
 #include "kernels/mpm/status.hpp"
 #include "stability/stability_support.hpp"
+#include "io/scene_parser.hpp"
 
 namespace {
 using namespace lsi::stability;

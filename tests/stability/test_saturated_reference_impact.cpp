@@ -12,8 +12,8 @@
 #include <iostream>
 #include <limits>
 
-#include "drivers/mpm_impact.hpp"
-#include "drivers/mpm_runner.hpp"
+#include "model/mpm_impact.hpp"
+#include "model/mpm_runner.hpp"
 #include "stability/stability_support.hpp"
 
 namespace {

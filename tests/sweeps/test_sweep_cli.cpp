@@ -17,12 +17,15 @@
 #include <string>
 #include <thread>
 
-#include "drivers/closed_form_methods.hpp"
-#include "drivers/mpm_impact.hpp"
-#include "drivers/mpm_runner.hpp"
-#include "drivers/study.hpp"
-#include "drivers/sweep_table.hpp"
+#include "model/closed_form_methods.hpp"
+#include "model/mpm_impact.hpp"
+#include "model/mpm_runner.hpp"
+#include "model/study.hpp"
+#include "model/sweep_table.hpp"
 #include "support/run_command.hpp"
+#include "io/scene_parser.hpp"
+#include "io/study_parser.hpp"
+#include "io/sweep_file.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -455,7 +458,7 @@ TEST(SweepCli, MpmRunsAtQuantilesOfAClosedFormOutput) {
 
 namespace {
 // The momentum-consistent barrier (the scene's "barrier_model") runs in the sweep's kernel: each
-// sample's outputs equal the scene-level model's (drivers/closed_form_methods.cpp) for the same
+// sample's outputs equal the scene-level model's (model/closed_form_methods.cpp) for the same
 // inputs; the same adaptive integration on both sides, so to round-off (1e-9: the error control
 // may take other steps where an input differs in its last bits through the sampler).
 TEST(SweepCli, MomentumBarrierModelRunsInTheSweepKernel) {

@@ -1,0 +1,341 @@
+// `lsi`: the command line. Scenes in (JSON), summaries out (table or JSON), results in HDF5.
+// Exit codes: 0 success, 2 invalid input (scene, options), 3 an MPM run stopped unstable (what it
+// computed is still written), 1 any other failure (I/O, ...).
+#include <CLI/CLI.hpp>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include "model/closed_form_methods.hpp"
+#include "io/convergence_file.hpp"
+#include "io/hdf5_results.hpp"
+#include "model/mpm_impact.hpp"
+#include "model/mpm_runner.hpp"
+#include "io/mpm_snapshots.hpp"
+#include "io/mpm_scene.hpp"
+#include "app/openmp_wait_policy.hpp"
+#include "io/output_paths.hpp"
+#include "io/report.hpp"
+#include "model/scene.hpp"
+#include "app/subcommand.hpp"
+#include "io/text_file.hpp"
+#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
+#include "io/scene_parser.hpp"
+
+namespace {
+
+constexpr const char* known_methods[] = {"empirical", "analytical", "literature", "mpm"};
+
+std::vector<std::string> parse_methods(const std::string& list) {
+  std::vector<std::string> out;
+  std::stringstream ss(list);
+  for (std::string m; std::getline(ss, m, ',');) {
+    if (m.empty()) continue;
+    bool ok = false;
+    for (const char* k : known_methods) ok = ok || m == k;
+    if (!ok)
+      throw lsi::InputError("--methods " + m + ": unknown method (allowed: empirical, "
+                            "analytical, literature, mpm)");
+    out.push_back(m);
+  }
+  if (!list.empty() && out.empty()) throw lsi::InputError("--methods: empty list");
+  return out;
+}
+
+// Loads a scene; validation errors (which name only the JSON path) get the file name in front,
+// so that `lsi compare` with many scenes says which file is wrong.
+template <class F>
+auto with_path(const std::string& path, F&& f) {
+  try {
+    return f();
+  } catch (const lsi::InputError& e) {
+    const std::string what = e.what();
+    if (what.rfind(path, 0) == 0) throw;
+    throw lsi::InputError(path + ": " + what);
+  }
+}
+
+lsi::Scene load(const std::string& path) {
+  return with_path(path, [&] { return lsi::load_scene(path); });
+}
+
+// The methods of a landslide scene: the closed forms it selects (or `only`), then the MPM if the
+// scene has `methods.mpm` (or `only` names it). An MPM run that stops unstable still returns
+// what it computed; `mpm_status` then holds the reason (empty when finished or not run).
+std::vector<lsi::MethodResult> run_scene(const std::string& path, const lsi::Scene& scene,
+                                         const std::vector<std::string>& only,
+                                         std::string& mpm_status,
+                                         std::vector<lsi::MpmSnapshot>* snapshots = nullptr) {
+  const bool named_mpm = std::find(only.begin(), only.end(), "mpm") != only.end();
+  std::vector<std::string> closed;
+  for (const auto& m : only)
+    if (m != "mpm") closed.push_back(m);
+  std::vector<lsi::MethodResult> results;
+  if (only.empty() || !closed.empty()) results = lsi::run_closed_form_methods(scene, closed);
+  const bool want_mpm = only.empty() ? scene.methods.mpm.has_value() : named_mpm;
+  mpm_status.clear();
+  if (!want_mpm) return results;
+  if (!scene.methods.mpm)
+    throw lsi::InputError(path + ": --methods mpm: the scene has no methods.mpm block "
+                          "(cell_size_m, ...; docs/scene_schema.md)");
+  const lsi::MpmCase c = with_path(path, [&] { return lsi::impact_case(scene); });
+  lsi::MpmOutcome o = lsi::run_mpm_case(c);
+  results.push_back(o.result);
+  if (!o.finished) mpm_status = o.status;
+  if (snapshots) *snapshots = std::move(o.snapshots);
+  return results;
+}
+
+// An MPM verification scene (`mpm_case`): runs it, writes /mpm, prints a summary. Returns the
+// exit code: 0 finished, 3 stopped unstable (the histories up to the stop are still written).
+int run_mpm_case(const std::string& path, const nlohmann::json& doc, const std::string& out_path,
+                 const std::string& format) {
+  const lsi::MpmCase c = with_path(path, [&] { return lsi::parse_mpm_case(doc); });
+  const lsi::MpmOutcome o = lsi::run_mpm_case(c);
+  if (!out_path.empty()) {
+    if (o.snapshots.empty()) {
+      lsi::write_results(out_path, c.source, {o.result});
+    } else {
+      // Both files are written atomically; the XDMF index only after its HDF5 file is in place.
+      lsi::write_results(out_path, c.source, {o.result}, [&](long long file_id) {
+        lsi::write_mpm_snapshots(file_id, o.snapshots);
+      });
+      lsi::write_mpm_snapshots_xdmf(out_path, o.snapshots);
+    }
+  }
+  const auto& res = o.result.series.at("energy_residual").values;
+  if (format == "json") {
+    nlohmann::json j = {{"status", o.status},        {"finished", o.finished},
+                        {"steps", o.steps},          {"particles", o.particles},
+                        {"end_time", o.result.time.empty() ? 0.0 : o.result.time.back()},
+                        {"energy_residual", res.empty() ? 0.0 : res.back()},
+                        {"solver_seconds", o.wall_seconds},
+                        {"particle_updates_per_second", o.particle_updates_per_second}};
+    std::cout << nlohmann::json{{"mpm", j}}.dump(2) << "\n";
+  } else {
+    std::printf("scene %s (MPM): %s after %ld steps, t = %.4g s; %d material points\n",
+                c.name.c_str(), o.status.c_str(), o.steps,
+                o.result.time.empty() ? 0.0 : o.result.time.back(), o.particles);
+    std::printf("energy balance residual %.3g; %.3g s in the solver, %.3g particle-updates/s\n",
+                res.empty() ? 0.0 : res.back(), o.wall_seconds, o.particle_updates_per_second);
+  }
+  if (!o.finished) {
+    std::cerr << "lsi: " << path << ": the MPM run stopped: " << o.status << "\n";
+    return 3;
+  }
+  return 0;
+}
+
+void check_format(const std::string& f) {
+  if (f != "table" && f != "json")
+    throw lsi::InputError("--format " + f + ": allowed: table, json");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+#ifdef __linux__
+  // OpenMP threads that spin briefly, then sleep (app/openmp_wait_policy.hpp: with the
+  // default, unlimited spinning, an MPM run on cores shared with any other work was 10-40 times
+  // slower on the 2-core development machine). The OpenMP runtime reads the variables when it
+  // loads, before main, so they are set here and the program restarts itself once; a user's own
+  // setting (e.g. OMP_WAIT_POLICY=active on a dedicated machine) is kept.
+  if (lsi::set_openmp_wait_defaults())
+    execv("/proc/self/exe", argv);   // returns only on failure: then run as we are
+#endif
+  CLI::App app{"lsi: landslide-structure interaction. Empirical (Di Perna et al. 2022) and "
+               "analytical (Cuomo et al. 2022) design methods for barriers hit by flow-like "
+               "landslides."};
+  app.set_version_flag("--version", std::string("lsi ") + LSI_VERSION + " (" + LSI_GIT_REVISION + ")");
+  app.require_subcommand(1);
+
+  std::string scene_path, methods_list, out_path, format = "table";
+  auto* run = app.add_subcommand("run", "Run a scene: print peak force, rise time, impact "
+                                        "duration and final displacement per method");
+  run->add_option("scene", scene_path, "Scene JSON file (docs/scene_schema.md)")->required();
+  run->add_option("--methods", methods_list,
+                  "Comma-separated methods to run (default: the scene's methods block)");
+  run->add_option("--out", out_path, "Write time histories and summaries to this HDF5 file");
+  run->add_option("--format", format, "Summary format: table or json");
+
+  double max_displacement = 0.5;
+  std::string design_scene;
+  auto* design = app.add_subcommand("design", "Inverse design: minimum barrier mass per metre "
+                                              "for a tolerable final displacement");
+  design->add_option("scene", design_scene, "Scene JSON file")->required();
+  design->add_option("--max-displacement", max_displacement, "Tolerable final displacement (m)")
+      ->required();
+  design->add_option("--methods", methods_list, "empirical and/or analytical");
+  design->add_option("--format", format, "table or json");
+  bool verify = false;
+  design->add_flag("--verify", verify,
+                   "Run the MPM (the scene's methods.mpm) on each designed barrier and report its "
+                   "displacement and safety beside the tolerance");
+
+  std::vector<std::string> compare_scenes;
+  std::string out_dir;
+  auto* compare = app.add_subcommand("compare", "Run several scenes; print the comparison table "
+                                                "of the methods and the masses for a tolerable "
+                                                "displacement (the reference study)");
+  compare->add_option("scenes", compare_scenes, "Scene JSON files")->required();
+  compare->add_option("--out-dir", out_dir, "Write one HDF5 file per scene here");
+  compare->add_option("--max-displacement", max_displacement,
+                      "Tolerable final displacement for the mass column (m)");
+  compare->add_option("--format", format, "table or json");
+  std::string summary_json_path;
+  compare->add_option("--summary-json", summary_json_path,
+                      "Also write the comparison as JSON to this file (written atomically)");
+  std::string verify_design;
+  compare->add_option("--verify-design", verify_design,
+                      "Comma-separated closed forms (empirical, analytical) whose designed "
+                      "barrier the MPM runs, for the column beside the masses");
+  std::string convergence_path;
+  compare->add_option("--convergence", convergence_path,
+                      "A convergence study of these scenes (ci/reference_convergence.py): the MPM "
+                      "outputs get its error bars");
+
+  const lsi::Subcommand subcommands[] = {lsi::add_sweep_command(app), lsi::add_merge_command(app),
+                                         lsi::add_calibrate_command(app),
+                                         lsi::add_accuracy_command(app)};
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  }
+
+  try {
+    lsi::reject_empty_values(app);
+    for (const auto& s : subcommands)
+      if (*s.command) return s.run();
+    check_format(format);
+    const auto only = parse_methods(methods_list);
+    if (*run) {
+      if (!out_path.empty()) {
+        lsi::check_output_file("--out", out_path, {scene_path});
+        lsi::check_output_file("--out", lsi::mpm_snapshots_xdmf_path(out_path), {scene_path});
+      }
+      const nlohmann::json doc = lsi::read_scene_document(scene_path);
+      if (lsi::is_mpm_case(doc)) return run_mpm_case(scene_path, doc, out_path, format);
+      const lsi::Scene scene = with_path(scene_path, [&] { return lsi::parse_scene(doc); });
+      std::string mpm_status;
+      std::vector<lsi::MpmSnapshot> snapshots;
+      const auto results = run_scene(scene_path, scene, only, mpm_status, &snapshots);
+      if (!out_path.empty()) {
+        if (snapshots.empty()) {
+          lsi::write_results(out_path, scene.source, results);
+        } else {   // as for verification scenes: the XDMF index after its HDF5 file
+          lsi::write_results(out_path, scene.source, results, [&](long long file_id) {
+            lsi::write_mpm_snapshots(file_id, snapshots);
+          });
+          lsi::write_mpm_snapshots_xdmf(out_path, snapshots);
+        }
+      }
+      if (format == "json") std::cout << lsi::summary_json(results).dump(2) << "\n";
+      else std::cout << lsi::summary_table(scene, results);
+      if (!mpm_status.empty()) {
+        std::cerr << "lsi: " << scene_path << ": the MPM run stopped: " << mpm_status << "\n";
+        return 3;
+      }
+    } else if (*design) {
+      const lsi::Scene scene = load(design_scene);
+      const auto designs = lsi::design_barrier_mass(scene, max_displacement, only);
+      const auto checks = verify ? with_path(design_scene, [&] {
+                                     return lsi::verify_designs(scene, designs, max_displacement);
+                                   })
+                                 : std::vector<lsi::DesignCheck>{};
+      if (format == "json")
+        std::cout << lsi::design_json(designs, max_displacement, checks).dump(2) << "\n";
+      else std::cout << lsi::design_table(scene, designs, max_displacement, checks);
+    } else if (*compare) {
+      std::vector<lsi::ComparisonRow> rows;
+      bool unstable = false;
+      std::optional<lsi::ConvergenceStudy> convergence;
+      if (!convergence_path.empty()) convergence = lsi::load_convergence_study(convergence_path);
+      // Every input is read and every output checked before the first run: two scenes of one
+      // name would write one file, a name with a path in it would write outside --out-dir.
+      std::vector<std::string> inputs = compare_scenes;
+      if (!convergence_path.empty()) inputs.push_back(convergence_path);
+      if (!summary_json_path.empty()) lsi::check_output_file("--summary-json", summary_json_path, inputs);
+      std::vector<lsi::Scene> scenes;
+      std::map<std::string, std::string> file_of_name;
+      for (const auto& path : compare_scenes) {
+        scenes.push_back(load(path));
+        const std::string& name = scenes.back().name;
+        if (!out_dir.empty()) {
+          lsi::check_file_name(path + ": name", name);
+          const auto [it, fresh] = file_of_name.emplace(name, path);
+          if (!fresh)
+            throw lsi::InputError(path + ": name = \"" + name + "\": also the name of " + it->second +
+                                  " (--out-dir writes one file per name)");
+          lsi::check_output_file("--out-dir", (std::filesystem::path(out_dir) / (name + ".h5")).string(),
+                                 inputs);
+        }
+      }
+      if (!out_dir.empty()) lsi::check_output_directory("--out-dir", out_dir);
+      std::vector<std::string> checked_methods;
+      for (const auto& m : parse_methods(verify_design)) {
+        if (m != "empirical" && m != "analytical")
+          throw lsi::InputError("--verify-design " + m + ": allowed: empirical, analytical");
+        checked_methods.push_back(m);
+      }
+      for (size_t k = 0; k < compare_scenes.size(); ++k) {
+        const std::string& path = compare_scenes[k];
+        const lsi::Scene& scene = scenes[k];
+        std::string mpm_status;
+        lsi::ComparisonRow row{scene.name, run_scene(path, scene, only, mpm_status), {}, {}};
+        if (!mpm_status.empty()) {
+          std::cerr << "lsi: " << path << ": the MPM run stopped: " << mpm_status << "\n";
+          unstable = true;
+        }
+        for (auto& r : row.results)
+          if (convergence && r.method == "mpm") {
+            const std::string why = lsi::attach_convergence(*convergence, scene, r);
+            if (!why.empty())
+              std::cerr << "lsi: " << path << ": no error bars from " << convergence_path << ": "
+                        << why << "\n";
+          }
+        if (!scene.barrier.fixed) row.designs = lsi::design_barrier_mass(scene, max_displacement, only);
+        if (!checked_methods.empty() && !scene.barrier.fixed)
+          row.checks = with_path(path, [&] {
+            return lsi::verify_designs(scene, row.designs, max_displacement, checked_methods);
+          });
+        if (!out_dir.empty()) {
+          const auto file = std::filesystem::path(out_dir) / (scene.name + ".h5");
+          lsi::write_results(file.string(), scene.source, row.results);
+        }
+        rows.push_back(std::move(row));
+      }
+      if (format == "json") std::cout << lsi::comparison_json(rows, max_displacement).dump(2) << "\n";
+      else std::cout << lsi::comparison_table(rows, max_displacement);
+      if (!summary_json_path.empty()) {
+        lsi::write_text_atomically(summary_json_path,
+                                   lsi::comparison_json(rows, max_displacement).dump(2) + "\n");
+      }
+      if (unstable) return 3;
+    }
+  } catch (const lsi::InputError& e) {
+    std::cerr << "lsi: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "lsi: failed: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,561 @@
+// The sweep runner; see sweep_runner.hpp.
+#include "app/sweep_runner.hpp"
+
+#include <unistd.h>
+
+#include <Kokkos_Core.hpp>
+#include <hdf5.h>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <limits>
+#include <optional>
+
+#include "io/json_fields.hpp"
+#include "model/mpm_impact.hpp"
+#include "io/text_file.hpp"
+#include "model/mpm_runner.hpp"
+#include "model/resource_estimate.hpp"
+#include "app/sweep_quantile_mpm.hpp"
+#include "model/sweep_statistics.hpp"
+#include "model/sweep_table.hpp"
+#include "sweeps/closed_form_sweep.hpp"
+#include "sweeps/sampler.hpp"
+#include "io/scene_parser.hpp"
+#include "io/study_parser.hpp"
+#include "io/sweep_file.hpp"
+
+namespace lsi {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::string chunk_file(const fs::path& parts, std::uint64_t k) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "chunk-%012llu.h5", static_cast<unsigned long long>(k));
+  return (parts / buf).string();
+}
+
+// Evaluates chunks of a study: the closed forms in one kernel on the default execution space,
+// the MPM sample after sample on the host.
+class ChunkEvaluator {
+ public:
+  using Exec = Kokkos::DefaultExecutionSpace;
+  using Mem = Exec::memory_space;
+  using Matrix = Kokkos::View<double**, Kokkos::LayoutLeft, Mem>;
+
+  explicit ChunkEvaluator(const Study& s) : study_(s), sweep_(sampler_of(s)) {
+    sweep_.base = s.base_values;
+    for (std::size_t d = 0; d < s.inputs.size(); ++d) sweep_.target[d] = s.inputs[d].field;
+    sweep_.empirical = s.runs("empirical");
+    sweep_.analytical = s.runs("analytical");
+    // Result columns and where each comes from.
+    for (const auto& m : s.methods)
+      for (const auto& o : s.outputs) {
+        int out = 0;
+        while (sweeps::closed_form_output_name[out] != o) ++out;
+        source_.push_back({m, out});
+      }
+    for (const auto& in : s.inputs) paths_.push_back(in.path);
+  }
+
+  SweepTable run(std::uint64_t k) {
+    const std::uint64_t first = k * study_.chunk_samples;
+    const std::uint64_t count = std::min(study_.chunk_samples, study_.samples - first);
+    const int dims = static_cast<int>(study_.inputs.size());
+    if (inputs_.extent(0) != count) {
+      inputs_ = Matrix("sweep inputs", count, dims);
+      outputs_ = Matrix("sweep outputs", count, 2 * sweeps::closed_form_output_count);
+      invalid_ = Kokkos::View<int*, Mem>("sweep invalid field", count);
+    }
+    const auto t0 = Clock::now();
+    sweeps::evaluate_closed_form_chunk(Exec(), sweep_, first, inputs_, outputs_, invalid_);
+    Exec().fence();
+    const auto in = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), inputs_);
+    const auto out = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), outputs_);
+    const auto bad = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), invalid_);
+    const float closed_form_seconds = static_cast<float>(seconds_since(t0) / double(count));
+
+    SweepTable t = SweepTable::with_columns(paths_, study_.output_columns());
+    t.index.resize(count);
+    t.status.assign(count, static_cast<std::int8_t>(SampleStatus::ok));
+    t.wall_time.assign(count, closed_form_seconds);
+    for (int d = 0; d < dims; ++d) {
+      t.inputs[d].resize(count);
+      for (std::uint64_t i = 0; i < count; ++i) t.inputs[d][i] = in(i, d);
+    }
+    for (std::size_t c = 0; c < source_.size(); ++c) {
+      auto& col = t.outputs[c];
+      col.assign(count, NAN);
+      const int offset = source_[c].method == "empirical"    ? 0
+                         : source_[c].method == "analytical" ? sweeps::closed_form_output_count
+                                                             : -1;
+      if (offset < 0) continue;   // MPM columns are filled below
+      for (std::uint64_t i = 0; i < count; ++i) col[i] = out(i, offset + source_[c].output);
+    }
+    std::iota(t.index.begin(), t.index.end(), first);
+    const bool mpm = study_.runs("mpm");
+    bool any_invalid = false;
+    for (std::uint64_t i = 0; i < count && !any_invalid; ++i) any_invalid = bad(i) >= 0;
+    if (!any_invalid && !mpm) return t;   // the common case: nothing more per sample
+    std::vector<double> x(dims);
+    for (std::uint64_t i = 0; i < count; ++i) {
+      if (bad(i) < 0 && !mpm) continue;
+      for (int d = 0; d < dims; ++d) x[d] = in(i, d);
+      if (bad(i) >= 0) {
+        std::string reason = invalid_sample_reason(study_, x.data());
+        if (reason.empty())   // the kernel's range check and the scene parser disagree: a bug
+          reason = std::string("rejected by the sweep's range check at ") +
+                   sweeps::scene_field_pointer[bad(i)] + " but accepted by the scene parser";
+        fail_sample(t, i, SampleStatus::invalid_input, reason);
+      } else {
+        run_mpm_sample(t, i, x.data());
+      }
+    }
+    return t;
+  }
+
+ private:
+  struct Source {
+    std::string method;
+    int output;
+  };
+
+  static sweeps::Sampler<Mem> sampler_of(const Study& s) {
+    std::vector<sweeps::DistributionSpec> specs;
+    for (const auto& in : s.inputs) specs.push_back(in.distribution);
+    return sweeps::Sampler<Mem>(specs, s.correlation, s.design, s.seed, s.samples);
+  }
+
+  static void fail_sample(SweepTable& t, std::uint64_t i, SampleStatus s, const std::string& why) {
+    t.status[i] = static_cast<std::int8_t>(s);
+    t.failure_index.push_back(t.index[i]);
+    t.failure_reason.push_back(why);
+  }
+
+  void run_mpm_sample(SweepTable& t, std::uint64_t i, const double* x) {
+    const auto t0 = Clock::now();
+    try {
+      const Scene scene = parse_scene(sample_scene_document(study_, x));
+      const MpmOutcome o = run_mpm_case(impact_case(scene));
+      const double v[sweeps::closed_form_output_count] = {
+          o.result.peak_force, o.result.rise_time, o.result.impact_duration,
+          o.result.final_displacement};
+      for (std::size_t c = 0; c < source_.size(); ++c)
+        if (source_[c].method == "mpm") t.outputs[c][i] = v[source_[c].output];
+      if (!o.finished) {
+        fail_sample(t, i, SampleStatus::unstable, "the MPM run stopped: " + o.status);
+      } else if (!has_final_displacement(o.result.end_state)) {
+        const auto& x = o.result.extra;
+        fail_sample(t, i, SampleStatus::truncated,
+                    "the barrier was still sliding at t = " + json_fields::format_number(x.at("end_time")) +
+                        " s (>= " + json_fields::format_number(x.at("displacement_at_end")) +
+                        " m): " + end_state_token(o.result.end_state));
+      }
+    } catch (const InputError& e) {
+      fail_sample(t, i, SampleStatus::invalid_input, e.what());
+    } catch (const std::exception& e) {
+      fail_sample(t, i, SampleStatus::failed, e.what());
+    }
+    t.wall_time[i] += static_cast<float>(seconds_since(t0));
+  }
+
+  const Study& study_;
+  sweeps::ClosedFormSweep<Mem> sweep_;
+  std::vector<Source> source_;
+  std::vector<std::string> paths_;
+  Matrix inputs_, outputs_;
+  Kokkos::View<int*, Mem> invalid_;
+};
+
+// Progress on a terminal: samples done, rate, ETA; silent otherwise.
+class SweepProgress {
+ public:
+  SweepProgress(std::string label, std::uint64_t total, bool wanted)
+      : label_(std::move(label)), total_(total), enabled_(wanted && isatty(STDERR_FILENO) == 1),
+        start_(Clock::now()) {}
+  void update(std::uint64_t done, std::uint64_t done_here) {
+    if (!enabled_) return;
+    const double s = seconds_since(start_);
+    const double rate = s > 0 ? double(done_here) / s : 0.0;
+    const double left = rate > 0 ? double(total_ - std::min(done, total_)) / rate : 0.0;
+    std::fprintf(stderr, "\r%s: %llu of %llu samples (%.0f %%), %.3g samples/s, ETA %.0f s\033[K",
+                 label_.c_str(), static_cast<unsigned long long>(done),
+                 static_cast<unsigned long long>(total_), 100.0 * double(done) / double(total_),
+                 rate, left);
+    std::fflush(stderr);
+    printed_ = true;
+  }
+  ~SweepProgress() {
+    if (printed_) std::fprintf(stderr, "\r\033[K");
+  }
+
+ private:
+  std::string label_;
+  std::uint64_t total_;
+  bool enabled_, printed_ = false;
+  Clock::time_point start_;
+};
+
+// The column of the interval rule among the table's outputs (or -1).
+int rule_column(const Study& s, const SweepTable& t) {
+  if (!s.stop.has_interval_rule) return -1;
+  const std::string name = s.stop.method + "/" + s.stop.output;
+  for (std::size_t c = 0; c < t.output_columns.size(); ++c)
+    if (t.output_columns[c] == name) return static_cast<int>(c);
+  return -1;
+}
+
+void collect_rule_values(const Study& s, const SweepTable& t, std::vector<double>& values) {
+  const int c = rule_column(s, t);
+  if (c < 0) return;
+  for (std::size_t i = 0; i < t.rows(); ++i)
+    if (t.status[i] == static_cast<std::int8_t>(SampleStatus::ok)) values.push_back(t.outputs[c][i]);
+}
+
+SweepHeader header_of(const Study& s, int shard, int shard_count) {
+  SweepHeader h;
+  h.study = s.source;
+  h.fingerprint = s.fingerprint;
+  h.planned_samples = s.samples;
+  h.chunk_samples = s.chunk_samples;
+  h.shard = shard;
+  h.shard_count = shard_count;
+  return h;
+}
+
+// Checks the rows of shard files against their study before they are merged: every sample index
+// within the study and in a chunk of the shard that holds it, a known status, and the inputs
+// bitwise those the study's sampler draws for the index (sampling is counter-based, so a row's
+// inputs are a function of its index). A file edited or damaged since it was written fails here
+// with the first row that differs. Throws InputError.
+void check_shard_rows(const Study& study, const std::string& file, const SweepHeader& h,
+                      const SweepTable& t) {
+  auto fail = [&](std::size_t row, const std::string& why) {
+    throw InputError(file + ": row " + std::to_string(row) + " (sample " +
+                     std::to_string(t.index[row]) + ") " + why +
+                     ": the file was changed or damaged after it was written; run the shard "
+                     "again");
+  };
+  if (t.input_paths.size() != study.inputs.size())
+    throw InputError(file + ": " + std::to_string(t.input_paths.size()) + " input columns, the study has " +
+                     std::to_string(study.inputs.size()));
+  for (std::size_t d = 0; d < study.inputs.size(); ++d)
+    if (t.input_paths[d] != study.inputs[d].path)
+      throw InputError(file + ": input column " + std::to_string(d) + " is " + t.input_paths[d] +
+                       ", the study's is " + study.inputs[d].path);
+  for (std::size_t i = 0; i < t.rows(); ++i) {
+    const std::uint64_t k = t.index[i];
+    if (k >= study.samples) fail(i, "lies beyond the study's " + std::to_string(study.samples) + " samples");
+    if ((k / study.chunk_samples) % std::uint64_t(h.shard_count) != std::uint64_t(h.shard))
+      fail(i, "belongs to another shard than " + std::to_string(h.shard) + "/" +
+                  std::to_string(h.shard_count));
+    if (t.status[i] < 0 || t.status[i] > static_cast<std::int8_t>(SampleStatus::truncated))
+      fail(i, "has an unknown status " + std::to_string(int(t.status[i])));
+  }
+  ensure_kokkos();
+  std::vector<sweeps::DistributionSpec> specs;
+  for (const auto& in : study.inputs) specs.push_back(in.distribution);
+  const sweeps::Sampler<Kokkos::HostSpace> sampler(specs, study.correlation, study.design,
+                                                   study.seed, study.samples);
+  const int dims = static_cast<int>(study.inputs.size());
+  std::int64_t first_bad = std::numeric_limits<std::int64_t>::max();
+  Kokkos::parallel_reduce(
+      "lsi::check_shard_rows",
+      Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, static_cast<std::int64_t>(t.rows())),
+      [&](const std::int64_t i, std::int64_t& bad) {
+        double x[sweeps::Sampler<Kokkos::HostSpace>::max_dimensions];
+        sampler.sample(t.index[i], x);
+        for (int d = 0; d < dims; ++d)
+          if (!(x[d] == t.inputs[d][i]) && i < bad) bad = i;
+      },
+      Kokkos::Min<std::int64_t>(first_bad));
+  if (first_bad != std::numeric_limits<std::int64_t>::max()) {
+    const std::size_t i = static_cast<std::size_t>(first_bad);
+    double x[sweeps::Sampler<Kokkos::HostSpace>::max_dimensions];
+    sampler.sample(t.index[i], x);
+    int d = 0;
+    while (x[d] == t.inputs[d][i]) ++d;
+    fail(i, "has " + study.inputs[d].path + " = " + json_fields::format_number(t.inputs[d][i]) +
+                " where the study's sampler draws " + json_fields::format_number(x[d]));
+  }
+}
+
+// Refuses, before anything is written, a run whose table cannot be held in memory (the rows
+// run now and the gathered table: twice the table, plus a column for the statistics) or whose
+// files cannot fit beside `out` (the chunk files, then the result file: twice the table).
+void check_sweep_fits(const Study& s, const SweepOptions& opt) {
+  const std::uint64_t chunks = (s.samples + s.chunk_samples - 1) / s.chunk_samples;
+  const std::uint64_t n = static_cast<std::uint64_t>(opt.shard_count);
+  const std::uint64_t shard = static_cast<std::uint64_t>(opt.shard);
+  const std::uint64_t my_chunks = shard < chunks ? (chunks - shard + n - 1) / n : 0;
+  double rows = double(my_chunks) * double(s.chunk_samples);
+  if (chunks > 0 && (chunks - 1) % n == shard) rows -= double(chunks * s.chunk_samples - s.samples);
+  // index (8), status (1), wall time (4), one double per input and per output column.
+  const double row_bytes = 13.0 + 8.0 * double(s.inputs.size() + s.output_columns().size());
+  const double table = rows * row_bytes;
+  const std::string value = json_fields::format_number(double(s.samples));
+  const std::string remedy = opt.shard_count > 1
+                                 ? "more shards (--shard i/N) or fewer samples"
+                                 : "fewer samples, or shards (--shard i/N) on several machines";
+  require_fits("samples", value, "the sweep table (" + json_fields::format_number(rows) + " rows of " +
+                                     json_fields::format_number(row_bytes) + " bytes, held twice)",
+               2.0 * table + 8.0 * rows, available_memory_bytes(), "memory", remedy);
+  require_fits("samples", value, "the chunk files and the result file",
+               2.0 * table, free_disk_bytes(opt.out), "disk where --out goes", remedy + ", or another --out");
+}
+
+}  // namespace
+
+void parse_shard(const std::string& text, int& shard, int& shard_count) {
+  int i = -1, n = -1;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%d/%d%c", &i, &n, &tail) != 2 || n < 1 || i < 0 || i >= n)
+    throw InputError("--shard " + text + ": must be i/N with 0 <= i < N (e.g. 0/4)");
+  shard = i;
+  shard_count = n;
+}
+
+SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
+  const auto t0 = Clock::now();
+  if (opt.out.empty()) throw InputError("--out: required (the HDF5 result file)");
+  if (opt.shard_count > 1 && study.stop.has_interval_rule)
+    throw InputError("stop.interval: a sharded run cannot stop on a confidence interval (each "
+                     "shard sees only its samples); run unsharded or drop the rule");
+  const fs::path parts = opt.out + ".parts";
+  const fs::path marker = parts / "sweep.json";
+  const json identity = {{"fingerprint", study.fingerprint},
+                         {"shard", opt.shard},
+                         {"shard_count", opt.shard_count}};
+  SweepOutcome outcome;
+  // A finished run renames its parts directory before removing it; a kill during the removal
+  // leaves this, which is never needed again.
+  const fs::path removed_parts = parts.string() + ".removing";
+  if (fs::exists(removed_parts)) fs::remove_all(removed_parts);
+  // Resuming a run that already finished reports what it wrote.
+  auto finished_run = [&]() -> std::optional<SweepOutcome> {
+    if (!opt.resume || !fs::exists(opt.out)) return std::nullopt;
+    const SweepFile done = read_sweep_file(opt.out);
+    if (done.header.fingerprint != study.fingerprint)
+      throw InputError(opt.out + ": written by another study (fingerprint " +
+                       done.header.fingerprint + ", this study " + study.fingerprint + ")");
+    if (!done.header.complete || done.header.shard != opt.shard ||
+        done.header.shard_count != opt.shard_count)
+      return std::nullopt;
+    SweepOutcome o;
+    o.complete = true;
+    o.stopped_by = done.header.stopped_by;
+    o.samples_done = done.table.rows();
+    o.statistics = done.statistics;
+    if (done.statistics.is_object()) o.samples_ok = done.statistics.value("samples_ok", 0ull);
+    return o;
+  };
+
+  if (fs::exists(parts)) {
+    if (!opt.resume)
+      throw InputError(parts.string() + ": an earlier run of this sweep did not finish; "
+                       "--resume continues it (or delete the directory to start again)");
+    json found;
+    try {
+      std::ifstream f(marker);
+      found = json::parse(f);
+    } catch (const std::exception&) {
+      // A finished run killed while it removed its parts (the marker may be gone first).
+      if (auto done = finished_run()) {
+        fs::remove_all(parts);
+        return *done;
+      }
+      throw InputError(parts.string() + ": not a sweep's parts directory (no readable sweep.json)");
+    }
+    if (found != identity)
+      throw InputError(parts.string() + ": left by another study or shard (" + found.dump() +
+                       "; this run: " + identity.dump() + ")");
+  } else {
+    if (auto done = finished_run()) return *done;
+    check_sweep_fits(study, opt);
+    fs::create_directories(parts);
+    write_text_atomically(marker, identity.dump() + "\n");
+  }
+  // Leftovers of a killed run: temporary files are never complete.
+  for (const auto& e : fs::directory_iterator(parts))
+    if (e.path().filename().string().find(".tmp.") != std::string::npos) fs::remove(e.path());
+
+  const std::uint64_t chunks = (study.samples + study.chunk_samples - 1) / study.chunk_samples;
+  std::vector<std::uint64_t> mine;
+  for (std::uint64_t k = opt.shard; k < chunks; k += opt.shard_count) mine.push_back(k);
+  std::uint64_t my_samples = 0, done_samples = 0;
+  for (std::uint64_t k : mine) my_samples += std::min(study.chunk_samples, study.samples - k * study.chunk_samples);
+
+  // Chunks already done (a resumed run), and the values the interval rule has seen so far.
+  std::vector<double> rule_values;
+  std::vector<bool> done(mine.size(), false);
+  std::vector<std::optional<SweepTable>> fresh(mine.size());   // chunks run now, kept for the gather
+  for (std::size_t m = 0; m < mine.size(); ++m) {
+    const std::string f = chunk_file(parts, mine[m]);
+    if (!fs::exists(f)) continue;
+    const SweepFile c = read_sweep_file(f);
+    if (c.header.fingerprint != study.fingerprint)
+      throw InputError(f + ": belongs to another study");
+    done[m] = true;
+    done_samples += c.table.rows();
+    collect_rule_values(study, c.table, rule_values);
+  }
+
+  ensure_kokkos();
+  ChunkEvaluator evaluator(study);
+  SweepProgress progress("sweep " + study.name, my_samples, opt.progress);
+  std::string stopped_by;
+  bool rule_met = false;
+  std::uint64_t run_here = 0;
+  double evaluate_s = 0.0, write_s = 0.0;
+  for (std::size_t m = 0; m < mine.size() && !rule_met && stopped_by.empty(); ++m) {
+    if (done[m]) continue;
+    auto ts = Clock::now();
+    SweepTable t = evaluator.run(mine[m]);
+    evaluate_s += seconds_since(ts);
+    ts = Clock::now();
+    SweepHeader h = header_of(study, opt.shard, opt.shard_count);
+    h.complete = true;   // the chunk itself
+    write_sweep_file(chunk_file(parts, mine[m]), h, t);
+    write_s += seconds_since(ts);
+    done[m] = true;
+    done_samples += t.rows();
+    run_here += t.rows();
+    progress.update(done_samples, run_here);
+    collect_rule_values(study, t, rule_values);
+    fresh[m] = std::move(t);
+    std::string why;
+    if (interval_rule_met(study, rule_values, why)) {
+      rule_met = true;
+      stopped_by = why;
+    } else if (seconds_since(t0) > study.stop.wall_time_s &&
+               std::find(done.begin(), done.end(), false) != done.end()) {
+      stopped_by = "wall time: stop.wall_time_s = " + json(study.stop.wall_time_s).dump() +
+                   " s reached; --resume continues";
+    }
+  }
+
+  // Gather the chunks, in sample order: those run now from memory, the others from their files.
+  auto ts = Clock::now();
+  std::vector<std::string> paths;
+  for (const auto& in : study.inputs) paths.push_back(in.path);
+  SweepTable all = SweepTable::with_columns(paths, study.output_columns());
+  all.reserve(done_samples);
+  for (std::size_t m = 0; m < mine.size(); ++m) {
+    if (!done[m]) continue;
+    if (fresh[m]) {
+      all.append(*fresh[m]);
+      fresh[m].reset();
+    } else {
+      all.append(read_sweep_file(chunk_file(parts, mine[m])).table);
+    }
+  }
+  all.sort_by_index();
+  // The interval rule ends the sweep where it was met: later chunks (none in a sequential run)
+  // would not be part of the answer.
+  const bool complete = rule_met || std::find(done.begin(), done.end(), false) == done.end();
+
+  SweepHeader h = header_of(study, opt.shard, opt.shard_count);
+  h.complete = complete;
+  h.stopped_by = stopped_by;
+  h.wall_seconds = seconds_since(t0);
+  outcome.complete = complete;
+  outcome.stopped_by = stopped_by;
+  outcome.samples_done = all.rows();
+  outcome.samples_run = run_here;
+  for (auto s : all.status) outcome.samples_ok += s == static_cast<std::int8_t>(SampleStatus::ok);
+  double gather_s = seconds_since(ts);
+  ts = Clock::now();
+  if (opt.shard_count == 1) outcome.statistics = sweep_statistics(study, all);
+  const double statistics_s = seconds_since(ts);
+  ts = Clock::now();
+  if (opt.shard_count == 1 && complete && study.mpm_at_quantiles)
+    outcome.statistics["mpm_at_quantiles"] = mpm_at_quantiles(study, all);
+  const double quantile_mpm_s = seconds_since(ts);
+  ts = Clock::now();
+  write_sweep_file(opt.out, h, all, outcome.statistics.is_null() ? nullptr : &outcome.statistics);
+  if (complete) {   // renamed first: a kill during the removal leaves no parts to resume
+    fs::rename(parts, removed_parts);
+    fs::remove_all(removed_parts);
+  }
+  gather_s += seconds_since(ts);
+  outcome.seconds = {{"evaluate", evaluate_s},
+                     {"write_chunks", write_s},
+                     {"gather", gather_s},
+                     {"statistics", statistics_s},
+                     {"mpm_at_quantiles", quantile_mpm_s}};
+  outcome.wall_seconds = seconds_since(t0);
+  return outcome;
+}
+
+SweepOutcome merge_sweeps(const std::vector<std::string>& files, const std::string& out) {
+  const auto t0 = Clock::now();
+  if (files.empty()) throw InputError("merge: no shard files given");
+  std::vector<SweepFile> shards;
+  for (const auto& f : files) {
+    std::error_code ec;
+    if (!fs::exists(f, ec)) throw InputError(f + ": shard file not found");
+    if (!fs::is_regular_file(f, ec))
+      throw InputError(f + ": not a regular file (a shard result file of lsi sweep --shard i/N)");
+    if (H5Fis_hdf5(f.c_str()) <= 0)
+      throw InputError(f + ": not an HDF5 file (a shard result file of lsi sweep --shard i/N)");
+    shards.push_back(read_sweep_file(f));
+  }
+  const SweepHeader& h0 = shards.front().header;
+  std::vector<bool> seen(h0.shard_count, false);
+  for (std::size_t k = 0; k < shards.size(); ++k) {
+    const SweepHeader& h = shards[k].header;
+    if (h.fingerprint != h0.fingerprint)
+      throw InputError(files[k] + ": another study than " + files[0] + " (fingerprint " +
+                       h.fingerprint + " vs " + h0.fingerprint + ")");
+    if (h.shard_count != h0.shard_count)
+      throw InputError(files[k] + ": shard " + std::to_string(h.shard) + "/" +
+                       std::to_string(h.shard_count) + ", but " + files[0] + " is of " +
+                       std::to_string(h0.shard_count) + " shards");
+    if (seen[h.shard]) throw InputError(files[k] + ": shard " + std::to_string(h.shard) + " given twice");
+    if (!h.complete)
+      throw InputError(files[k] + ": shard " + std::to_string(h.shard) +
+                       " is not complete (resume it first: lsi sweep ... --shard " +
+                       std::to_string(h.shard) + "/" + std::to_string(h.shard_count) + " --resume)");
+    seen[h.shard] = true;
+  }
+  for (int s = 0; s < h0.shard_count; ++s)
+    if (!seen[s]) throw InputError("merge: shard " + std::to_string(s) + "/" +
+                                   std::to_string(h0.shard_count) + " is missing");
+  SweepTable all = shards.front().table;
+  for (std::size_t k = 1; k < shards.size(); ++k) all.append(shards[k].table);
+  all.sort_by_index();
+  const Study study = parse_study(h0.study, "");
+  if (study.fingerprint != h0.fingerprint)
+    throw std::runtime_error("merge: the stored study does not reproduce its fingerprint (" +
+                             study.fingerprint + " vs " + h0.fingerprint + ")");
+  for (std::size_t k = 0; k < shards.size(); ++k)
+    check_shard_rows(study, files[k], shards[k].header, shards[k].table);
+  if (all.rows() != study.samples)   // each row is in its shard, none twice: a row is missing
+    throw InputError("merge: the shards hold " + std::to_string(all.rows()) + " samples, the study " +
+                     std::to_string(study.samples) + ": a shard file lost rows after it was written");
+  SweepOutcome outcome;
+  SweepHeader h = header_of(study, 0, 1);
+  h.complete = true;
+  for (const auto& s : shards) h.wall_seconds = std::max(h.wall_seconds, s.header.wall_seconds);
+  outcome.complete = true;
+  outcome.samples_done = all.rows();
+  for (auto s : all.status) outcome.samples_ok += s == static_cast<std::int8_t>(SampleStatus::ok);
+  outcome.statistics = sweep_statistics(study, all);
+  if (study.mpm_at_quantiles) outcome.statistics["mpm_at_quantiles"] = mpm_at_quantiles(study, all);
+  write_sweep_file(out, h, all, &outcome.statistics);
+  outcome.wall_seconds = seconds_since(t0);
+  return outcome;
+}
+
+}  // namespace lsi

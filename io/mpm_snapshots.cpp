@@ -1,0 +1,202 @@
+// MPM particle snapshots: HDF5 groups and the XDMF index; layout in mpm_snapshots.hpp.
+#include "io/mpm_snapshots.hpp"
+
+#include <hdf5.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "io/text_file.hpp"
+
+namespace lsi {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Owns one hid_t; throws (with `what`) when the id is invalid.
+class Id {
+ public:
+  Id(hid_t id, herr_t (*closer)(hid_t), const std::string& what) : id_(id), closer_(closer) {
+    if (id_ < 0) throw std::runtime_error("mpm snapshots: " + what);
+  }
+  Id(const Id&) = delete;
+  Id& operator=(const Id&) = delete;
+  ~Id() { closer_(id_); }
+  operator hid_t() const { return id_; }  // NOLINT: passes straight into the C API
+
+ private:
+  hid_t id_;
+  herr_t (*closer_)(hid_t);
+};
+
+void check(herr_t status, const std::string& what) {
+  if (status < 0) throw std::runtime_error("mpm snapshots: " + what);
+}
+
+void string_attribute(hid_t obj, const char* name, const std::string& value) {
+  Id type(H5Tcopy(H5T_C_S1), H5Tclose, "cannot create the string type");
+  check(H5Tset_size(type, H5T_VARIABLE), "cannot make the string type variable-length");
+  check(H5Tset_cset(type, H5T_CSET_UTF8), "cannot set the string type to UTF-8");
+  Id space(H5Screate(H5S_SCALAR), H5Sclose, "cannot create a scalar dataspace");
+  Id attr(H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+          std::string("cannot create attribute '") + name + "'");
+  const char* ptr = value.c_str();
+  check(H5Awrite(attr, type, &ptr), std::string("cannot write attribute '") + name + "'");
+}
+
+void double_attribute(hid_t obj, const char* name, double value) {
+  Id space(H5Screate(H5S_SCALAR), H5Sclose, "cannot create a scalar dataspace");
+  Id attr(H5Acreate2(obj, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+          std::string("cannot create attribute '") + name + "'");
+  check(H5Awrite(attr, H5T_NATIVE_DOUBLE, &value), std::string("cannot write attribute '") + name + "'");
+}
+
+// An n (cols == 0) or n x cols double dataset from row-major `data`, with a `units` attribute and,
+// if given, a `components` attribute.
+void dataset(hid_t group, const char* name, const std::vector<double>& data, size_t n, size_t cols,
+             const char* units, const char* components = nullptr) {
+  const hsize_t dims[2] = {static_cast<hsize_t>(n), static_cast<hsize_t>(cols)};
+  Id space(H5Screate_simple(cols == 0 ? 1 : 2, dims, nullptr), H5Sclose,
+           std::string("cannot create the dataspace of '") + name + "'");
+  Id dset(H5Dcreate2(group, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+          H5Dclose, std::string("cannot create dataset '") + name + "'");
+  if (n > 0)
+    check(H5Dwrite(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
+          std::string("cannot write dataset '") + name + "'");
+  string_attribute(dset, "units", units);
+  if (components != nullptr) string_attribute(dset, "components", components);
+}
+
+// n x 2 -> n x 3 with z = 0.
+std::vector<double> with_zero_z(const std::vector<double>& xy, size_t n) {
+  std::vector<double> xyz(3 * n, 0.0);
+  for (size_t i = 0; i < n; ++i) {
+    xyz[3 * i] = xy[2 * i];
+    xyz[3 * i + 1] = xy[2 * i + 1];
+  }
+  return xyz;
+}
+
+std::string group_name(size_t k) {
+  char buf[24];
+  std::snprintf(buf, sizeof buf, "%06zu", k);
+  return buf;
+}
+
+// Text that reads back as the same double.
+std::string exact(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (char ch : s) {
+    switch (ch) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += ch;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+void write_mpm_snapshots(long long file_id, const std::vector<MpmSnapshot>& snapshots) {
+  const hid_t file = static_cast<hid_t>(file_id);
+  Id mpm(H5Gopen2(file, "mpm", H5P_DEFAULT), H5Gclose, "cannot open group 'mpm'");
+  Id root(H5Gcreate2(mpm, "snapshots", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+          "cannot create group 'mpm/snapshots'");
+  double_attribute(root, "count", static_cast<double>(snapshots.size()));
+  for (size_t k = 0; k < snapshots.size(); ++k) {
+    const MpmSnapshot& s = snapshots[k];
+    const size_t n = static_cast<size_t>(s.count);
+    if (s.position.size() != 2 * n || s.velocity.size() != 2 * n || s.stress.size() != 4 * n ||
+        s.deviatoric_strain.size() != n || s.plastic_work.size() != n)
+      throw std::runtime_error("mpm snapshots: snapshot " + std::to_string(k) +
+                               ": array sizes do not match its particle count");
+    const std::string name = group_name(k);
+    Id g(H5Gcreate2(root, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+         "cannot create group 'mpm/snapshots/" + name + "'");
+    double_attribute(g, "time", s.time);
+    dataset(g, "position", with_zero_z(s.position, n), n, 3, "m", "x y z(=0)");
+    dataset(g, "velocity", with_zero_z(s.velocity, n), n, 3, "m/s", "x y z(=0)");
+    dataset(g, "stress", s.stress, n, 4, "Pa", "xx yy xy zz");
+    dataset(g, "deviatoric_strain", s.deviatoric_strain, n, 0, "1");
+    dataset(g, "plastic_work", s.plastic_work, n, 0, "J/m");
+    if (s.pore_pressure.size() == n) dataset(g, "pore_pressure", s.pore_pressure, n, 0, "Pa");
+  }
+}
+
+std::string mpm_snapshots_xdmf_path(const std::string& h5_path) {
+  fs::path p(h5_path);
+  p.replace_extension(".xdmf");
+  return p.string();
+}
+
+void write_mpm_snapshots_xdmf(const std::string& h5_path, const std::vector<MpmSnapshot>& snapshots) {
+  const std::string path = mpm_snapshots_xdmf_path(h5_path);
+  const std::string h5 = xml_escape(fs::path(h5_path).filename().string());
+  std::ostringstream x;
+  x << "<?xml version=\"1.0\" ?>\n"
+    << "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+    << "<Xdmf Version=\"2.0\">\n"
+    << "  <Domain>\n"
+    << "    <Grid Name=\"mpm_particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (size_t k = 0; k < snapshots.size(); ++k) {
+    const MpmSnapshot& s = snapshots[k];
+    const std::string n = std::to_string(s.count);
+    const std::string at = h5 + ":/mpm/snapshots/" + group_name(k) + "/";
+    const auto item = [&](const std::string& dims, const std::string& dataset) {
+      return "<DataItem Dimensions=\"" + dims +
+             "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + at + dataset + "</DataItem>";
+    };
+    x << "      <Grid Name=\"particles_" << group_name(k) << "\" GridType=\"Uniform\">\n"
+      << "        <Time Value=\"" << exact(s.time) << "\"/>\n"
+      << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
+      << "\" NodesPerElement=\"1\"/>\n"
+      << "        <Geometry GeometryType=\"XYZ\">\n"
+      << "          " << item(n + " 3", "position") << "\n"
+      << "        </Geometry>\n"
+      << "        <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n"
+      << "          " << item(n + " 3", "velocity") << "\n"
+      << "        </Attribute>\n";
+    const char* components[] = {"xx", "yy", "xy", "zz"};
+    for (int c = 0; c < 4; ++c) {
+      x << "        <Attribute Name=\"stress_" << components[c]
+        << "\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+        << "          <DataItem ItemType=\"HyperSlab\" Dimensions=\"" << n << " 1\">\n"
+        << "            <DataItem Dimensions=\"3 2\" Format=\"XML\">0 " << c << " 1 1 " << n
+        << " 1</DataItem>\n"
+        << "            " << item(n + " 4", "stress") << "\n"
+        << "          </DataItem>\n"
+        << "        </Attribute>\n";
+    }
+    std::vector<const char*> scalars = {"deviatoric_strain", "plastic_work"};
+    if (!snapshots[k].pore_pressure.empty()) scalars.push_back("pore_pressure");
+    for (const char* scalar : scalars)
+      x << "        <Attribute Name=\"" << scalar << "\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+        << "          " << item(n, scalar) << "\n"
+        << "        </Attribute>\n";
+    x << "      </Grid>\n";
+  }
+  x << "    </Grid>\n"
+    << "  </Domain>\n"
+    << "</Xdmf>\n";
+
+  write_text_atomically(path, x.str());
+}
+
+}  // namespace lsi

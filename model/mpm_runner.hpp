@@ -1,0 +1,44 @@
+// Runs an MPM verification case (io/mpm_scene.hpp) and returns its histories as the `mpm`
+// method result: energies, energy residual, time step, wall reaction forces, status. Kokkos is
+// started here, on first use only: closed-form work never starts it.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "model/method_result.hpp"
+#include "model/mpm_case.hpp"
+
+namespace lsi {
+
+// The material points at one time, copied to the host; arrays are row-major, n = `count` rows.
+struct MpmSnapshot {
+  double time = 0.0;                       // s, the solver time of the output it was taken at
+  int count = 0;
+  std::vector<double> position;            // n x 2, m
+  std::vector<double> velocity;            // n x 2, m/s
+  std::vector<double> stress;              // n x 4 (xx, yy, xy, zz), Pa, tension positive
+  std::vector<double> deviatoric_strain;   // n, accumulated equivalent shear strain
+  std::vector<double> plastic_work;        // n, J/m dissipated (accumulated)
+  std::vector<double> pore_pressure;       // n, Pa, compression positive (saturated runs only)
+};
+
+struct MpmOutcome {
+  MethodResult result;     // method "mpm"
+  std::string status;      // "finished" or the reason the run stopped
+  bool finished = false;
+  long steps = 0;
+  double wall_seconds = 0.0;         // solver loop only
+  double particle_updates_per_second = 0.0;
+  int particles = 0;
+  // Taken only with settings.snapshot_interval_s > 0: at t = 0, then at the first output time
+  // that reaches each further multiple of the interval (outputs are not aligned to it, so a
+  // snapshot time may lie up to one time step past the multiple), and at the end of the run.
+  std::vector<MpmSnapshot> snapshots;
+};
+
+MpmOutcome run_mpm_case(const MpmCase& c);
+
+// Starts Kokkos once (finalised at exit); what every Kokkos user in the driver calls first.
+void ensure_kokkos();
+
+}  // namespace lsi
