@@ -9,6 +9,7 @@
 #include "io/json_fields.hpp"
 #include "model/scene.hpp"
 #include "kernels/mpm/solver.hpp"
+#include "kernels/common/math.hpp"
 
 namespace lsi {
 namespace jf = json_fields;
@@ -161,7 +162,7 @@ MpmCase parse_mpm_case(const nlohmann::json& scene) {
   const nlohmann::json* mats = m.find("materials");
   if (!mats) m.fail_missing("materials", "object of named materials");
   if (!mats->is_object() || mats->empty()) m.fail_at("materials", "must be a non-empty object of named materials");
-  constexpr double deg = 3.14159265358979323846 / 180.0;
+  constexpr double deg = math::pi() / 180.0;
   for (const auto& [name, value] : mats->items()) {
     const jf::ObjectReader r(value, m.path_of("materials") + "." + name,
                              {"model", "density_kg_m3", "young_modulus_mpa", "poisson_ratio",

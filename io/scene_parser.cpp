@@ -14,6 +14,7 @@
 #include "io/inertial_friction_parser.hpp"
 #include "io/json_fields.hpp"
 #include "io/mpm_scene.hpp"
+#include "kernels/common/math.hpp"
 
 namespace lsi {
 
@@ -26,7 +27,6 @@ using namespace json_fields;
 constexpr double kMaxBodySquares = 1000000;
 // Tolerance of the face run-out check H / tan(beta) <= B - b.
 constexpr double kGeometryToleranceM = 1e-9;
-constexpr double kPi = 3.14159265358979323846;
 
 const std::vector<std::string> kTopKeys = {"name", "landslide", "barrier", "methods"};
 const std::vector<std::string> kLandslideKeys = {"thickness_m", "velocity_m_s", "density_kg_m3",
@@ -131,11 +131,11 @@ SceneBarrier parse_barrier(const ObjectReader& root) {
   b.face_angle_deg = r.number("face_angle_deg", interval('(', 0, 90, ']', "deg"));
 
   // The upstream face runs out H / tan(beta) horizontally; it must fit in B - b.
-  const double beta = b.face_angle_deg * kPi / 180.0;
+  const double beta = math::degrees_to_radians(b.face_angle_deg);
   const double run_out = b.face_angle_deg == 90.0 ? 0.0 : b.height_m / std::tan(beta);
   const double room = b.base_width_m - b.top_width_m;
   if (run_out > room + kGeometryToleranceM) {
-    const double min_angle_deg = std::atan2(b.height_m, room) * 180.0 / kPi;
+    const double min_angle_deg = std::atan2(b.height_m, room) * 180.0 / math::pi();
     r.fail_at("face_angle_deg", "the upstream face would run out H / tan(beta) = " +
                                     format_rounded(run_out) +
                                     " m but base_width_m - top_width_m = " + format_rounded(room) +

@@ -1,9 +1,10 @@
 #include "model/mpm_case.hpp"
+#include "kernels/common/math.hpp"
 
 namespace lsi {
 
 void set_inertial_friction(const InertialFrictionInput& in, mpm::Material& m) {
-  constexpr double deg = 3.14159265358979323846 / 180.0;
+  constexpr double deg = math::pi() / 180.0;
   m.limit_friction_angle = deg * in.limit_friction_angle_deg;
   m.reference_inertial_number = in.reference_inertial_number;
   m.grain_diameter = 1e-3 * in.grain_diameter_mm;

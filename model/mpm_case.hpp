@@ -17,13 +17,14 @@
 #include "kernels/mpm/two_phase/two_phase_particles.hpp"
 #include "model/inertial_friction_input.hpp"
 #include "model/mpm_settings.hpp"
+#include "kernels/common/constants.hpp"
 
 namespace lsi {
 
 struct MpmCase {
   std::string name;
   std::array<double, 2> lower{}, upper{};   // grid extent, m
-  std::array<double, 2> gravity{0.0, -9.81};
+  std::array<double, 2> gravity{0.0, -lsi::gravity};
   mpm::Boundaries walls;
   std::vector<std::string> material_names;
   std::vector<mpm::Material> materials;

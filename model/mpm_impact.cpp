@@ -11,6 +11,7 @@
 #include "model/messages.hpp"
 #include "kernels/common/constants.hpp"
 #include "kernels/mpm/two_phase/two_phase_time_step.hpp"
+#include "kernels/common/math.hpp"
 
 namespace lsi {
 namespace {
@@ -127,8 +128,7 @@ MpmCase impact_case(const Scene& scene) {
                                        : impact_time / 400;
 
   // Geometry: base y = 0, barrier toe x = 0, landslide front toe touching it.
-  constexpr double kPi = 3.14159265358979323846;
-  const double beta = b.face_angle_deg * kPi / 180.0;
+  const double beta = math::degrees_to_radians(b.face_angle_deg);
   const double run_up = v0 * v0 / (2.0 * g);   // height a frictionless jet could climb
   const double pad = 3.0 * dx;
   const double x_left = -length - std::max(length, 4.0 * h) - pad;
@@ -197,7 +197,7 @@ MpmCase impact_case(const Scene& scene) {
   }
   m.young_modulus = in_pascal(l.material.young_modulus_mpa, 1e6, "young_modulus_mpa", "MPa");
   m.poisson_ratio = l.material.poisson_ratio;
-  m.friction_angle = l.material.friction_angle_deg * kPi / 180.0;
+  m.friction_angle = math::degrees_to_radians(l.material.friction_angle_deg);
   m.dilatancy_angle = 0.0;
   m.cohesion = in_pascal(l.material.cohesion_kpa, 1e3, "cohesion_kpa", "kPa");
   m.tension_cutoff = 0.0;

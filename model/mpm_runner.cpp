@@ -20,6 +20,7 @@
 #include "kernels/mpm/two_phase/face_pore_pressure.hpp"
 #include "kernels/mpm/two_phase/two_phase_builder.hpp"
 #include "kernels/mpm/two_phase/two_phase_solver.hpp"
+#include "kernels/common/math.hpp"
 
 namespace lsi {
 namespace {
@@ -293,7 +294,7 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
     // (F_x, F_y) gives that moment, z F_x - (z / tan(beta) - B) F_y = M (0 without a load).
     const auto& sh = c.barrier->shape;
     const double fx0 = imp[0][0] * inv, fy0 = imp[0][1] * inv;
-    const double cot = std::fabs(sh.face_angle - 0.5 * M_PI) < 1e-12 ? 0.0 : 1.0 / std::tan(sh.face_angle);
+    const double cot = std::fabs(sh.face_angle - 0.5 * math::pi()) < 1e-12 ? 0.0 : 1.0 / std::tan(sh.face_angle);
     const double denominator = fx0 - fy0 * cot;
     add("face_resultant_height", "m",
         "height above the base of the resultant of the upstream face's load (0 without a load)",

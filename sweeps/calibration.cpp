@@ -14,6 +14,7 @@
 #include "kernels/closed_form/two_body_model.hpp"
 #include "kernels/common/constants.hpp"
 #include "sweeps/levenberg_marquardt.hpp"
+#include "kernels/common/math.hpp"
 
 namespace lsi::sweeps {
 namespace {
@@ -153,7 +154,7 @@ void validate(const CalibrationCase& c) {
   if (!(in.barrier_mass > 0.0))
     throw std::invalid_argument(c.name + ": barrier_mass = " + num(in.barrier_mass) +
                                 ": must be > 0 (+inf for a fixed barrier)");
-  if (!(in.face_angle > 0.0 && in.face_angle <= M_PI / 2 + 1e-12))
+  if (!(in.face_angle > 0.0 && in.face_angle <= math::pi() / 2 + 1e-12))
     throw std::invalid_argument(c.name + ": face_angle = " + num(in.face_angle) +
                                 ": must be in (0, pi/2] rad");
   if (c.time.size() != c.force.size())

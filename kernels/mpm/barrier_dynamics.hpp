@@ -10,12 +10,14 @@
 #pragma once
 #include <cmath>
 
+#include "kernels/common/constants.hpp"
+
 namespace lsi::mpm {
 
 struct BarrierMotion {
   double mass = 0.0;            // M, kg/m
   double base_friction = 0.0;   // tan(delta_b)
-  double gravity = 9.81;        // g normal to the base, m/s^2
+  double gravity = lsi::gravity;        // g normal to the base, m/s^2
   // State.
   double displacement = 0.0;    // m, downstream positive
   double velocity = 0.0;        // m/s

@@ -9,6 +9,8 @@
 #include <Kokkos_Core.hpp>
 #include <cmath>
 
+#include "kernels/common/math.hpp"
+
 namespace lsi::mpm {
 
 struct BarrierFace {
@@ -20,14 +22,14 @@ struct BarrierShape {
   enum Face : int { Upstream = 0, Crest = 1, Downstream = 2 };
   BarrierFace face[3];
   double toe[2] = {0.0, 0.0};      // upstream toe (x0, y0), m, at zero displacement
-  double height = 0.0, base_width = 0.0, top_width = 0.0, face_angle = 0.5 * M_PI;
+  double height = 0.0, base_width = 0.0, top_width = 0.0, face_angle = 0.5 * math::pi();
 
   BarrierShape() = default;
   BarrierShape(double x0, double y0, double H, double B, double b, double beta)
       : height(H), base_width(B), top_width(b), face_angle(beta) {
     toe[0] = x0;
     toe[1] = y0;
-    const double run = std::fabs(beta - 0.5 * M_PI) < 1e-12 ? 0.0 : H / std::tan(beta);
+    const double run = std::fabs(beta - 0.5 * math::pi()) < 1e-12 ? 0.0 : H / std::tan(beta);
     const double crest_up[2] = {x0 + run, y0 + H}, crest_down[2] = {x0 + run + b, y0 + H};
     const double heel[2] = {x0 + B, y0};
     set(Upstream, toe, crest_up);

@@ -9,6 +9,7 @@
 
 #include "kernels/mpm/constitutive/material.hpp"
 #include "kernels/mpm/particles.hpp"
+#include "kernels/common/constants.hpp"
 
 namespace lsi::mpm {
 
@@ -23,7 +24,7 @@ struct BodySpec {
   double geostatic_k0 = -1.0;
   double surface_y = 0.0;
   bool surface_from_polygon = false;
-  double gravity = 9.81;
+  double gravity = lsi::gravity;
 };
 
 inline bool inside_polygon(const std::vector<std::array<double, 2>>& poly, double x, double y) {

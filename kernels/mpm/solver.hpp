@@ -25,6 +25,7 @@
 #include "kernels/mpm/status.hpp"
 #include "kernels/mpm/time_step.hpp"
 #include "kernels/mpm/transfer_dissipation.hpp"
+#include "kernels/common/constants.hpp"
 
 namespace lsi::mpm {
 
@@ -33,7 +34,7 @@ struct Settings {
   double courant = 0.5;
   double max_time_step = std::numeric_limits<double>::infinity();   // s
   double min_time_step = 1e-12;                                     // s; below: collapse
-  double gravity[2] = {0.0, -9.81};                                 // m/s^2
+  double gravity[2] = {0.0, -lsi::gravity};                                 // m/s^2
   Transfer transfer = Transfer::Apic;   // APIC, or a FLIP/PIC blend without affine terms
   double flip_ratio = 0.99;           // FlipPic only: share of FLIP, [0, 1] (0: plain PIC)
   bool atomic_scatter = false;        // P2G with atomics instead of per-thread buffers (p2g.hpp)

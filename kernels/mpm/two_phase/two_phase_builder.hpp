@@ -20,6 +20,7 @@
 #include "kernels/mpm/constitutive/material.hpp"
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/two_phase/two_phase_particles.hpp"
+#include "kernels/common/constants.hpp"
 
 namespace lsi::mpm::two_phase {
 
@@ -34,7 +35,7 @@ struct TwoPhaseBodySpec {
   double geostatic_k0 = -1.0;
   double surface_y = 0.0;                         // m, top surface (and water table)
   bool surface_from_polygon = false;              // true: the polygon's top above each point
-  double gravity = 9.81;                          // m/s^2, magnitude
+  double gravity = lsi::gravity;                          // m/s^2, magnitude
   double excess_pore_pressure = 0.0;              // Pa, uniform, added to p
   double surface_load = 0.0;                      // Pa, on the top row of points (surface_y)
 };

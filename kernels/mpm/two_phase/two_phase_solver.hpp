@@ -34,6 +34,7 @@
 #include "kernels/mpm/two_phase/two_phase_p2g.hpp"
 #include "kernels/mpm/two_phase/two_phase_particles.hpp"
 #include "kernels/mpm/two_phase/two_phase_time_step.hpp"
+#include "kernels/common/constants.hpp"
 
 namespace lsi::mpm::two_phase {
 
@@ -41,10 +42,10 @@ struct TwoPhaseSettings {
   double courant = 0.5;
   double max_time_step = std::numeric_limits<double>::infinity();   // s
   double min_time_step = 1e-12;                                     // s; below: collapse
-  double gravity[2] = {0.0, -9.81};                                 // body force, m/s^2
+  double gravity[2] = {0.0, -lsi::gravity};                                 // body force, m/s^2
   // The g in the definition of the hydraulic conductivity, k = kappa rho_L g / mu (m/s): a unit
   // convention, not the body force (a test without gravity still has a finite drag).
-  double darcy_gravity = 9.81;
+  double darcy_gravity = lsi::gravity;
   Drag drag = Drag::Explicit;         // explicit (the paper; permeability limit on dt) or
                                       // semi-implicit per node (no permeability limit)
   bool atomic_scatter = false;        // P2G with atomics instead of per-thread buffers (p2g.hpp)

@@ -28,6 +28,7 @@
 #include "kernels/common/math.hpp"
 #include "kernels/mpm/constitutive/material.hpp"
 #include "kernels/mpm/two_phase/two_phase_particles.hpp"
+#include "kernels/common/constants.hpp"
 
 namespace lsi::mpm::two_phase {
 
@@ -74,7 +75,7 @@ struct TimeStepLimits {
 struct TwoPhaseConstants {
   double liquid_density = 1000.0;        // rho_L, kg/m^3
   double liquid_bulk_modulus = 2.2e9;    // K_L, Pa
-  double darcy_gravity = 9.81;           // m/s^2
+  double darcy_gravity = lsi::gravity;           // m/s^2
   double c1 = 0.0, c2 = 0.0;             // bulk viscosity (BulkViscosity), 0, 0: off
   double cell_size = 0.0;                // m
   KOKKOS_INLINE_FUNCTION bool viscous() const { return c1 > 0.0 || c2 > 0.0; }
