@@ -1,6 +1,6 @@
 // The granular column collapse of tests/mpm/test_mpm_column_collapse.cpp (its header describes
 // the model, the measurements and the laws), shared with the study program
-// tests/mpm/column_collapse_study.cpp that reruns the variants of docs/verification.md.
+// tools/studies/column_collapse_study.cpp that reruns the variants of docs/verification.md.
 #pragma once
 #include <algorithm>
 #include <chrono>

@@ -8,7 +8,7 @@
 #include <cstring>
 
 #include "pressure_impulse.hpp"
-#include "support/study_space.hpp"
+#include "study_space.hpp"
 
 int main(int argc, char** argv) {
   Kokkos::ScopeGuard kokkos(argc, argv);

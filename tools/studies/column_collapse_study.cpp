@@ -23,7 +23,7 @@
 #include <string>
 
 #include "support/column_collapse.hpp"
-#include "support/study_space.hpp"
+#include "study_space.hpp"
 
 int main(int argc, char** argv) {
   if (argc < 3) {

@@ -1,5 +1,5 @@
-// The execution space of the study programs built beside the tests (tests/mpm/*_study.cpp): Serial
-// when Kokkos has it (the one-thread runs the docs quote), else the default host space.
+// The execution space of the study programs (tools/studies/*_study.cpp): Serial when Kokkos has
+// it (the one-thread runs the docs quote), else the default host space.
 #pragma once
 #include <Kokkos_Core.hpp>
 

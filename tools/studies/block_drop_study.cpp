@@ -19,7 +19,7 @@
 
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
-#include "support/study_space.hpp"
+#include "study_space.hpp"
 
 namespace {
 using namespace lsi::mpm;
