@@ -126,7 +126,7 @@ mpm::Wall parse_wall(const jf::ObjectReader& walls, const std::string& side) {
     w.friction = o->number_or("friction", 0.0, jf::at_least(0));
     if (o->boolean_or("no_slip", false)) {
       if (o->has("friction")) o->fail_at("no_slip", "give either friction or no_slip");
-      w.friction = -1.0;
+      w.no_slip = true;
     }
     w.bilateral = o->boolean_or("fixed", false);
   }

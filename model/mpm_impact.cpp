@@ -147,8 +147,8 @@ MpmCase impact_case(const Scene& scene) {
   // what overtops or splashes (a smooth wall would send a fast overtopping flow up the wall and
   // out of the grid); they are far from the barrier and do not touch what acts on it.
   c.walls.left = {true, c.lower[0] + 2.0 * dx, 0.0, false};
-  c.walls.right = {true, c.upper[0] - 4.0 * dx, -1.0, false};
-  c.walls.top = {true, c.upper[1] - 4.0 * dx, -1.0, false};
+  c.walls.right = {true, c.upper[0] - 4.0 * dx, 0.0, false, /*no_slip=*/true};
+  c.walls.top = {true, c.upper[1] - 4.0 * dx, 0.0, false, /*no_slip=*/true};
 
   mpm::Material m;
   m.model = mpm::Material::Model::MohrCoulomb;

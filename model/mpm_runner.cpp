@@ -496,8 +496,10 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
   s.cell_pore_pressure = c.settings.cell_pore_pressure;
   // The pore liquid does not penetrate the walls (impermeable) and slides along them freely.
   mpm::Boundaries liquid_walls = c.walls;
-  for (mpm::Wall* w : {&liquid_walls.left, &liquid_walls.right, &liquid_walls.bottom, &liquid_walls.top})
+  for (mpm::Wall* w : {&liquid_walls.left, &liquid_walls.right, &liquid_walls.bottom, &liquid_walls.top}) {
     w->friction = 0.0;
+    w->no_slip = false;
+  }
   SaturatedSolver solver(grid, particles, c.materials, c.two_phase->liquid, c.walls, liquid_walls, s);
   if (c.barrier) solver.attach_barrier(*c.barrier);
   drive(c, solver, particles.count, out);

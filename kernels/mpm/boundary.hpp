@@ -13,8 +13,9 @@ namespace lsi::mpm {
 struct Wall {
   bool active = false;
   double position = 0.0;   // coordinate of the wall (x for left/right, y for bottom/top), m
-  double friction = 0.0;   // Coulomb coefficient mu (0: smooth); a negative value means no slip
+  double friction = 0.0;   // Coulomb coefficient mu (0: smooth)
   bool bilateral = false;  // true: the normal velocity is zero whatever its sign (fixed support)
+  bool no_slip = false;    // true: a node on the wall keeps no tangential velocity (friction unused)
 };
 
 struct Boundaries {
@@ -31,7 +32,7 @@ KOKKOS_INLINE_FUNCTION bool apply_walls(const Boundaries& b, double x, double y,
     acted = true;
     const int t = 1 - normal_axis;
     v[normal_axis] = 0.0;
-    if (w.friction < 0.0) { v[t] = 0.0; return; }
+    if (w.no_slip) { v[t] = 0.0; return; }
     const double vt = v[t], reduce = w.friction * math::fabs(vn);  // mu |v_n|
     v[t] = math::fabs(vt) <= reduce ? 0.0 : vt - (vt > 0.0 ? reduce : -reduce);
   };

@@ -167,8 +167,7 @@ void check_grid(const MpmCase& c) {
   for (const mpm::Wall* w : walls) {
     if (!w->active) continue;
     finite("wall position_m", w->position);
-    require(w->friction >= 0 || w->friction == -1.0,
-            show("wall friction", w->friction) + " (not >= 0 or no-slip)");
+    require(w->friction >= 0, show("wall friction", w->friction) + " (not >= 0)");
     finite("wall friction", w->friction);
   }
 }

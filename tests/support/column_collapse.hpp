@@ -103,7 +103,10 @@ Collapse collapse(const ColumnSpec& spec) {
   Boundaries walls;
   walls.left = {true, x0, 0.0};
   walls.bottom = {true, y0,
-                  spec.base_friction == -2.0 ? std::tan(m.friction_angle) : spec.base_friction};
+                  spec.base_friction == -2.0   ? std::tan(m.friction_angle)
+                  : spec.base_friction == -1.0 ? 0.0
+                                               : spec.base_friction,
+                  false, /*no_slip=*/spec.base_friction == -1.0};
   const double x_right = grid.upper(0) - 2 * dx;
   walls.right = {true, x_right, 0.0};
   Settings s;

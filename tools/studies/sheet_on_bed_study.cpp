@@ -69,7 +69,8 @@ int study(bool on_bed, double dx, double thickness, double v0) {
   }
   Boundaries walls;
   walls.left = {true, x0, 0.0};
-  walls.bottom = {true, y0, on_bed ? -1.0 : std::tan(phi)};
+  walls.bottom = on_bed ? Wall{true, y0, 0.0, false, /*no_slip=*/true}
+                        : Wall{true, y0, std::tan(phi)};
   walls.right = {true, grid.upper(0) - 2 * dx, 0.0};
   Settings s;
   s.courant = 0.5;
