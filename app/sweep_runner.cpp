@@ -54,7 +54,7 @@ class ChunkEvaluator {
   using Mem = Exec::memory_space;
   using Matrix = Kokkos::View<double**, Kokkos::LayoutLeft, Mem>;
 
-  explicit ChunkEvaluator(const Study& s) : study_(s), sweep_(sampler_of(s)) {
+  explicit ChunkEvaluator(const Study& s) : study_(s), sweep_(s.sampler<Mem>()) {
     sweep_.base = s.base_values;
     for (std::size_t d = 0; d < s.inputs.size(); ++d) sweep_.target[d] = s.inputs[d].field;
     sweep_.empirical = s.runs("empirical");
@@ -130,12 +130,6 @@ class ChunkEvaluator {
     std::string method;
     int output;
   };
-
-  static sweeps::Sampler<Mem> sampler_of(const Study& s) {
-    std::vector<sweeps::DistributionSpec> specs;
-    for (const auto& in : s.inputs) specs.push_back(in.distribution);
-    return sweeps::Sampler<Mem>(specs, s.correlation, s.design, s.seed, s.samples);
-  }
 
   static void fail_sample(SweepTable& t, std::uint64_t i, SampleStatus s, const std::string& why) {
     t.status[i] = static_cast<std::int8_t>(s);
@@ -264,10 +258,7 @@ void check_shard_rows(const Study& study, const std::string& file, const SweepHe
       fail(i, "has an unknown status " + std::to_string(int(t.status[i])));
   }
   ensure_kokkos();
-  std::vector<sweeps::DistributionSpec> specs;
-  for (const auto& in : study.inputs) specs.push_back(in.distribution);
-  const sweeps::Sampler<Kokkos::HostSpace> sampler(specs, study.correlation, study.design,
-                                                   study.seed, study.samples);
+  const auto sampler = study.sampler<Kokkos::HostSpace>();
   const int dims = static_cast<int>(study.inputs.size());
   std::int64_t first_bad = std::numeric_limits<std::int64_t>::max();
   Kokkos::parallel_reduce(

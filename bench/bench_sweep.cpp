@@ -52,14 +52,8 @@ const Study& study() {
   return *s;
 }
 
-sweeps::Sampler<Mem> sampler_of(const Study& s) {
-  std::vector<sweeps::DistributionSpec> specs;
-  for (const auto& in : s.inputs) specs.push_back(in.distribution);
-  return sweeps::Sampler<Mem>(specs, s.correlation, s.design, s.seed, s.samples);
-}
-
 sweeps::ClosedFormSweep<Mem> sweep_of(const Study& s, int methods) {
-  sweeps::ClosedFormSweep<Mem> sweep(sampler_of(s));
+  sweeps::ClosedFormSweep<Mem> sweep(s.sampler<Mem>());
   sweep.base = s.base_values;
   for (std::size_t d = 0; d < s.inputs.size(); ++d) sweep.target[d] = s.inputs[d].field;
   sweep.empirical = (methods & 1) != 0;
@@ -148,7 +142,7 @@ const ModelBatch& model_batch() {
 }
 
 void BM_sampler(benchmark::State& state) {
-  const auto sampler = sampler_of(study());
+  const auto sampler = study().sampler<Mem>();
   Matrix out("samples", kBatch, sampler.dimensions());
   sweeps::sample_batch(Exec(), sampler, 0, out);  // warm-up: first touch of the pages
   Exec().fence();

@@ -324,8 +324,7 @@ sweeps::SceneValues scene_values(const Scene& sc) {
 // enormous sd, fractional values for an integer field) would run every sample as invalid: it is
 // refused, with the first sample's reason.
 constexpr std::uint64_t kValidityProbe = 256;
-void require_some_valid_samples(const Study& s, const std::vector<sweeps::DistributionSpec>& specs) {
-  const sweeps::Sampler<Kokkos::HostSpace> sampler(specs, s.correlation, s.design, s.seed, s.samples);
+void require_some_valid_samples(const Study& s, const sweeps::Sampler<Kokkos::HostSpace>& sampler) {
   const std::uint64_t n = std::min(s.samples, kValidityProbe);
   std::string first_reason;
   double x[sweeps::Sampler<Kokkos::HostSpace>::max_dimensions];
@@ -483,15 +482,14 @@ Study parse_study(const json& j, const std::string& base_dir) {
                                 : default_chunk);
 
   // The sampler checks what only it can (a positive-definite correlation, Sobol's dimensions).
-  std::vector<sweeps::DistributionSpec> specs;
-  for (const auto& in : s.inputs) specs.push_back(in.distribution);
   ensure_kokkos();   // the sampler keeps its tables in Views
+  std::optional<sweeps::Sampler<Kokkos::HostSpace>> sampler;
   try {
-    sweeps::Sampler<Kokkos::HostSpace> check(specs, s.correlation, s.design, s.seed, s.samples);
+    sampler.emplace(s.sampler<Kokkos::HostSpace>());
   } catch (const std::invalid_argument& e) {
     fail(std::string(root.has("correlation") ? "correlation" : "design") + ": " + e.what());
   }
-  require_some_valid_samples(s, specs);
+  require_some_valid_samples(s, *sampler);
 
   // What the results store: the study as read, with its scene inlined and the resolved values.
   s.source = j;

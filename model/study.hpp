@@ -72,6 +72,14 @@ struct Study {
   std::string fingerprint;                 // hash of `source`: results of other studies are refused
 
   bool runs(const std::string& method) const;
+  // The study's sampler: counter-based, sample i's inputs depend on i alone (every sampler of
+  // the study draws the same). Throws std::invalid_argument as sweeps::Sampler does.
+  template <class MemorySpace>
+  sweeps::Sampler<MemorySpace> sampler() const {
+    std::vector<sweeps::DistributionSpec> specs;
+    for (const auto& in : inputs) specs.push_back(in.distribution);
+    return sweeps::Sampler<MemorySpace>(specs, correlation, design, seed, samples);
+  }
   // Result columns: "<method>/<output>" for every method and output kept.
   std::vector<std::string> output_columns() const;
 };
