@@ -58,10 +58,10 @@ Subcommand add_accuracy_command(CLI::App& app) {
   auto args = std::make_shared<Args>();
   Subcommand s;
   s.command = app.add_subcommand(
-      "accuracy", "Run an accuracy study (docs/scene_schema.md, \"Accuracy studies\"): MPM "
+      "accuracy", "Run an accuracy study (docs/reference/scene_schema.md, \"Accuracy studies\"): MPM "
                   "series refining the cell size, points per cell or Courant number; observed "
                   "order, Richardson extrapolation, GCI, and the error of every run and of the "
-                  "closed forms against run time (docs/accuracy.md)");
+                  "closed forms against run time (docs/vv/accuracy.md)");
   s.command->add_option("study", args->study, "Accuracy study JSON file")->required();
   s.command->add_option("--out", args->out, "Output directory (default results/accuracy)");
   s.command->add_flag("--resume", args->resume,

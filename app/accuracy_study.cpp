@@ -221,19 +221,19 @@ AccuracyRun run_accuracy_case(const json& scene, const AccuracySeries& series, d
   AccuracyRun r;
   r.value = value;
   r.h = accuracy_spacing(series.parameter, value);
-  r.status = o.status;
-  r.finished = o.finished;
-  r.solver_seconds = o.wall_seconds;
-  r.steps = static_cast<double>(o.steps);
-  r.particles = o.particles;
+  r.status = o.status();
+  r.finished = o.finished();
+  r.solver_seconds = o.run().solver_seconds;
+  r.steps = static_cast<double>(o.run().steps);
+  r.particles = static_cast<double>(o.run().particles);
   r.result = o.result;
   const MethodResult& m = r.result;
   r.outputs["peak_force"] = m.peak_force;
   r.outputs["rise_time"] = m.rise_time;
   r.outputs["impact_duration"] = m.impact_duration;
   r.outputs["final_displacement"] = m.final_displacement;
-  const auto over = m.extra.find("overtopped_volume_m2");   // at the end of the run
-  r.outputs["overtopped_volume"] = over == m.extra.end() ? kNaN : over->second;
+  // At the end of the run.
+  r.outputs["overtopped_volume"] = m.scalars.overtopped_volume_m2.value_or(kNaN);
   const auto it = m.series.find("energy_residual");
   r.outputs["energy_residual"] = it == m.series.end() ? kNaN : largest_abs(it->second.values);
   return r;

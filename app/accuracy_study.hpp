@@ -5,7 +5,7 @@
 // Every run records its outputs and wall time; every series gets the observed order, Richardson
 // extrapolation and GCI of each output (sweeps/grid_convergence.hpp); one series is the reference:
 // its extrapolated (or finest) values are what every run and the closed forms are measured against.
-// Schema: docs/scene_schema.md, "Accuracy studies"; method and results: docs/accuracy.md.
+// Schema: docs/reference/scene_schema.md, "Accuracy studies"; method and results: docs/vv/accuracy.md.
 #pragma once
 #include <map>
 #include <nlohmann/json.hpp>

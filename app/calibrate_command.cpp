@@ -4,7 +4,7 @@
 // Fits the analytical model's lambda, tau (and the empirical model's tau per case, a1 and a2 per
 // group) to MPM force histories (sweeps/calibration.hpp), pools the cases into fixed- and
 // free-barrier groups next to the paper's values, and compares every closed-form result (default
-// and calibrated coefficients) with the MPM, with the run time of each method. docs/calibration.md.
+// and calibrated coefficients) with the MPM, with the run time of each method. docs/theory/calibration.md.
 //
 // For each scene the MPM history comes from DIR/<scene name>.h5 if that file has an /mpm group
 // written for the same landslide, barrier and methods.mpm (`lsi compare --out-dir DIR`,
@@ -171,10 +171,8 @@ bool load_mpm(Case& c, const std::string& results_dir) {
       if (mpm && same_setup(stored.scene, s.source)) {
         c.mpm = *mpm;
         c.source = "file " + file.string();
-        auto it = mpm->extra.find("solver_seconds");
-        c.mpm_seconds = it != mpm->extra.end() ? it->second : nan;
-        it = mpm->extra.find("finished");
-        if (it != mpm->extra.end() && it->second == 0.0) {
+        c.mpm_seconds = mpm->run ? mpm->run->solver_seconds : nan;
+        if (mpm->run && !mpm->run->finished) {
           std::cerr << "lsi: " << c.path << ": the stored MPM run in " << file.string()
                     << " stopped before its end time; case skipped\n";
           return false;
@@ -189,15 +187,15 @@ bool load_mpm(Case& c, const std::string& results_dir) {
   }
   if (!s.methods.mpm)
     throw InputError(c.path + ": methods.mpm: missing: calibrate needs an MPM history; add a "
-                     "methods.mpm block ({\"cell_size_m\": ...}, docs/scene_schema.md) or give "
+                     "methods.mpm block ({\"cell_size_m\": ...}, docs/reference/scene_schema.md) or give "
                      "--results-dir with " + s.name + ".h5 holding an /mpm group");
   const MpmCase mc = with_path(c.path, [&] { return impact_case(s); });
   MpmOutcome o = run_mpm_case(mc);
   c.mpm = std::move(o.result);
   c.source = "mpm run";
-  c.mpm_seconds = o.wall_seconds;
-  if (!o.finished) {
-    std::cerr << "lsi: " << c.path << ": the MPM run stopped: " << o.status << "; case skipped\n";
+  c.mpm_seconds = o.run().solver_seconds;
+  if (!o.finished()) {
+    std::cerr << "lsi: " << c.path << ": the MPM run stopped: " << o.status() << "; case skipped\n";
     return false;
   }
   return true;
@@ -229,8 +227,8 @@ Row closed_form_row(const Case& c, const std::string& method, const std::string&
   MethodResult res;
   if (method == "analytical") {
     r.run_time_s = time_call([&] { return run_analytical(scene); }, res);
-    r.lambda = res.extra.at("lambda");
-    r.tau = res.extra.at("tau");
+    r.lambda = res.scalars.lambda.value();
+    r.tau = res.scalars.tau.value();
   } else {
     r.run_time_s = time_call([&] { return run_empirical(scene); }, res);
     const EmpiricalParameters p = scene.methods.empirical.value_or(EmpiricalParameters{});
@@ -729,7 +727,7 @@ Subcommand add_calibrate_command(CLI::App& app) {
   s.command = app.add_subcommand(
       "calibrate",
       "Fit the analytical model's lambda and tau (and the empirical model's a1, a2, tau) to MPM "
-      "force histories; compare every closed form with the MPM (docs/calibration.md)");
+      "force histories; compare every closed form with the MPM (docs/theory/calibration.md)");
   s.command->add_option("scenes", opt->scenes, "Scene JSON files (landslide scenes)")->required();
   s.command->add_option("--results-dir", opt->results_dir,
                         "Use DIR/<scene name>.h5 (its /mpm group) where it exists, as written by "

@@ -86,11 +86,11 @@ std::vector<lsi::MethodResult> run_scene(const std::string& path, const lsi::Sce
   if (!want_mpm) return results;
   if (!scene.methods.mpm)
     throw lsi::InputError(path + ": --methods mpm: the scene has no methods.mpm block "
-                          "(cell_size_m, ...; docs/scene_schema.md)");
+                          "(cell_size_m, ...; docs/reference/scene_schema.md)");
   const lsi::MpmCase c = with_path(path, [&] { return lsi::impact_case(scene); });
   lsi::MpmOutcome o = lsi::run_mpm_case(c);
   results.push_back(o.result);
-  if (!o.finished) mpm_status = o.status;
+  if (!o.finished()) mpm_status = o.status();
   if (snapshots) *snapshots = std::move(o.snapshots);
   return results;
 }
@@ -114,22 +114,23 @@ int run_mpm_case(const std::string& path, const nlohmann::json& doc, const std::
   }
   const auto& res = o.result.series.at("energy_residual").values;
   if (format == "json") {
-    nlohmann::json j = {{"status", o.status},        {"finished", o.finished},
-                        {"steps", o.steps},          {"particles", o.particles},
+    nlohmann::json j = {{"status", o.status()},        {"finished", o.finished()},
+                        {"steps", o.run().steps},          {"particles", o.run().particles},
                         {"end_time", o.result.time.empty() ? 0.0 : o.result.time.back()},
                         {"energy_residual", res.empty() ? 0.0 : res.back()},
-                        {"solver_seconds", o.wall_seconds},
-                        {"particle_updates_per_second", o.particle_updates_per_second}};
+                        {"solver_seconds", o.run().solver_seconds},
+                        {"particle_updates_per_second", o.run().particle_updates_per_second}};
     std::cout << nlohmann::json{{"mpm", j}}.dump(2) << "\n";
   } else {
-    std::printf("scene %s (MPM): %s after %ld steps, t = %.4g s; %d material points\n",
-                c.name.c_str(), o.status.c_str(), o.steps,
-                o.result.time.empty() ? 0.0 : o.result.time.back(), o.particles);
+    std::printf("scene %s (MPM): %s after %lld steps, t = %.4g s; %lld material points\n",
+                c.name.c_str(), o.status().c_str(), static_cast<long long>(o.run().steps),
+                o.result.time.empty() ? 0.0 : o.result.time.back(),
+                static_cast<long long>(o.run().particles));
     std::printf("energy balance residual %.3g; %.3g s in the solver, %.3g particle-updates/s\n",
-                res.empty() ? 0.0 : res.back(), o.wall_seconds, o.particle_updates_per_second);
+                res.empty() ? 0.0 : res.back(), o.run().solver_seconds, o.run().particle_updates_per_second);
   }
-  if (!o.finished) {
-    std::cerr << "lsi: " << path << ": the MPM run stopped: " << o.status << "\n";
+  if (!o.finished()) {
+    std::cerr << "lsi: " << path << ": the MPM run stopped: " << o.status() << "\n";
     return 3;
   }
   return 0;
@@ -161,7 +162,7 @@ int main(int argc, char** argv) {
   std::string scene_path, methods_list, out_path, format = "table";
   auto* run = app.add_subcommand("run", "Run a scene: print peak force, rise time, impact "
                                         "duration and final displacement per method");
-  run->add_option("scene", scene_path, "Scene JSON file (docs/scene_schema.md)")->required();
+  run->add_option("scene", scene_path, "Scene JSON file (docs/reference/scene_schema.md)")->required();
   run->add_option("--methods", methods_list,
                   "Comma-separated methods to run (default: the scene's methods block)");
   run->add_option("--out", out_path, "Write time histories and summaries to this HDF5 file");

@@ -1,4 +1,4 @@
-// `lsi-mpi`: the shards of one sweep on the ranks of an MPI job (docs/sweeps_mpi.md).
+// `lsi-mpi`: the shards of one sweep on the ranks of an MPI job (docs/guide/mpi.md).
 //
 //   mpirun -np N -x OMP_NUM_THREADS=T lsi-mpi STUDY --out F [--resume] [--format table|json]
 //
@@ -273,10 +273,10 @@ int main(int argc, char** argv) {
 
   CLI::App app{"lsi-mpi: run the shards of a sweep (lsi sweep) on the ranks of an MPI job and merge "
                "them into one result file. Usage: mpirun -np N -x OMP_NUM_THREADS=T lsi-mpi STUDY "
-               "--out F (docs/sweeps_mpi.md)"};
+               "--out F (docs/guide/mpi.md)"};
   app.set_version_flag("--version", std::string("lsi-mpi ") + LSI_VERSION + " (" + LSI_GIT_REVISION + ")");
   Args args;
-  app.add_option("study", args.study, "Study JSON file (docs/scene_schema.md, \"Study files\")")
+  app.add_option("study", args.study, "Study JSON file (docs/reference/scene_schema.md, \"Study files\")")
       ->required();
   app.add_option("--out", args.out, "Merged HDF5 result file; rank r writes F.rank<r>-of-<N>.h5 "
                                     "(and its .parts) first")->required();

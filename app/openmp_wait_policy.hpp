@@ -1,5 +1,5 @@
 // How lsi's OpenMP threads wait between parallel regions, unless the user says otherwise:
-// spin briefly, then sleep. Measured on two 2-vCPU machines (docs/performance.md, "OpenMP
+// spin briefly, then sleep. Measured on two 2-vCPU machines (docs/notes/performance.md, "OpenMP
 // threads between regions"): spinning without limit (libgomp's default of 300 000 spins) made an
 // MPM run on cores shared with other work 10-40 times slower; sleeping at once
 // (OMP_WAIT_POLICY=passive) pays a wake-up at each of a step's ~10 regions, 1.4x slower than 300

@@ -32,7 +32,7 @@ Subcommand add_sweep_command(CLI::App& app) {
   auto args = std::make_shared<Args>();
   Subcommand s;
   s.command = app.add_subcommand(
-      "sweep", "Run a study file (docs/scene_schema.md, \"Study files\"): Monte Carlo, Latin "
+      "sweep", "Run a study file (docs/reference/scene_schema.md, \"Study files\"): Monte Carlo, Latin "
                "hypercube, Sobol or grid samples of a scene through the methods; per-sample table "
                "and statistics in HDF5");
   s.command->add_option("study", args->study, "Study JSON file")->required();

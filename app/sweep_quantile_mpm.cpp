@@ -19,10 +19,7 @@ using nlohmann::json;
 
 
 double mpm_value(const MethodResult& r, const std::string& output) {
-  if (output == "peak_force") return r.peak_force;
-  if (output == "rise_time") return r.rise_time;
-  if (output == "impact_duration") return r.impact_duration;
-  return r.final_displacement;
+  return scalar_by_name(r, output);
 }
 
 int column_index(const SweepTable& t, const std::string& name) {
@@ -73,11 +70,11 @@ json mpm_at_quantiles(const Study& study, const SweepTable& t) {
     try {
       const MpmOutcome o =
           run_mpm_case(impact_case(parse_scene(sample_scene_document(study, x.data()))));
-      e["mpm_status"] = o.status;
+      e["mpm_status"] = o.status();
       e["mpm_end_state"] = end_state_token(o.result.end_state);   // at_rest, or how it was cut short
       json mpm = json::object(), errors = json::object();
       for (const auto& output : study.outputs) mpm[output] = json_number(mpm_value(o.result, output));
-      if (o.finished) {
+      if (o.finished()) {
         for (std::size_t c = 0; c < t.output_columns.size(); ++c) {
           const std::string& name = t.output_columns[c];
           if (name.rfind("mpm/", 0) == 0) continue;

@@ -147,13 +147,13 @@ class ChunkEvaluator {
           o.result.final_displacement};
       for (std::size_t c = 0; c < source_.size(); ++c)
         if (source_[c].method == "mpm") t.outputs[c][i] = v[source_[c].output];
-      if (!o.finished) {
-        fail_sample(t, i, SampleStatus::unstable, "the MPM run stopped: " + o.status);
+      if (!o.finished()) {
+        fail_sample(t, i, SampleStatus::unstable, "the MPM run stopped: " + o.status());
       } else if (!has_final_displacement(o.result.end_state)) {
-        const auto& x = o.result.extra;
         fail_sample(t, i, SampleStatus::truncated,
-                    "the barrier was still sliding at t = " + json_fields::format_number(x.at("end_time")) +
-                        " s (>= " + json_fields::format_number(x.at("displacement_at_end")) +
+                    "the barrier was still sliding at t = " +
+                        json_fields::format_number(o.run().end_time) + " s (>= " +
+                        json_fields::format_number(o.result.scalars.displacement_at_end.value()) +
                         " m): " + end_state_token(o.result.end_state));
       }
     } catch (const InputError& e) {

@@ -1,5 +1,5 @@
 // Memory bandwidth of this machine, measured with Kokkos: the memory roof of the roofline in
-// docs/performance.md ("Roofline"). STREAM-like kernels over Views of doubles on the default host
+// docs/notes/performance.md ("Roofline"). STREAM-like kernels over Views of doubles on the default host
 // execution space (OpenMP when compiled in: set OMP_NUM_THREADS) and on Serial:
 //   copy   c(i) = a(i)               16 B per element (STREAM's count: 1 read, 1 write)
 //   triad  a(i) = b(i) + s c(i)      24 B per element (2 reads, 1 write)
@@ -21,7 +21,7 @@
 // threads). On a machine shared with other work the threads wait for a CPU part of the time; with
 // OMP_NUM_THREADS=1, bytes / cpu_time is the bandwidth of one core while it runs.
 //
-// Run (docs/performance.md has the numbers; the machine is shared: repetitions and medians):
+// Run (docs/notes/performance.md has the numbers; the machine is shared: repetitions and medians):
 //   OMP_NUM_THREADS=1 OMP_PROC_BIND=false OMP_WAIT_POLICY=passive build/bench/bench_bandwidth
 //       --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //   OMP_NUM_THREADS=2 ... (the same)

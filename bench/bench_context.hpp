@@ -58,7 +58,7 @@ enum class Scatters { Both, Plain, AtomicOnly };
 
 // The column sizes of bench_mpm and bench_impact as (cells across L0, steps per repetition): 20 000
 // and 199 712 points everywhere (2 x 2 points per cell, 8 n^2), and 2 000 000 and 8 000 000 points
-// on a device, which needs millions of points to fill (docs/cuda.md).
+// on a device, which needs millions of points to fill (docs/guide/cuda.md).
 inline std::vector<std::pair<int, int>> column_sizes(Scatters scatters) {
   std::vector<std::pair<int, int>> sizes = {{50, 400}, {158, 40}};
   if (scatters == Scatters::AtomicOnly) sizes.insert(sizes.end(), {{500, 40}, {1000, 20}});

@@ -1,6 +1,6 @@
 // MPM impact throughput, and what each feature costs: the same scene run with and without the
 // liquid phase, the barrier's dynamics, snapshots; and the two-phase (saturated) solver's step and
-// kernels beside the dry one on the same column. docs/performance.md ("Feature pruning", "Roofline")
+// kernels beside the dry one on the same column. docs/notes/performance.md ("Feature pruning", "Roofline")
 // has the numbers and how they were taken.
 //
 // 1. impact/...: whole impact runs through the driver, as `lsi run` does them (parse_scene ->
@@ -40,7 +40,7 @@
 //    as bench_mpm. Variants: the execution space (the default host space and Serial), dry /
 //    saturated with semi-implicit or explicit drag, duplicated / atomic scatter. In a CUDA build
 //    the column also runs on the device (atomic scatter only), also at 2 000 000 and 8 000 000
-//    points (40 and 20 steps): a GPU needs millions of points to fill (docs/cuda.md).
+//    points (40 and 20 steps): a GPU needs millions of points to fill (docs/guide/cuda.md).
 //    items_per_second = particle-updates/s.
 // 3. twophase_kernel/...: the two-phase kernels one at a time on that saturated column advanced 5
 //    steps (warm caches, as bench_mpm's kernel/...): p2g (scatter into per-thread buffers or
@@ -53,7 +53,7 @@
 // Times: real_time (the rates: items_per_second, solver_pups) and cpu_time = the CPU time of the
 // whole process (all threads; MeasureProcessCPUTime). On a machine shared with other work the
 // real time also counts the time the threads waited for a CPU; with OMP_NUM_THREADS=1,
-// particles x steps / cpu_time is the rate of one core while it runs (docs/performance.md).
+// particles x steps / cpu_time is the rate of one core while it runs (docs/notes/performance.md).
 //
 // Run:
 //   OMP_NUM_THREADS=2 OMP_PROC_BIND=false OMP_WAIT_POLICY=passive build/bench/bench_impact
@@ -145,19 +145,19 @@ void bm_impact(benchmark::State& state, const ImpactVariant& v) {
     const auto t0 = std::chrono::steady_clock::now();
     o = run_mpm_case(impact_case(scene));
     run_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (!o.finished) {
-      state.SkipWithError(("the MPM run stopped: " + o.status).c_str());
+    if (!o.finished()) {
+      state.SkipWithError(("the MPM run stopped: " + o.status()).c_str());
       return;
     }
   }
-  const double updates = double(o.particles) * o.steps;
+  const double updates = double(o.run().particles) * o.run().steps;
   state.SetItemsProcessed(static_cast<int64_t>(updates * state.iterations()));
-  state.counters["solver_pups"] = o.particle_updates_per_second;
-  state.counters["particles"] = o.particles;
-  state.counters["steps"] = static_cast<double>(o.steps);
-  state.counters["solver_seconds"] = o.wall_seconds;
+  state.counters["solver_pups"] = o.run().particle_updates_per_second;
+  state.counters["particles"] = o.run().particles;
+  state.counters["steps"] = static_cast<double>(o.run().steps);
+  state.counters["solver_seconds"] = o.run().solver_seconds;
   state.counters["output_share"] =
-      1.0 - o.wall_seconds * state.iterations() / std::max(run_seconds, 1e-300);
+      1.0 - o.run().solver_seconds * state.iterations() / std::max(run_seconds, 1e-300);
   state.counters["snapshots"] = static_cast<double>(o.snapshots.size());
   state.counters["grid_nodes"] = grid_nodes;
   state.counters["threads"] = Kokkos::DefaultExecutionSpace().concurrency();

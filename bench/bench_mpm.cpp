@@ -27,7 +27,7 @@
 // velocity gradient hundreds of times: the stress drifts onto the yield surface, so their
 // plastic share is higher than in a real step.
 //
-// Run (the threads of the OpenMP space from OMP_NUM_THREADS, 1 and 2; docs/performance.md has the
+// Run (the threads of the OpenMP space from OMP_NUM_THREADS, 1 and 2; docs/notes/performance.md has the
 // numbers and how they were taken):
 //   OMP_NUM_THREADS=2 OMP_PROC_BIND=false OMP_WAIT_POLICY=passive build/bench/bench_mpm
 //       --benchmark_repetitions=5 --benchmark_report_aggregates_only=true

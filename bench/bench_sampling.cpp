@@ -10,7 +10,7 @@
 // draws one batch of 2^20 samples into a preallocated 2^20 x 5 View on the default execution space
 // (the OpenMP space when compiled in).
 //
-// Run (docs/sweeps_sampling.md has the numbers and the machine):
+// Run (docs/theory/sampling.md has the numbers and the machine):
 //   OMP_NUM_THREADS=2 OMP_WAIT_POLICY=passive OMP_PROC_BIND=false build/bench/bench_sampling
 //       --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>

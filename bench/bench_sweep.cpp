@@ -12,7 +12,7 @@
 //   BM_chunk_write / BM_chunk_read  write_sweep_file / read_sweep_file (model/sweep_table.hpp) of a
 //                              2^20-row table (5 inputs, 4 output columns) in /tmp, fsync included
 // items_per_second = samples per second; per-sample cost = 1 / items_per_second.
-// Run (docs/performance.md, "Sweeps", has the numbers and the machine):
+// Run (docs/notes/performance.md, "Sweeps", has the numbers and the machine):
 //   OMP_NUM_THREADS=2 OMP_PROC_BIND=false OMP_WAIT_POLICY=passive build/bench/bench_sweep
 //       --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>

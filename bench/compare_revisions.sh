@@ -17,7 +17,7 @@
 # Environment:
 #   REPETITIONS=5     --benchmark_repetitions of each run
 #   ROUNDS=1          run A, B, A, B, ... ROUNDS times each, merged into one JSON per side: on a
-#                     machine whose speed drifts (docs/performance.md) both binaries then see the
+#                     machine whose speed drifts (docs/notes/performance.md) both binaries then see the
 #                     same drift; e.g. ROUNDS=5 REPETITIONS=1
 #   METRIC=real_time  what compare_json.py compares (cpu_time, items_per_second, a counter...)
 #   OUT_DIR           where the JSON files go (default: a new directory under /tmp, printed)

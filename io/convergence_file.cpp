@@ -18,12 +18,7 @@ const std::vector<std::string>& convergence_outputs() {
 }
 
 double output_value(const MethodResult& r, const std::string& output) {
-  if (output == "peak_force") return r.peak_force;
-  if (output == "rise_time") return r.rise_time;
-  if (output == "impact_duration") return r.impact_duration;
-  if (output == "final_displacement") return r.final_displacement;
-  const auto it = r.extra.find(output);
-  return it == r.extra.end() ? std::numeric_limits<double>::quiet_NaN() : it->second;
+  return scalar_by_name(r, output);
 }
 
 ConvergenceStudy load_convergence_study(const std::string& path) {
@@ -96,12 +91,10 @@ std::string attach_convergence(const ConvergenceStudy& study, const Scene& scene
       return "stale: " + key + " is " + jf::format_number(v) + " here and " +
              jf::format_number(s.value) + " in the study (rerun ci/reference_convergence.py)";
   }
-  for (const auto& [key, s] : c.outputs) {
-    mpm.extra[key + "_spread"] = s.spread;
-    mpm.extra[key + "_converged"] = s.converged ? 1.0 : 0.0;
-  }
-  mpm.extra["convergence_finer_cells"] = study.finer_cells;
-  mpm.extra["convergence_finer_courant"] = study.finer_courant;
+  ConvergenceBars& bars = mpm.convergence.emplace();
+  for (const auto& [key, s] : c.outputs) bars.outputs[key] = {s.spread, s.converged};
+  bars.finer_cells = study.finer_cells;
+  bars.finer_courant = study.finer_courant;
   return "";
 }
 

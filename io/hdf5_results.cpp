@@ -132,14 +132,6 @@ void validate(const std::vector<MethodResult>& results) {
                                     "' has " + std::to_string(sr.values.size()) +
                                     " samples but 'time' has " + std::to_string(n));
     }
-    for (const auto& [name, value] : r.extra) {
-      (void)value;
-      if (name.empty())
-        throw std::invalid_argument("write_results: method '" + r.method + "': empty extra name");
-      if (is_reserved_attribute(name))
-        throw std::invalid_argument("write_results: method '" + r.method + "': extra '" + name +
-                                    "' clashes with a reserved attribute");
-    }
   }
 }
 
@@ -173,7 +165,7 @@ void write_file(const std::string& file, const std::string& scene_text,
       // family): such scalars are left out rather than stored as NaN.
       for (const auto& s : kScalars)
         if (!std::isnan(r.*(s.member))) write_double_attribute(g, s.name, r.*(s.member));
-      for (const auto& [name, value] : r.extra)
+      for (const auto& [name, value] : named_scalars(r))
         if (!std::isnan(value)) write_double_attribute(g, name, value);
       write_string_attribute(g, "units", kScalarUnits);
       if (r.end_state != EndState::None)
@@ -254,7 +246,8 @@ MethodResult read_group(hid_t file, const std::string& name) {
     Handle type(H5Aget_type(attr), H5Tclose, "cannot get the type of attribute '" + a + "'");
     Handle space(H5Aget_space(attr), H5Sclose, "cannot get the dataspace of attribute '" + a + "'");
     if (H5Tget_class(type) != H5T_FLOAT || H5Sget_simple_extent_npoints(space) != 1) continue;
-    r.extra[a] = read_double_attribute(g, a);
+    // A scalar this version does not know (a newer writer's) is left out.
+    set_named_scalar(r, a, read_double_attribute(g, a));
   }
   return r;
 }

@@ -6,7 +6,7 @@
 //                           is tracked); attributes: peak_force, rise_time, impact_duration,
 //                           final_displacement (double; +inf allowed; left out where it is not
 //                           given, e.g. a run cut short while the barrier still slid), every
-//                           `extra` entry (double), `units` (string listing the units of the four
+//                           further scalar (model/result_scalars.hpp: named_scalars), `units` (string listing the units of the four
 //                           scalars), and for runs `end_state` (string: at_rest,
 //                           end_time_landslide_moving, end_time_barrier_sliding,
 //                           barrier_left_domain, unstable) and `status` (string)
@@ -29,7 +29,7 @@ namespace lsi {
 // partial one. Missing parent directories are created.
 // Throws std::invalid_argument (nothing written) for an invalid result: a non-empty history whose
 // length differs from `time` (the message names the dataset), an empty/duplicate method name or one
-// containing '/', an empty extra name or one clashing with a reserved attribute name.
+// containing '/'.
 // Throws std::runtime_error (message: path + what failed) for any I/O or HDF5 failure; the
 // temporary file is removed and an existing file at `path` is left untouched.
 // `extra`, if set, is called with the open file's id (an hid_t) after the method groups are written
@@ -46,8 +46,9 @@ struct StoredResults {
 };
 
 // Reads back everything write_results writes. Every group under the root is one method (the group
-// name is MethodResult::method); missing datasets give empty vectors, double attributes other than
-// the four standard scalars go to `extra`. Throws std::runtime_error (path + what failed).
+// name is MethodResult::method); missing datasets give empty vectors, the double attributes other
+// than the four standard scalars are set by name (set_named_scalar; a name this version does not
+// know is left out). Throws std::runtime_error (path + what failed).
 StoredResults read_results(const std::string& path);
 
 }  // namespace lsi

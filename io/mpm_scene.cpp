@@ -54,7 +54,7 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
         r.choice("drag", {"semi-implicit", "explicit"}, std::string("semi-implicit")) == "semi-implicit";
     if (!s.saturated && r.has("drag")) r.fail_at("drag", "only used with \"phases\": \"saturated\"");
     // The pore pressure per point (the paper's single-point formulation) or projected to its
-    // cell's mean every step (removes the volumetric locking next to walls: docs/two_phase.md,
+    // cell's mean every step (removes the volumetric locking next to walls: docs/theory/two_phase.md,
     // "The face jet").
     s.cell_pore_pressure =
         r.choice("pore_pressure", {"point", "cell"}, std::string("point")) == "cell";

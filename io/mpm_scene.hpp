@@ -1,7 +1,7 @@
 // MPM input: the `methods.mpm` block (numerical settings, shared by every MPM scene) and the
 // `mpm_case` block of a verification scene (domain, walls, materials, bodies), which replaces
 // `landslide` and `barrier` for problems that are not a landslide hitting a barrier, read into
-// model/mpm_settings.hpp and model/mpm_case.hpp. Both are documented in docs/scene_schema.md.
+// model/mpm_settings.hpp and model/mpm_case.hpp. Both are documented in docs/reference/scene_schema.md.
 #pragma once
 #include <nlohmann/json.hpp>
 #include <string>

@@ -27,10 +27,8 @@ std::string pad(const std::string& s, size_t width) {
   return s.size() >= width ? s + " " : s + std::string(width - s.size(), ' ');
 }
 
-double extra_or_nan(const MethodResult& r, const char* key) {
-  const auto it = r.extra.find(key);
-  return it == r.extra.end() ? std::nan("") : it->second;
-}
+double scalar_or_nan(const std::optional<double>& v) { return v.value_or(std::nan("")); }
+double end_time_or_nan(const MethodResult& r) { return r.run ? r.run->end_time : std::nan(""); }
 
 // The final displacement as a table cell: the number where it is one; ">=" the displacement at
 // the end where the run was cut short while the barrier still slid; "unstable".
@@ -38,7 +36,7 @@ std::string displacement_cell(const MethodResult& r) {
   switch (r.end_state) {
     case EndState::EndTimeBarrierSliding:
     case EndState::BarrierLeftDomain:
-      return ">=" + fmt(extra_or_nan(r, "displacement_at_end"), "%.3f");
+      return ">=" + fmt(scalar_or_nan(r.scalars.displacement_at_end), "%.3f");
     case EndState::Unstable:
       return "unstable";
     default:
@@ -48,8 +46,8 @@ std::string displacement_cell(const MethodResult& r) {
 
 // What a table must say about how a run ended, or "" (at rest, or not a run).
 std::string end_note(const MethodResult& r) {
-  const std::string t = fmt(extra_or_nan(r, "end_time"), "%.3g");
-  const std::string d = fmt(extra_or_nan(r, "displacement_at_end"), "%.3g");
+  const std::string t = fmt(end_time_or_nan(r), "%.3g");
+  const std::string d = fmt(scalar_or_nan(r.scalars.displacement_at_end), "%.3g");
   switch (r.end_state) {
     case EndState::EndTimeBarrierSliding:
       return "the barrier was still sliding at t = " + t + " s (>= " + d +
@@ -78,7 +76,7 @@ nlohmann::json summary_json(const std::vector<MethodResult>& results) {
     put(m, "rise_time", r.rise_time);
     put(m, "impact_duration", r.impact_duration);
     put(m, "final_displacement", r.final_displacement);
-    for (const auto& [k, v] : r.extra) put(m, k, v);
+    for (const auto& [k, v] : named_scalars(r)) put(m, k, v);
     if (r.end_state != EndState::None) m["end_state"] = end_state_token(r.end_state);
     if (!r.status.empty()) m["status"] = r.status;
     if (!r.barrier_model.empty()) m["barrier_model"] = r.barrier_model;
@@ -107,18 +105,18 @@ std::string summary_table(const Scene& scene, const std::vector<MethodResult>& r
     if (!note.empty()) o << r.method << ": " << note << "\n";
   }
   // The MPM's volumes (the closed forms have none): what went over the crest, and how much of
-  // that is the grid contact's leak into the barrier (docs/two_phase.md).
+  // that is the grid contact's leak into the barrier (docs/theory/two_phase.md).
   for (const auto& r : results) {
-    const auto over = r.extra.find("overtopped_volume_m2");
-    const auto kept = r.extra.find("retained_volume_m2");
-    if (over == r.extra.end() || kept == r.extra.end()) continue;
-    const double total = over->second + kept->second;
-    o << r.method << ": overtopped " << fmt(over->second, "%.2f") << " m^2/m ("
-      << fmt(total > 0.0 ? 100.0 * over->second / total : 0.0, "%.1f") << " % of the landslide";
-    const auto leak = r.extra.find("overtopped_inside_barrier_m2");
-    if (leak != r.extra.end() && leak->second > 0.0)
-      o << "; " << fmt(leak->second, "%.2f") << " of it inside the barrier, the contact's leak";
-    o << "), retained " << fmt(kept->second, "%.2f") << " m^2/m\n";
+    const auto& over = r.scalars.overtopped_volume_m2;
+    const auto& kept = r.scalars.retained_volume_m2;
+    if (!over || !kept) continue;
+    const double total = *over + *kept;
+    o << r.method << ": overtopped " << fmt(*over, "%.2f") << " m^2/m ("
+      << fmt(total > 0.0 ? 100.0 * *over / total : 0.0, "%.1f") << " % of the landslide";
+    const auto& leak = r.scalars.overtopped_inside_barrier_m2;
+    if (leak && *leak > 0.0)
+      o << "; " << fmt(*leak, "%.2f") << " of it inside the barrier, the contact's leak";
+    o << "), retained " << fmt(*kept, "%.2f") << " m^2/m\n";
   }
   return o.str();
 }
@@ -139,12 +137,12 @@ nlohmann::json check_json(const DesignCheck& c) {
                       {"within_tolerance", c.within},
                       {"end_state", end_state_token(c.mpm.end_state)}};
   put(j, "final_displacement", c.mpm.final_displacement);
-  put(j, "displacement_at_end", extra_or_nan(c.mpm, "displacement_at_end"));
+  put(j, "displacement_at_end", scalar_or_nan(c.mpm.scalars.displacement_at_end));
   put(j, "peak_force", c.mpm.peak_force);
-  put(j, "min_sliding_safety", extra_or_nan(c.mpm, "min_sliding_safety"));
-  put(j, "min_overturning_safety", extra_or_nan(c.mpm, "min_overturning_safety"));
-  put(j, "overturning_resultant_height", extra_or_nan(c.mpm, "overturning_resultant_height"));
-  put(j, "solver_seconds", extra_or_nan(c.mpm, "solver_seconds"));
+  put(j, "min_sliding_safety", scalar_or_nan(c.mpm.scalars.min_sliding_safety));
+  put(j, "min_overturning_safety", scalar_or_nan(c.mpm.scalars.min_overturning_safety));
+  put(j, "overturning_resultant_height", scalar_or_nan(c.mpm.scalars.overturning_resultant_height));
+  put(j, "solver_seconds", (c.mpm.run ? c.mpm.run->solver_seconds : std::nan("")));
   return j;
 }
 }  // namespace
@@ -193,9 +191,9 @@ std::string design_table(const Scene& scene, const std::vector<MassDesign>& desi
           << " m): displacement " << displacement_cell(c->mpm) << " m against "
           << fmt(max_displacement_m) << " m: " << (c->within ? "within" : "NOT within")
           << " the tolerance; safety under the MPM's loads: sliding "
-          << fmt(extra_or_nan(c->mpm, "min_sliding_safety"), "%.2f") << ", overturning "
-          << fmt(extra_or_nan(c->mpm, "min_overturning_safety"), "%.2f") << " (resultant at "
-          << fmt(extra_or_nan(c->mpm, "overturning_resultant_height"), "%.2f") << " m)"
+          << fmt(scalar_or_nan(c->mpm.scalars.min_sliding_safety), "%.2f") << ", overturning "
+          << fmt(scalar_or_nan(c->mpm.scalars.min_overturning_safety), "%.2f") << " (resultant at "
+          << fmt(scalar_or_nan(c->mpm.scalars.overturning_resultant_height), "%.2f") << " m)"
           << (note.empty() ? "" : "; " + note) << "\n";
       }
     } else {
@@ -221,17 +219,17 @@ namespace {
 // `<key>_converged`: io/convergence_file.hpp): "value+-spread", "*" when not converged.
 std::string with_spread(const MethodResult& r, const std::string& key, const std::string& value,
                         double scale, const char* format) {
-  const auto s = r.extra.find(key + "_spread");
-  if (s == r.extra.end() || value == "-") return value;
-  const auto c = r.extra.find(key + "_converged");
-  const bool converged = c != r.extra.end() && c->second == 1.0;
-  return value + "+-" + fmt(s->second / scale, format) + (converged ? "" : "*");
+  if (!r.convergence || value == "-") return value;
+  const auto bar = r.convergence->outputs.find(key);
+  if (bar == r.convergence->outputs.end()) return value;
+  return value + "+-" + fmt(bar->second.spread / scale, format) +
+         (bar->second.converged ? "" : "*");
 }
 
 bool has_spreads(const std::vector<ComparisonRow>& rows) {
   for (const auto& row : rows)
     for (const auto& r : row.results)
-      if (r.extra.count("peak_force_spread")) return true;
+      if (r.convergence && r.convergence->outputs.count("peak_force")) return true;
   return false;
 }
 
@@ -253,12 +251,7 @@ constexpr MpmColumn kMpmColumns[] = {
     {"face_pore_pressure_max_pa", "face pore p. [kPa]", 1e3, "%.0f"},
 };
 
-double value_of(const MethodResult& r, const std::string& key) {
-  if (key == "peak_force") return r.peak_force;
-  if (key == "impact_duration") return r.impact_duration;
-  if (key == "final_displacement") return r.final_displacement;
-  return extra_or_nan(r, key.c_str());
-}
+double value_of(const MethodResult& r, const std::string& key) { return scalar_by_name(r, key); }
 }  // namespace
 
 std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_displacement_m) {
@@ -334,7 +327,7 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_
   o << "E displacement: " << described(model_of("empirical"),
                                        "rigid-block sliding under the empirical (fixed-barrier) pulse")
     << "; A: " << described(model_of("analytical"), "the two-body model")
-    << "; M: the MPM (docs/mpm.md). \"any\": no mass exceeds the tolerance (docs/models.md).\n";
+    << "; M: the MPM (docs/theory/mpm.md). \"any\": no mass exceeds the tolerance (docs/theory/models.md).\n";
   if (!checked.empty())
     o << "M displ. at that mass: the MPM on the barrier of that minimum mass (the scene's height, "
          "top width and face angle; the base width from the mass).\n";
@@ -346,9 +339,9 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_
   if (bars) {
     double cells = 0, courant = 0;
     for (const auto& row : rows)
-      if (const MethodResult* r = find(row.results, "mpm"); r && r->extra.count("peak_force_spread")) {
-        cells = extra_or_nan(*r, "convergence_finer_cells");
-        courant = extra_or_nan(*r, "convergence_finer_courant");
+      if (const MethodResult* r = find(row.results, "mpm"); r && r->convergence) {
+        cells = r->convergence->finer_cells;
+        courant = r->convergence->finer_courant;
       }
     o << "\nMPM outputs +- their spread in the convergence study (the larger change to "
       << fmt(cells, "%.0f") << " cells through the thickness or to Courant " << fmt(courant)
@@ -373,7 +366,7 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_
     for (const auto& row : rows) {
       const MethodResult* r = find(row.results, "mpm");
       double seconds = std::nan("");
-      if (r && r->extra.count("solver_seconds")) seconds = r->extra.at("solver_seconds");
+      if (r && r->run) seconds = r->run->solver_seconds;
       o << " " << row.scene << " " << fmt(seconds, "%.3g");
     }
     o << "\n";

@@ -1,4 +1,4 @@
-// Scene parser and validator. The schema is documented in docs/scene_schema.md; keep the two in
+// Scene parser and validator. The schema is documented in docs/reference/scene_schema.md; keep the two in
 // step (key names, ranges, defaults).
 #include "io/scene_parser.hpp"
 
@@ -189,7 +189,7 @@ EmpiricalParameters parse_empirical(const ObjectReader& methods) {
                         ? BarrierModel::Momentum
                         : BarrierModel::Paper;
   // The momentum-consistent barrier takes a pulse of destroyed momentum; a static residual load
-  // after it is a different mechanism (docs/models.md, "Momentum-consistent barrier").
+  // after it is a different mechanism (docs/theory/models.md, "Momentum-consistent barrier").
   if (p.barrier_model == BarrierModel::Momentum && p.kappa > 0.0)
     r.fail_at("kappa", "must be 0 with \"barrier_model\": \"momentum\" (the static load after the "
                        "pulse is not modelled there)");

@@ -1,4 +1,4 @@
-// Study-file parser; the schema is documented in docs/scene_schema.md ("Study files").
+// Study-file parser; the schema is documented in docs/reference/scene_schema.md ("Study files").
 #include "io/study_parser.hpp"
 
 #include <algorithm>
@@ -368,7 +368,7 @@ Study parse_study(const json& j, const std::string& base_dir) {
   }
   if (s.runs("mpm") && !s.base.methods.mpm)
     root.fail_at("methods", "\"mpm\" needs a methods.mpm block in the scene (cell_size_m, ...; "
-                            "docs/scene_schema.md)");
+                            "docs/reference/scene_schema.md)");
   s.outputs = root.has("outputs") ? string_list(root, "outputs", kOutputs) : kOutputs;
 
   // Inputs.

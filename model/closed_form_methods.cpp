@@ -70,11 +70,11 @@ void fill_histories(MethodResult& r, const Scene& scene, const ForcePulse& pulse
   r.rise_time = pulse.rise_time;
   r.impact_duration = pulse.duration;
   r.final_displacement = b.fixed ? 0.0 : motion.final_displacement;
-  r.extra["peak_force_horizontal"] = pulse.peak * face.horizontal;
-  r.extra["impulse"] = pulse.pulse_impulse();
-  if (!b.fixed) {
-    r.extra["barrier_start_time"] = motion.moves ? motion.start_time : nan;
-    r.extra["barrier_stop_time"] = motion.moves ? motion.stop_time : nan;
+  r.scalars.peak_force_horizontal = pulse.peak * face.horizontal;
+  r.scalars.impulse = pulse.pulse_impulse();
+  if (!b.fixed && motion.moves) {
+    r.scalars.barrier_start_time = motion.start_time;
+    r.scalars.barrier_stop_time = motion.stop_time;
   }
   // Static safety under this history (the resultant at half the flow thickness).
   const double mass = std::isfinite(barrier_mass) ? barrier_mass : scene.barrier.mass();
@@ -82,9 +82,9 @@ void fill_histories(MethodResult& r, const Scene& scene, const ForcePulse& pulse
       barrier_stability(r.time.data(), r.force.data(), static_cast<int>(r.time.size()),
                         geometry_of(b), face, mass, b.base_friction,
                         0.5 * scene.landslide.thickness_m);
-  r.extra["min_sliding_safety"] = s.min_sliding_safety;
-  r.extra["min_overturning_safety"] = s.min_overturning_safety;
-  r.extra["overturning_resultant_height"] = s.resultant_height;
+  r.scalars.min_sliding_safety = s.min_sliding_safety;
+  r.scalars.min_overturning_safety = s.min_overturning_safety;
+  r.scalars.overturning_resultant_height = s.resultant_height;
 }
 
 // The momentum-consistent barrier (kernels/closed_form/momentum_barrier.hpp) under a
@@ -130,25 +130,25 @@ void fill_momentum_histories(MethodResult& r, const Scene& scene, const Momentum
   r.impact_duration = res.contact_end;
   r.final_displacement = scene.barrier.fixed ? 0.0 : res.final_displacement;
   r.barrier_model = "momentum";
-  r.extra["peak_force_horizontal"] = res.peak_force * s.face.horizontal;
+  r.scalars.peak_force_horizontal = res.peak_force * s.face.horizontal;
   double impulse = 0.0;   // the barrier's, from the force it received
   for (size_t i = 1; i < r.time.size(); ++i)
     impulse += 0.5 * (r.force[i] + r.force[i - 1]) * (r.time[i] - r.time[i - 1]);
-  r.extra["impulse"] = impulse;
-  r.extra["flow_friction_deceleration"] = s.flow_friction;
-  r.extra["largest_barrier_velocity"] = res.largest_barrier_velocity;
-  if (!scene.barrier.fixed) {
-    r.extra["barrier_start_time"] = res.start_time >= 0.0 ? res.start_time : nan;
-    r.extra["barrier_stop_time"] = res.start_time >= 0.0 ? res.stop_time : nan;
+  r.scalars.impulse = impulse;
+  r.scalars.flow_friction_deceleration = s.flow_friction;
+  r.scalars.largest_barrier_velocity = res.largest_barrier_velocity;
+  if (!scene.barrier.fixed && res.start_time >= 0.0) {
+    r.scalars.barrier_start_time = res.start_time;
+    r.scalars.barrier_stop_time = res.stop_time;
   }
   const double mass = scene.barrier.mass();
   const StabilityCheck stab =
       barrier_stability(r.time.data(), r.force.data(), static_cast<int>(r.time.size()),
                         geometry_of(scene.barrier), s.face, mass, scene.barrier.base_friction,
                         0.5 * scene.landslide.thickness_m);
-  r.extra["min_sliding_safety"] = stab.min_sliding_safety;
-  r.extra["min_overturning_safety"] = stab.min_overturning_safety;
-  r.extra["overturning_resultant_height"] = stab.resultant_height;
+  r.scalars.min_sliding_safety = stab.min_sliding_safety;
+  r.scalars.min_overturning_safety = stab.min_overturning_safety;
+  r.scalars.overturning_resultant_height = stab.resultant_height;
 }
 
 EmpiricalCoefficients empirical_coefficients(const Scene& scene) {
@@ -206,12 +206,12 @@ MethodResult empirical_with_mass(const Scene& scene, double barrier_mass) {
     fill_histories(r, scene, imp.pulse, resolve_face_force(face_angle(scene)), barrier_mass,
                    [&](double t) { return imp.landslide_kinetic_energy(t); });
   }
-  r.extra["froude_number"] = imp.froude;
-  r.extra["alpha"] = imp.alpha;
-  r.extra["normal_velocity"] = imp.normal_velocity;
-  r.extra["peak_force_dynamic"] = imp.peak_dynamic;
-  r.extra["peak_force_static"] = imp.peak_static;
-  r.extra["landslide_mass"] = imp.landslide_mass;
+  r.scalars.froude_number = imp.froude;
+  r.scalars.alpha = imp.alpha;
+  r.scalars.normal_velocity = imp.normal_velocity;
+  r.scalars.peak_force_dynamic = imp.peak_dynamic;
+  r.scalars.peak_force_static = imp.peak_static;
+  r.scalars.landslide_mass = imp.landslide_mass;
   return r;
 }
 
@@ -229,23 +229,23 @@ MethodResult analytical_with_mass(const Scene& scene, double barrier_mass) {
                                                      l.equivalent_length_m(), c.lambda, c.tau,
                                                      face.horizontal);
     fill_momentum_histories(r, scene, momentum_setup(scene, pulse, m2));
-    r.extra["lambda"] = c.lambda;
-    r.extra["tau"] = c.tau;
-    r.extra["landslide_mass"] = l.mass_kg_per_m();
+    r.scalars.lambda = c.lambda;
+    r.scalars.tau = c.tau;
+    r.scalars.landslide_mass = l.mass_kg_per_m();
     return r;
   }
   r.barrier_model = "paper";
   const TwoBodyImpact imp = two_body_impact_of(scene, m2);
   fill_histories(r, scene, imp.pulse, resolve_face_force(face_angle(scene)), m2,
                  [&](double t) { return imp.landslide_kinetic_energy(t); });
-  r.extra["lambda"] = c.lambda;
-  r.extra["tau"] = c.tau;
-  r.extra["reduced_mass"] = imp.reduced_mass;
-  r.extra["max_shortening"] = imp.max_shortening;
-  r.extra["K1"] = imp.K1;
-  r.extra["q1"] = imp.q1;
-  r.extra["common_velocity"] = imp.common_velocity;
-  r.extra["landslide_mass"] = imp.landslide_mass;
+  r.scalars.lambda = c.lambda;
+  r.scalars.tau = c.tau;
+  r.scalars.reduced_mass = imp.reduced_mass;
+  r.scalars.max_shortening = imp.max_shortening;
+  r.scalars.K1 = imp.K1;
+  r.scalars.q1 = imp.q1;
+  r.scalars.common_velocity = imp.common_velocity;
+  r.scalars.landslide_mass = imp.landslide_mass;
   return r;
 }
 
@@ -281,13 +281,13 @@ void require_computable(const MethodResult& r, const Scene& scene) {
     if ((durations || std::string(name) == "peak_force") && !std::isfinite(v)) fail(name, v);
   if (durations && !(std::isfinite(r.final_displacement) || r.final_displacement == INFINITY))
     fail("final_displacement", r.final_displacement);
-  for (const auto& [key, v] : r.extra) {
+  for (const ScalarField& f : scalar_fields()) {
+    const std::optional<double>& v = r.scalars.*(f.member);
+    if (!v) continue;   // not given (a barrier that never moves has no start or stop time)
+    const std::string key = f.name;
     const bool may_be_infinite = key == "barrier_stop_time" || key == "min_sliding_safety" ||
                                  key == "min_overturning_safety";
-    // A barrier that never moves has no start or stop time.
-    const bool not_given = std::isnan(v) && r.final_displacement == 0.0 &&
-                           (key == "barrier_start_time" || key == "barrier_stop_time");
-    if (!(std::isfinite(v) || (may_be_infinite && v == INFINITY) || not_given)) fail(key, v);
+    if (!(std::isfinite(*v) || (may_be_infinite && *v == INFINITY))) fail(key, *v);
   }
   const std::pair<const char*, const std::vector<double>*> histories[] = {
       {"time", &r.time},
@@ -341,9 +341,9 @@ MethodResult run_literature(const Scene& scene) {
                      "\" needs hydrostatic_k and/or hydrodynamic_alpha");
   r.rise_time = r.impact_duration = r.final_displacement = nan;
   const FaceResolution face = resolve_face_force(face_angle(scene));
-  r.extra["peak_force_horizontal"] = r.peak_force * face.horizontal;
-  if (p.hydrostatic_k) r.extra["hydrostatic_k"] = *p.hydrostatic_k;
-  if (p.hydrodynamic_alpha) r.extra["hydrodynamic_alpha"] = *p.hydrodynamic_alpha;
+  r.scalars.peak_force_horizontal = r.peak_force * face.horizontal;
+  r.scalars.hydrostatic_k = p.hydrostatic_k;
+  r.scalars.hydrodynamic_alpha = p.hydrodynamic_alpha;
   return r;
 }
 

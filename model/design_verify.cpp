@@ -36,7 +36,7 @@ std::vector<DesignCheck> verify_designs(const Scene& scene, const std::vector<Ma
                                         double max_displacement_m,
                                         const std::vector<std::string>& methods) {
   if (!scene.methods.mpm)
-    throw InputError("methods.mpm: missing: checking a design runs the MPM (docs/scene_schema.md)");
+    throw InputError("methods.mpm: missing: checking a design runs the MPM (docs/reference/scene_schema.md)");
   std::vector<DesignCheck> out;
   for (const MassDesign& d : designs) {
     if (d.status != "found") continue;

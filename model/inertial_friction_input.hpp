@@ -1,7 +1,7 @@
 // The `inertial_friction` block of a Mohr-Coulomb material, in the scene's units: the mu(I)
 // rate-dependent friction of kernels/mpm/constitutive/inertial_friction.hpp, for the landslide of
 // an impact scene (landslide.material) and the named materials of an `mpm_case`
-// (docs/scene_schema.md; read by io/inertial_friction_parser.hpp).
+// (docs/reference/scene_schema.md; read by io/inertial_friction_parser.hpp).
 #pragma once
 #include <optional>
 

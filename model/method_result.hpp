@@ -3,8 +3,11 @@
 #pragma once
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "model/result_scalars.hpp"
 
 namespace lsi {
 
@@ -50,8 +53,12 @@ struct MethodResult {
   std::string status;
   // Closed forms that move a barrier: "paper" or "momentum" (scene.hpp, BarrierModel).
   std::string barrier_model;
-  // Further method-specific scalars (e.g. "froude_number", "reduced_mass_kg_per_m"), SI units.
-  std::map<std::string, double> extra;
+  // Further scalars, each given by some methods (result_scalars.hpp).
+  ResultScalars scalars;
+  // A simulated run's statistics (the MPM); empty for the closed forms.
+  std::optional<RunStatistics> run;
+  // The MPM's error bars from a grid-convergence study, where one was given.
+  std::optional<ConvergenceBars> convergence;
   // Further method-specific histories on the same `time` axis (e.g. the MPM's energies).
   struct Series {
     std::string units;

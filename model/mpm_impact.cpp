@@ -179,7 +179,7 @@ MpmCase impact_case(const Scene& scene) {
     if (!c.settings.semi_implicit_drag) {
       // The explicit drag's permeability limit alone fixes the number of steps. Beyond 1e8 steps
       // (days of run time at ~1e6 particle-updates/s) the run would look like a hang: refuse it
-      // with the numbers and the remedy (docs/stability.md, k = 1e-8 m/s needs 1.5e-9 s steps).
+      // with the numbers and the remedy (docs/vv/stability.md, k = 1e-8 m/s needs 1.5e-9 s steps).
       const double dt_k = c.settings.courant *
                           mpm::two_phase::permeability_time_step(tp.conductivity, rho_s, n,
                                                                  tp.liquid.density, g);

@@ -1,7 +1,7 @@
 // The MPM model of a landslide scene (`landslide`, `barrier`, `methods.mpm`): the landslide
 // geometry of the paper (45 deg front, body of i h x h squares, tail 3h; or a rectangle) on a
 // horizontal base with its front touching the barrier's upstream toe at t = 0, moving at v0; the
-// barrier a rigid trapezoid, fixed or sliding on the base. Documented in docs/scene_schema.md
+// barrier a rigid trapezoid, fixed or sliding on the base. Documented in docs/reference/scene_schema.md
 // ("MPM impact scenes").
 #pragma once
 #include "model/mpm_case.hpp"

@@ -78,12 +78,11 @@ void barrier_safety(MethodResult& r, const mpm::Barrier& b) {
       worst = i;
     }
   }
-  r.extra["min_sliding_safety"] = fs_slide;
-  r.extra["min_overturning_safety"] = fs_over;
-  r.extra["overturning_moment_max"] = M.empty() ? 0.0 : M[worst];
-  r.extra["overturning_resultant_height"] =
-      M.empty() ? std::numeric_limits<double>::quiet_NaN()
-                : r.series.at("face_resultant_height").values[worst];
+  r.scalars.min_sliding_safety = fs_slide;
+  r.scalars.min_overturning_safety = fs_over;
+  r.scalars.overturning_moment_max = M.empty() ? 0.0 : M[worst];
+  if (!M.empty())
+    r.scalars.overturning_resultant_height = r.series.at("face_resultant_height").values[worst];
 }
 
 // The impact's scalar outputs (impact_summary.hpp): the peak force normal to the upstream face
@@ -101,19 +100,19 @@ void summarize_impact(MethodResult& r, const mpm::Barrier& barrier, double windo
                              ? barrier.motion.displacement
                              : std::numeric_limits<double>::quiet_NaN();
   const WindowedPeak w = windowed_peak(r.time, r.force, window);
-  r.extra["peak_force_windowed"] = w.force;
-  r.extra["peak_force_windowed_time"] = w.time;
-  r.extra["peak_force_window"] = window;
-  r.extra["impulse"] = impulse_until(r.time, r.force, r.impact_duration);
-  r.extra["final_force"] = d.final_force;
-  r.extra["peak_force_horizontal"] =
+  r.scalars.peak_force_windowed = w.force;
+  r.scalars.peak_force_windowed_time = w.time;
+  r.scalars.peak_force_window = window;
+  r.scalars.impulse = impulse_until(r.time, r.force, r.impact_duration);
+  r.scalars.final_force = d.final_force;
+  r.scalars.peak_force_horizontal =
       *std::max_element(r.force_horizontal.begin(), r.force_horizontal.end());
-  r.extra["displacement_at_end"] = barrier.motion.displacement;
+  r.scalars.displacement_at_end = barrier.motion.displacement;
   barrier_safety(r, barrier);
   const auto& over = r.series.at("overtopped_volume").values;
-  r.extra["overtopped_volume_m2"] = over.back();
-  r.extra["overtopped_inside_barrier_m2"] = r.series.at("overtopped_inside_barrier").values.back();
-  r.extra["retained_volume_m2"] = r.series.at("retained_volume").values.back();
+  r.scalars.overtopped_volume_m2 = over.back();
+  r.scalars.overtopped_inside_barrier_m2 = r.series.at("overtopped_inside_barrier").values.back();
+  r.scalars.retained_volume_m2 = r.series.at("retained_volume").values.back();
 }
 
 using Exec = Kokkos::DefaultExecutionSpace;
@@ -372,14 +371,13 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
       (out.snapshots.empty() || out.snapshots.back().time < solver.time()))
     out.snapshots.push_back(snapshot_of(solver, extra_outputs));
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  out.particles = particle_count;
+  RunStatistics& run = r.run.emplace();
   // A barrier pushed to the downstream end of the modelled domain is a physical outcome (far too
   // light a barrier), not an instability: the run ends there, cut short while it slides (end
   // state barrier_left_domain: no final displacement; the distance reached is displacement_at_end).
-  out.finished = status == mpm::Status::Finished;
-  out.status = barrier_left ? "finished: the barrier slid to the downstream end of the domain"
-                            : mpm::describe(status);
-  r.status = out.status;
+  run.finished = status == mpm::Status::Finished;
+  r.status = barrier_left ? "finished: the barrier slid to the downstream end of the domain"
+                          : mpm::describe(status);
   if (c.barrier) {
     // At rest: the landslide's kinetic energy below 1e-3 of its initial value and the barrier
     // not sliding (the test that ends the run early); else the run was cut short.
@@ -387,44 +385,40 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
     const bool landslide_rest = !r.landslide_kinetic_energy.empty() &&
                                 r.landslide_kinetic_energy.back() <
                                     1e-3 * c.landslide_initial_kinetic_energy;
-    r.end_state = !out.finished   ? EndState::Unstable
+    r.end_state = !run.finished   ? EndState::Unstable
                   : barrier_left  ? EndState::BarrierLeftDomain
                   : sliding       ? EndState::EndTimeBarrierSliding
                   : landslide_rest ? EndState::AtRest
                                    : EndState::EndTimeLandslideMoving;
   }
-  out.steps = solver.steps();
-  out.wall_seconds = total - io_seconds;
-  out.particle_updates_per_second =
-      out.wall_seconds > 0 ? double(particle_count) * solver.steps() / out.wall_seconds : 0.0;
+  run.particles = particle_count;
+  run.steps = static_cast<std::int64_t>(solver.steps());
+  run.end_time = solver.time();
+  run.solver_seconds = total - io_seconds;
+  run.particle_updates_per_second =
+      run.solver_seconds > 0 ? double(particle_count) * solver.steps() / run.solver_seconds : 0.0;
+  run.saturated = c.two_phase.has_value();
   r.peak_force = r.rise_time = r.impact_duration = r.final_displacement =
       std::numeric_limits<double>::quiet_NaN();   // not an impact: not given
   // A run that stopped unstable keeps its histories up to the stop; its summary would look like
   // a result, so it is not given.
-  if (c.barrier && !r.force.empty() && out.finished)
+  if (c.barrier && !r.force.empty() && run.finished)
     summarize_impact(r, solver.barrier(), c.settings.peak_force_window_s);
-  if (c.barrier) r.extra["displacement_at_end"] = solver.barrier().motion.displacement;
-  if (c.barrier && out.finished && r.series.count("face_pore_pressure_max")) {
+  if (c.barrier) r.scalars.displacement_at_end = solver.barrier().motion.displacement;
+  if (c.barrier && run.finished && r.series.count("face_pore_pressure_max")) {
     const auto& v = r.series.at("face_pore_pressure_max").values;
-    r.extra["face_pore_pressure_max_pa"] = *std::max_element(v.begin(), v.end());
+    r.scalars.face_pore_pressure_max_pa = *std::max_element(v.begin(), v.end());
   }
   if (c.barrier && r.series.count("barrier_interior_volume")) {
     const auto& v = r.series.at("barrier_interior_volume").values;
-    r.extra["barrier_interior_volume_max_m2"] = *std::max_element(v.begin(), v.end());
+    r.scalars.barrier_interior_volume_max_m2 = *std::max_element(v.begin(), v.end());
   }
   if (r.series.count("transfer_dissipation")) {
-    r.extra["transfer_dissipation_j_per_m"] = r.series.at("transfer_dissipation").values.back();
+    r.scalars.transfer_dissipation_j_per_m = r.series.at("transfer_dissipation").values.back();
     const auto& u = r.series.at("energy_residual_unexplained").values;
-    r.extra["energy_residual_unexplained_min"] = *std::min_element(u.begin(), u.end());
-    r.extra["energy_residual_unexplained_max"] = *std::max_element(u.begin(), u.end());
+    r.scalars.energy_residual_unexplained_min = *std::min_element(u.begin(), u.end());
+    r.scalars.energy_residual_unexplained_max = *std::max_element(u.begin(), u.end());
   }
-  r.extra["particles"] = particle_count;
-  r.extra["steps"] = static_cast<double>(solver.steps());
-  r.extra["end_time"] = solver.time();
-  r.extra["finished"] = out.finished ? 1.0 : 0.0;
-  r.extra["solver_seconds"] = out.wall_seconds;
-  r.extra["particle_updates_per_second"] = out.particle_updates_per_second;
-  r.extra["saturated"] = c.two_phase ? 1.0 : 0.0;
 }
 
 }  // namespace

@@ -23,13 +23,12 @@ struct MpmSnapshot {
 };
 
 struct MpmOutcome {
-  MethodResult result;     // method "mpm"
-  std::string status;      // "finished" or the reason the run stopped
-  bool finished = false;
-  long steps = 0;
-  double wall_seconds = 0.0;         // solver loop only
-  double particle_updates_per_second = 0.0;
-  int particles = 0;
+  // Method "mpm"; its status is "finished" or the reason the run stopped, its run statistics
+  // are always given.
+  MethodResult result;
+  const RunStatistics& run() const { return *result.run; }
+  bool finished() const { return result.run->finished; }
+  const std::string& status() const { return result.status; }
   // Taken only with settings.snapshot_interval_s > 0: at t = 0, then at the first output time
   // that reaches each further multiple of the interval (outputs are not aligned to it, so a
   // snapshot time may lie up to one time step past the multiple), and at the end of the run.

@@ -1,6 +1,6 @@
 // The scene: a landslide, a barrier and the methods to run, as read from a scene file
 // (io/scene_parser.hpp). The key names are the public contract and are documented in
-// docs/scene_schema.md (the one place where the schema is described).
+// docs/reference/scene_schema.md (the one place where the schema is described).
 #pragma once
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -43,7 +43,7 @@ struct SceneLandslide {
   LandslideMaterial material;
   // tan(phi_b): Coulomb friction of the flow on its base (the paper's F1, Fig. 1); 0 is the
   // paper's smooth base. The MPM applies it to the skeleton's contact force with the base; the
-  // momentum-consistent closed forms to the flow's weight, as that force (docs/models.md).
+  // momentum-consistent closed forms to the flow's weight, as that force (docs/theory/models.md).
   double base_friction = 0.0;
   // Derived from shape: L1,0 (equivalent length, m) and cross-section area (m^2).
   double equivalent_length_m() const;
@@ -68,7 +68,7 @@ struct SceneBarrier {
 // How a closed form moves a free barrier: the paper's construction ("paper": the two-body pulse
 // with base friction, or the rigid block under the empirical fixed-barrier pulse) or the
 // momentum-consistent barrier pushed by the flow at their relative velocity ("momentum",
-// kernels/closed_form/momentum_barrier.hpp; docs/models.md).
+// kernels/closed_form/momentum_barrier.hpp; docs/theory/models.md).
 enum class BarrierModel { Paper, Momentum };
 
 // Method blocks: present means "run this method"; their keys override model parameters.
@@ -87,7 +87,7 @@ struct AnalyticalParameters {
   std::optional<double> tau;
   BarrierModel barrier_model = BarrierModel::Paper;
 };
-// Literature peak-force families with user-given coefficients (docs/models.md, "Literature
+// Literature peak-force families with user-given coefficients (docs/theory/models.md, "Literature
 // peak-force families").
 struct LiteratureParameters {
   std::string family = "mixed";   // "hydrostatic" | "hydrodynamic" | "mixed"

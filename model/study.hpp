@@ -1,6 +1,6 @@
 // A study: a base scene, the uncertain or swept inputs with their distributions, the sampling
 // design and what to run and keep, as read from a study file (io/study_parser.hpp). The schema
-// is documented with the scene's, in docs/scene_schema.md ("Study files"); `lsi sweep` runs it
+// is documented with the scene's, in docs/reference/scene_schema.md ("Study files"); `lsi sweep` runs it
 // (app/sweep_runner.hpp).
 #pragma once
 #include <cstdint>

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The rooms of the code depend one way (docs/architecture.md): kernels/ and sweeps/ on nothing of
+# The rooms of the code depend one way (docs/reference/architecture.md): kernels/ and sweeps/ on nothing of
 # lsi's above them, model/ on those, io/ on model/, app/ on io/ and model/. Fails, naming the
 # file and the line, for an #include that runs back.
 # Usage: layering_test.sh SOURCE_DIR

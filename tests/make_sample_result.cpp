@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
         {"methods", {{"empirical", nlohmann::json::object()}, {"analytical", nlohmann::json::object()}}}};
     auto empirical = synthetic("empirical", 3.2e5, 0.25, 1.1, 9.0e5, 0.12);
     empirical.barrier_velocity.clear();   // exercises "method lacks a dataset"
-    empirical.extra["froude_number"] = 2.26;
+    empirical.scalars.froude_number = 2.26;
     auto analytical = synthetic("analytical", 2.7e5, 0.3, 1.4, 9.0e5, 0.18);
     lsi::write_results(argv[1], scene, {empirical, analytical});
   } catch (const std::exception& e) {

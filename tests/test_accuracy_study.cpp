@@ -216,7 +216,7 @@ TEST(AccuracyCommand, RunsReportsAndResumes) {
 // The overtopped volume as an accuracy output: each run's value is the run's own HDF5 attribute
 // /mpm overtopped_volume_m2 (the material past the crest at the end). L3-B3, dry APIC at 4-6 cells
 // through the thickness (384-864 points, about a second in all): the flow overtops this barrier
-// (6.75 m^2 of 54 at 4 cells, docs/two_phase.md), so the copy is checked on a nonzero value (a
+// (6.75 m^2 of 54 at 4 cells, docs/notes/two_phase.md), so the copy is checked on a nonzero value (a
 // missing attribute would give NaN, a scene that nothing overtops 0).
 TEST(AccuracyCommand, FollowsTheOvertoppedVolume) {
   const fs::path dir = temp_dir() / "overtopping";

@@ -129,7 +129,7 @@ TEST(BarrierSliding, PhaseAMatchesCorrectedEquation17AndStartTime) {
 }
 
 TEST(BarrierSliding, PhaseBMatchesPrintedEquation18SecondBranch) {
-  // Eq. 18, T1 < t <= T2, is correct as printed once m2 is read for m1 (docs/models.md).
+  // Eq. 18, T1 < t <= T2, is correct as printed once m2 is read for m1 (docs/theory/models.md).
   const double m2 = 14400, mu_b = 0.5, tau = 0.25;
   const auto imp = two_body_impact(97200, 12.5, 18, m2, TwoBodyCoefficients{0.41, tau});
   const SlidingBlock b = block_for(m2, mu_b, 80);
@@ -147,7 +147,7 @@ TEST(BarrierSliding, PhaseBMatchesPrintedEquation18SecondBranch) {
 }
 
 TEST(BarrierSliding, SecondBranchOfEquation17HasTheWrongSignAndDropsATerm) {
-  // Eq. 17, T1 < t < T2 (docs/models.md, deviation A8): integrating the drive c N(t) / m2 gives
+  // Eq. 17, T1 < t < T2 (docs/theory/models.md, deviation A8): integrating the drive c N(t) / m2 gives
   //   v2 = q1^2 c / (4 K1 m2) [-(t^2 - 2 T2 t + T1 T2) / (1 - tau) - t*^2 / tau] - g mu_b (t - t*)
   // while the printed branch has + on the first term and no t*^2 / tau.
   const double m2 = 14400, mu_b = 0.5, tau = 0.25;
@@ -169,7 +169,7 @@ TEST(BarrierSliding, SecondBranchOfEquation17HasTheWrongSignAndDropsATerm) {
 }
 
 TEST(BarrierSliding, PrintedEquation20OmitsTermsThatMatter) {
-  // docs/models.md, deviation A4: eq. 20 as printed (with the same c) against the exact answer.
+  // docs/theory/models.md, deviation A4: eq. 20 as printed (with the same c) against the exact answer.
   const double m2 = 14400, mu_b = 0.5, tau = 0.25;
   const auto imp = two_body_impact(97200, 12.5, 18, m2, TwoBodyCoefficients{0.41, tau});
   const SlidingBlock b = block_for(m2, mu_b, 80);

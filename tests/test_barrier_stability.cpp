@@ -45,7 +45,7 @@ TEST(BarrierStability, RectangularBlockUnderAHorizontalForce) {
 
 TEST(BarrierStability, InclinedFaceLeverArmAndDownwardLoad) {
   // Without face shear the lever of the normal force about the downstream toe is
-  // z / sin(beta) - B cos(beta) (docs/models.md, "Overturning").
+  // z / sin(beta) - B cos(beta) (docs/theory/models.md, "Overturning").
   const BarrierGeometry g{5.0, 6.0, 2.0, 60 * deg};
   const FaceResolution face = resolve_face_force(60 * deg);
   const double z = 1.5;

@@ -416,7 +416,7 @@ void check_impact_histories(const lsi::MethodResult& m, double initial_momentum)
 
 TEST(Cli, MpmImpactRunsBesideTheClosedFormsAndConservesMomentum) {
   // small_mass_fraction 0: exact momentum conservation (the impact default, 1e-3, trades it for
-  // robustness: docs/mpm.md).
+  // robustness: docs/theory/mpm.md).
   const fs::path scene = write_file(
       "impact_dry.json",
       impact_scene(R"({"cell_size_m": 0.125, "phases": "dry", "small_mass_fraction": 0})"));
@@ -462,9 +462,9 @@ TEST(Cli, MpmImpactSummaryGivesTheVolumes) {
   ASSERT_EQ(r.code, 0) << r.out;
   const auto stored = lsi::read_results(out.string());
   ASSERT_EQ(stored.results.size(), 1u);
-  const auto& x = stored.results[0].extra;
-  const double over = x.at("overtopped_volume_m2"), kept = x.at("retained_volume_m2"),
-               leak = x.at("overtopped_inside_barrier_m2");
+  const auto& x = stored.results[0].scalars;
+  const double over = x.overtopped_volume_m2.value(), kept = x.retained_volume_m2.value(),
+               leak = x.overtopped_inside_barrier_m2.value();
   ASSERT_GT(leak, 0.0);
   ASSERT_LT(leak, over);
   char line[256];
@@ -514,7 +514,7 @@ TEST(Cli, MpmRunCutShortWhileTheBarrierSlidesHasNoFinalDisplacement) {
   EXPECT_EQ(r.end_state, lsi::EndState::EndTimeBarrierSliding);
   EXPECT_TRUE(std::isnan(r.final_displacement)) << r.final_displacement;
   EXPECT_GT(r.barrier_velocity.back(), 0.0);   // it was indeed still moving
-  EXPECT_EQ(r.extra.at("displacement_at_end"), r.barrier_displacement.back());
+  EXPECT_EQ(r.scalars.displacement_at_end.value(), r.barrier_displacement.back());
 }
 
 TEST(Cli, MpmRunEndsWhenTheLandslideAndTheBarrierAreAtRest) {
@@ -529,10 +529,10 @@ TEST(Cli, MpmRunEndsWhenTheLandslideAndTheBarrierAreAtRest) {
   const auto& m = stored.results[0];
   EXPECT_EQ(m.end_state, lsi::EndState::AtRest);
   EXPECT_GT(m.final_displacement, 0.0);
-  EXPECT_EQ(m.final_displacement, m.extra.at("displacement_at_end"));
+  EXPECT_EQ(m.final_displacement, m.scalars.displacement_at_end.value());
   EXPECT_EQ(m.barrier_velocity.back(), 0.0);
   // Well before the default bound, 10 impact time scales 2 L / v0 + 2 sqrt(2 H / g) = 2.77 s.
-  EXPECT_LT(m.extra.at("end_time"), 0.5 * 27.7);
+  EXPECT_LT(m.run->end_time, 0.5 * 27.7);
 }
 
 // The pore pressure of snapshots is the cell mean by default: the points of one cell share one
@@ -609,11 +609,12 @@ TEST(Cli, CompareAttachesTheErrorBarsOfAConvergenceStudy) {
   EXPECT_NE(r.out.find("+-0.500*"), std::string::npos) << r.out;   // not converged
   EXPECT_EQ(r.out.find("no error bars"), std::string::npos) << r.out;
   const auto stored = lsi::read_results((out / "sliding.h5").string());
-  const auto& x = stored.results.back().extra;
-  EXPECT_EQ(x.at("peak_force_spread"), 1234.0);
-  EXPECT_EQ(x.at("peak_force_converged"), 1.0);
-  EXPECT_EQ(x.at("final_displacement_converged"), 0.0);
-  EXPECT_EQ(x.count("face_pore_pressure_max_pa_spread"), 0u);   // the study had none
+  ASSERT_TRUE(stored.results.back().convergence.has_value());
+  const auto& x = stored.results.back().convergence->outputs;
+  EXPECT_EQ(x.at("peak_force").spread, 1234.0);
+  EXPECT_TRUE(x.at("peak_force").converged);
+  EXPECT_FALSE(x.at("final_displacement").converged);
+  EXPECT_EQ(x.count("face_pore_pressure_max_pa"), 0u);   // the study had none
   // Other settings: no error bars, and why.
   nlohmann::json finer = doc["methods"]["mpm"];
   finer["cell_size_m"] = 0.125;
@@ -872,7 +873,7 @@ TEST(Cli, ReferenceClosedFormsNeverMoveTheBarrierFasterThanTheFlow) {
     ASSERT_EQ(stored.results.size(), 2u);
     for (const auto& m : stored.results) {
       EXPECT_EQ(m.barrier_model, "momentum") << name << " " << m.method;
-      const double m1 = m.extra.at("landslide_mass");
+      const double m1 = m.scalars.landslide_mass.value();
       const double v0 = std::sqrt(2.0 * m.landslide_kinetic_energy.front() / m1);
       for (size_t i = 0; i < m.time.size(); ++i)
         ASSERT_LE(m.barrier_velocity[i],
@@ -934,7 +935,8 @@ TEST(Cli, MpmUnstableImpactStoresItsStatusAndNoSummary) {
   EXPECT_NE(m.status, "finished");
   EXPECT_TRUE(std::isnan(m.peak_force));
   EXPECT_TRUE(std::isnan(m.final_displacement));
-  EXPECT_EQ(m.extra.count("impulse"), 0u);
-  EXPECT_EQ(m.extra.at("finished"), 0.0);
+  EXPECT_FALSE(m.scalars.impulse.has_value());
+  ASSERT_TRUE(m.run.has_value());
+  EXPECT_FALSE(m.run->finished);
   EXPECT_FALSE(m.time.empty());   // the histories up to the stop
 }

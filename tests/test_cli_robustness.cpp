@@ -1,5 +1,5 @@
 // `lsi` under a careless user, a full disk, a scheduler's signals and impossible sizes
-// (docs/robustness.md, "What lsi guarantees"): one line and a clear exit code, never a crash, a
+// (docs/vv/robustness.md, "What lsi guarantees"): one line and a clear exit code, never a crash, a
 // lost input, a stale temporary file or a number that is not one.
 #include <gtest/gtest.h>
 #include <hdf5.h>
@@ -273,7 +273,7 @@ TEST(MpmFootprint, EstimatesThePointsNodesAndTimeStepOfARun) {
   const lsi::MpmCase c = lsi::impact_case(lsi::parse_scene(doc));
   const lsi::MpmFootprint f = lsi::estimate_footprint(c);
   const lsi::MpmOutcome o = lsi::run_mpm_case(c);
-  EXPECT_NEAR(f.points, o.particles, 0.05 * o.particles);
+  EXPECT_NEAR(f.points, o.run().particles, 0.05 * o.run().particles);
   const double dx = c.settings.cell_size_m;
   const double nx = static_cast<int>((c.upper[0] - c.lower[0]) / dx + 0.5) + 1;
   const double ny = static_cast<int>((c.upper[1] - c.lower[1]) / dx + 0.5) + 1;
@@ -283,7 +283,7 @@ TEST(MpmFootprint, EstimatesThePointsNodesAndTimeStepOfARun) {
   const double first_output_step = steps[1];
   EXPECT_NEAR(f.first_time_step, first_output_step, 1e-6 * first_output_step);
   EXPECT_NEAR(f.max_steps, c.settings.end_time_s / f.first_time_step, 1e-9 * f.max_steps);
-  EXPECT_GT(f.state_bytes, 200.0 * o.particles);   // at least the points' own fields
+  EXPECT_GT(f.state_bytes, 200.0 * o.run().particles);   // at least the points' own fields
 }
 
 // Closed forms evaluated where their arithmetic overflows or underflows: an input error naming

@@ -96,7 +96,7 @@ TEST(EmpiricalModel, ForceAndVelocityAreContinuousAtT1AndT2) {
 }
 
 TEST(EmpiricalModel, PrintedEquation8IsDiscontinuousAtT1) {
-  // docs/models.md, deviation E1: the printed eq. 8, second branch, at t = T1 differs from the
+  // docs/theory/models.md, deviation E1: the printed eq. 8, second branch, at t = T1 differs from the
   // first branch by F_peak T1 / (2 m1) - F_dyn T1^2 / (2 m1 (T2 - T1)), which is not zero.
   const auto r = empirical_impact(h, v0, rho, m1, 90 * deg, EmpiricalCoefficients{});
   const double F = r.pulse.peak, Fd = r.peak_dynamic, T1 = r.pulse.rise_time,

@@ -1,4 +1,4 @@
-// The momentum-consistent barrier (kernels/closed_form/momentum_barrier.hpp; docs/models.md,
+// The momentum-consistent barrier (kernels/closed_form/momentum_barrier.hpp; docs/theory/models.md,
 // "Momentum-consistent barrier"): against a direct integration of its own equations, and in its
 // limits (fixed, sticking, frictionless, infinitely heavy, a vertical face).
 #include <gtest/gtest.h>

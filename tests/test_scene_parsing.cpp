@@ -151,14 +151,14 @@ TEST(SceneReference, AllEighteenFilesParseWithTheStudyValues) {
         EXPECT_DOUBLE_EQ(s.barrier.base_friction, 0.5);
         EXPECT_DOUBLE_EQ(s.barrier.face_friction, 0.3);
         EXPECT_EQ(s.barrier.fixed, fixed);
-        // The closed forms move a free barrier by momentum (docs/models.md).
+        // The closed forms move a free barrier by momentum (docs/theory/models.md).
         ASSERT_TRUE(s.methods.empirical.has_value());
         ASSERT_TRUE(s.methods.analytical.has_value());
         EXPECT_EQ(s.methods.empirical->barrier_model, lsi::BarrierModel::Momentum);
         EXPECT_EQ(s.methods.analytical->barrier_model, lsi::BarrierModel::Momentum);
         EXPECT_FALSE(s.methods.literature.has_value());
         // The MPM column of the study: saturated, APIC, 8 cells through the thickness, the flow's
-        // base friction 0.2 (README; docs/reference_convergence.md).
+        // base friction 0.2 (README; docs/vv/reference_convergence.md).
         ASSERT_TRUE(s.methods.mpm.has_value());
         EXPECT_DOUBLE_EQ(s.methods.mpm->cell_size_m, s.landslide.thickness_m / 8);
         EXPECT_TRUE(s.methods.mpm->saturated);
@@ -311,9 +311,9 @@ TEST(SceneParse, FaceRunOutExactlyAtTheLimitIsAccepted) {
 }
 
 TEST(SceneDocs, CompleteExampleInTheSchemaParses) {
-  // The first ```json block of docs/scene_schema.md must stay a valid scene.
-  std::ifstream in(kScenes.parent_path() / "docs" / "scene_schema.md");
-  ASSERT_TRUE(in) << "docs/scene_schema.md not found";
+  // The first ```json block of docs/reference/scene_schema.md must stay a valid scene.
+  std::ifstream in(kScenes.parent_path() / "docs" / "reference" / "scene_schema.md");
+  ASSERT_TRUE(in) << "docs/reference/scene_schema.md not found";
   const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::size_t begin = doc.find("```json\n");
   ASSERT_NE(begin, std::string::npos);
@@ -528,7 +528,7 @@ TEST(SceneParse, LandslideInertialFrictionInSiUnits) {
       without(landslide_with_inertial_friction(), "/landslide/material/inertial_friction"));
   EXPECT_FALSE(plain.landslide.material.inertial_friction.has_value());
   EXPECT_FALSE(lsi::impact_case(plain).materials[0].rate_dependent());
-  // The shipped example (scenes/examples/impact-mu-i.json, docs/scene_schema.md) is rate-dependent.
+  // The shipped example (scenes/examples/impact-mu-i.json, docs/reference/scene_schema.md) is rate-dependent.
   const Scene example = lsi::load_scene((kScenes / "examples" / "impact-mu-i.json").string());
   const auto mu_i = lsi::impact_case(example).materials[0];
   EXPECT_TRUE(mu_i.rate_dependent());

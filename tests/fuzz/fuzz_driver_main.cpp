@@ -7,7 +7,7 @@
 // The target aborts on a bug; the driver then writes the input that did it to
 // `<program>-crash.json` in the working directory (with a line on stderr naming the input), so it
 // can be added to tests/fuzz/regressions/ once fixed. The long, coverage-guided campaign is
-// ci/fuzz.sh (libFuzzer, clang, sanitizers); docs/robustness.md.
+// ci/fuzz.sh (libFuzzer, clang, sanitizers); docs/vv/robustness.md.
 //
 // Usage: PROGRAM [--mutants N] [--seed S] PATH...   (PATH: a file, or a directory read recursively)
 #include <fcntl.h>

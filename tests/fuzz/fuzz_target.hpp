@@ -26,7 +26,7 @@ inline void require(bool condition, const std::string& what) {
   if (!condition) bug("invariant violated: " + what);
 }
 
-// The message of an InputError must be one non-empty line (docs/scene_schema.md). With the
+// The message of an InputError must be one non-empty line (docs/reference/scene_schema.md). With the
 // environment variable LSI_FUZZ_VERBOSE set, it is also printed (to see what a corpus exercises).
 void check_error_message(const InputError& e);
 

@@ -1,4 +1,4 @@
-// What a successfully parsed scene must satisfy (docs/scene_schema.md): every number finite and
+// What a successfully parsed scene must satisfy (docs/reference/scene_schema.md): every number finite and
 // inside its documented range, the derived quantities the methods use (lengths, areas, masses)
 // finite and positive, and the MPM case built from it (model/mpm_impact.hpp, mpm_scene.hpp)
 // free of non-finite values and small enough for the solver's int indices. A violation is a bug

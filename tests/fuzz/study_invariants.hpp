@@ -1,4 +1,4 @@
-// What a successfully parsed study must satisfy (docs/scene_schema.md, "Study files"): a valid
+// What a successfully parsed study must satisfy (docs/reference/scene_schema.md, "Study files"): a valid
 // base scene, 1 to 32 inputs on distinct sampleable paths with valid, finite distributions,
 // counts and levels in their ranges, methods and outputs out of the allowed lists, rules that
 // refer to them, and samples that can be turned into scenes: the first samples the sampler draws

@@ -1,7 +1,7 @@
 // The sudden stop of a saturated block at a wall, and the pressure-impulse theory it is checked
 // against (Cooker & Peregrine 1995, J. Fluid Mech. 297, 193-214). Shared by
 // test_mpm_pressure_impulse.cpp (the assertions) and pressure_impulse_study.cpp (the tables of
-// docs/two_phase.md, "The face jet").
+// docs/theory/two_phase.md, "The face jet").
 //
 // A block of liquefied saturated soil (Mohr-Coulomb skeleton with phi = c = 0: no strength, only
 // the pore liquid carries load), height H on a smooth impermeable base, length L, moves at U onto

@@ -13,7 +13,7 @@
 // with 1 % of the material points beyond it. A rate-independent continuum has no grain size, so
 // a film of any thickness keeps flowing beyond the grains' front (where a granular layer thinner
 // than a few grains stops); the film's mass shrinks with the cell while its farthest point does
-// not, so the farthest point is not the experiments' run-out (docs/verification.md).
+// not, so the farthest point is not the experiments' run-out (docs/vv/verification.md).
 //
 // Model: Mohr-Coulomb, phi = 30 deg, psi = 0, c = 0, tension cut-off 0, nu = 0.3, rho = 1800,
 // E = rho g H0 / 0.005 (0.5 % elastic strain under the column's weight), base friction tan(phi),
@@ -23,7 +23,7 @@
 // Asserted: a = 0.5 and a = 1 (32 cells across L0), x99 within 20 % of Lube et al.; H_f = H0 at
 // a = 0.5. a = 3 (16 cells) is run and checked for what the solver must do (finish, balance its
 // energy, stay in a regression band); its mass front lies further out than the law at every
-// resolution tried, decreasing with the cell (docs/verification.md, "The finest grids"), so it is
+// resolution tried, decreasing with the cell (docs/notes/verification.md, "The finest grids"), so it is
 // not asserted against the law.
 //
 // Every case checks the energy balance, Solver::energy_residual, in [-0.2, +0.05]: a negative

@@ -21,7 +21,7 @@
 // Sticking (mu = 0.7 > tan 30 deg = 0.577) is checked with "pic" transfer: with APIC, which
 // conserves the ringing energy, the ringing block walks down the slope (a steady creep of
 // 3.5 cm/s at E = 1e8, 3.3 mm/s at E = 1e10); PIC damps the ringing and the block stays put
-// (docs/mpm.md).
+// (docs/theory/mpm.md).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -3,7 +3,7 @@
 // are in pressure_impulse.hpp). Held walls (the linear problem): the time means over 10-60
 // acoustic times must be the theory's away from the singular corner, and the corner must move
 // faster than the flow and faster at a finer grid, as the singularity says. This is what shows
-// that the fast sheet along the barrier face of the saturated impacts (docs/two_phase.md, "The
+// that the fast sheet along the barrier face of the saturated impacts (docs/theory/two_phase.md, "The
 // face jet") is the flip-through jet of a liquefied flow, not an artefact.
 #include <gtest/gtest.h>
 
@@ -61,7 +61,7 @@ TYPED_TEST(MpmPressureImpulse, TimeMeansAreTheIncompressibleImpulse) {
   EXPECT_GT(m16.wall_velocity.back(), m8.wall_velocity.back() + 0.1 * U);
   // 5. Pore pressure per point locks next to the wall (the nearly incompressible mixture and
   //    the B-splines): its wall column barely rises and the wall impulse is too large (measured
-  //    +31 % at 16 cells against +6.7 % with the cell-mean pressure; docs/two_phase.md).
+  //    +31 % at 16 cells against +6.7 % with the cell-mean pressure; docs/notes/two_phase.md).
   EXPECT_GT(std::fabs(p16.wall_impulse - I), 2 * std::fabs(m16.wall_impulse - I));
 }
 

@@ -11,7 +11,7 @@
 // whatever the fluid's viscosity: the loss is set by mass and momentum conservation alone.
 // No term of the model dissipates in this liquid (no friction, no strength), so the MPM's loss is
 // its transfer dissipation (plus the smooth walls' projection): this is what the saturated
-// impacts lose in the grid transfers (docs/mpm.md, "Energy lost in the transfers").
+// impacts lose in the grid transfers (docs/theory/mpm.md, "Energy lost in the transfers").
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -60,7 +60,7 @@ TEST(MpmReflectedBore, DissipatesWhatTheJumpConditionsSay) {
   std::ifstream in(LSI_SOURCE_DIR "/scenes/verification/reflected-bore.json");
   const lsi::MpmCase c = lsi::parse_mpm_case(nlohmann::json::parse(in));
   const lsi::MpmOutcome out = lsi::run_mpm_case(c);
-  ASSERT_TRUE(out.finished) << out.status;
+  ASSERT_TRUE(out.finished()) << out.status();
   const lsi::MethodResult& r = out.result;
   const Bore b = bore(1.0, 3.0, 1000.0, 9.81);
   EXPECT_NEAR(b.h2, 2.116, 1e-3);   // the depth the scene gives the still region

@@ -176,7 +176,7 @@ TYPED_TEST(MpmStability, CourantHalfFinishes) {
 // the wave speed c0 sqrt(J). The bar with J = 4 everywhere must therefore (1) vibrate with half
 // the period, (2) get the step C dx / (2 c0 + |v|max), (3) run stably at Courant 0.9 with that
 // step, while (4) the step that c0 alone gave (Courant 1.8 of the true speed: what an overtopping
-// flow behind a fixed barrier ran at before, docs/mpm.md) blows up.
+// flow behind a fixed barrier ran at before, docs/theory/mpm.md) blows up.
 TYPED_TEST(MpmStability, ExpandedPointsAreStifferAndTheStepFollows) {
   using Exec = TypeParam;
   constexpr double kJ = 4.0;

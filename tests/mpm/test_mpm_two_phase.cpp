@@ -509,7 +509,7 @@ TYPED_TEST(MpmTwoPhase, FlipPicTransferConservesMomentumAndOrdersTheLosses) {
     EXPECT_LE(r->residual, 0.01) << name;   // no energy created (1 %: the explicit integration)
   }
   // The transfers' own losses (the block rebounds elastically, so the residual is mostly what
-  // the transfers lose), ordered as the single-phase ones (docs/accuracy.md): PIC, which smooths
+  // the transfers lose), ordered as the single-phase ones (docs/vv/accuracy.md): PIC, which smooths
   // the velocity at every step, loses the most (measured: PIC -57.5 %, FLIP 0.95 -18.6 %, APIC
   // -9.4 %, FLIP -7.6 %); the blend loses more than pure FLIP. The bounds leave at least half
   // of each measured gap (39, 48 and 11 points).

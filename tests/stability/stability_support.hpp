@@ -1,4 +1,4 @@
-// Shared pieces of the stability matrix (docs/stability.md): scenes built from a base JSON with a
+// Shared pieces of the stability matrix (docs/vv/stability.md): scenes built from a base JSON with a
 // merge patch, and the "no NaN / Inf anywhere" check of a MethodResult.
 #pragma once
 #include <gtest/gtest.h>
@@ -55,14 +55,14 @@ inline bool all_finite(const std::vector<double>& v, size_t* first_bad = nullptr
   return true;
 }
 
-// Which non-finite scalars a result may hold, each by design (documented in docs/models.md and
-// docs/scene_schema.md), never NaN written as a number:
+// Which non-finite scalars a result may hold, each by design (documented in docs/theory/models.md and
+// docs/reference/scene_schema.md), never NaN written as a number:
 //  * final_displacement = +infinity: the barrier of a closed form never stops (no base
 //    friction); NaN: an MPM run ended while the barrier still slid (end_state says so, and
 //    displacement_at_end holds how far it got);
-//  * extra barrier_start_time / barrier_stop_time = NaN: "not given", the barrier does not move;
-//    barrier_stop_time = +infinity: it never stops;
-//  * extra min_overturning_safety / min_sliding_safety = +infinity: no overturning moment / no
+//  * barrier_stop_time = +infinity: it never stops (barrier_start_time / barrier_stop_time are
+//    not given, empty, where the barrier does not move);
+//  * min_overturning_safety / min_sliding_safety = +infinity: no overturning moment / no
 //    push at any instant.
 struct NonFiniteAllowed {
   bool infinite_final_displacement = false;
@@ -107,20 +107,20 @@ inline void expect_no_nan(const MethodResult& r, const std::string& where,
     EXPECT_TRUE(std::isfinite(r.final_displacement))
         << where << ": final_displacement = " << r.final_displacement;
   }
-  for (const auto& [name, v] : r.extra) {
-    if (name == "barrier_start_time" || name == "barrier_stop_time") {
-      // NaN only as "not given" (the barrier does not move), then both are NaN together.
-      if (std::isnan(v)) {
-        EXPECT_EQ(r.final_displacement, 0.0) << where << ": " << name << " NaN but the barrier moved";
-        continue;
-      }
-      if (name == "barrier_stop_time" && std::isinf(v)) {
-        EXPECT_TRUE(std::isinf(r.final_displacement)) << where << ": stops never, displacement finite";
-        continue;
-      }
+  // The start and stop times are given together, and not given only where the barrier of a
+  // closed form does not move.
+  EXPECT_EQ(r.scalars.barrier_start_time.has_value(), r.scalars.barrier_stop_time.has_value())
+      << where;
+  if (!r.barrier_model.empty() && !r.scalars.barrier_start_time) {
+    EXPECT_EQ(r.final_displacement, 0.0) << where << ": no start time but the barrier moved";
+  }
+  for (const auto& [name, v] : named_scalars(r)) {
+    if (name == "barrier_stop_time" && std::isinf(v)) {
+      EXPECT_TRUE(std::isinf(r.final_displacement)) << where << ": stops never, displacement finite";
+      continue;
     }
     if ((name == "min_overturning_safety" || name == "min_sliding_safety") && v == INFINITY) continue;
-    EXPECT_TRUE(std::isfinite(v)) << where << ": extra " << name << " = " << v;
+    EXPECT_TRUE(std::isfinite(v)) << where << ": " << name << " = " << v;
   }
 }
 

@@ -1,5 +1,5 @@
 // The closed-form models (empirical and analytical, model/closed_form_methods.hpp on parsed
-// scenes) over the stability matrix's extremes (docs/stability.md): barrier masses m2/m1 from 1e-2
+// scenes) over the stability matrix's extremes (docs/vv/stability.md): barrier masses m2/m1 from 1e-2
 // to 1e4, base friction from 0 to 3, face angles from 5 to 90 deg, velocities from 0.1 to 30 m/s,
 // thicknesses from 0.2 to 10 m, tau from 1e-6 to 1 - 1e-6, lambda from 1e-6 to 1, a2 at +-5.
 // Every output must be finite (the only non-finite values are the documented ones: final
@@ -9,7 +9,7 @@
 //
 // The comparison principle used below: while it slides, the barrier obeys
 //   dV/dt = a(t) = c N(t) / m2 - tan(delta_b) g,   c = sin(beta) - tan(delta_b) cos(beta)
-// (docs/models.md, "Force on an inclined face"), it sticks while a <= 0 at rest, and never moves
+// (docs/theory/models.md, "Force on an inclined face"), it sticks while a <= 0 at rest, and never moves
 // upstream. If a_1(t) <= a_2(t) at every t, then V_1(t) <= V_2(t) at every t (V_1 > V_2 would need
 // a time where V_1 = V_2 > 0 and V_1 grows faster, i.e. a_1 > a_2) and so x_1 <= x_2: the final
 // displacement is non-increasing in any parameter that lowers a(t) pointwise.
@@ -142,7 +142,7 @@ TEST(ClosedFormStability, DisplacementNonIncreasingInBarrierMass) {
   }
   // Not vacuous: some sweeps cross from sliding to sticking. At tan(delta_b) = 0.1, beta = 90:
   // analytically, as m2 -> 0 the drive / friction ratio tends to c (3/4) v0^2 / (lambda L1,0 g
-  // tan(delta_b)) = (3/4) 36 / (0.41 x 16 x 9.81 x 0.1) = 4.2 > 1 (docs/models.md, "Inverse
+  // tan(delta_b)) = (3/4) 36 / (0.41 x 16 x 9.81 x 0.1) = 4.2 > 1 (docs/theory/models.md, "Inverse
   // design"), so the lightest barrier slides, while at m2 = 1e4 m1 the friction 5.6e8 N/m exceeds
   // any peak ((3/4) m1 v0^2 / s1,max < 2.4e5 N/m); the empirical pulse (~3e5 N/m, independent of
   // m2) likewise moves 576 kg/m and not 5.8e8 kg/m.
@@ -168,7 +168,7 @@ TEST(ClosedFormStability, DisplacementNonIncreasingInBaseFriction) {
         if (HasFailure()) return;
         de.push_back(b.empirical.final_displacement);
         da.push_back(b.analytical.final_displacement);
-        // tan(delta_b) = 0: nothing can stop a barrier that moved (docs/models.md, A7).
+        // tan(delta_b) = 0: nothing can stop a barrier that moved (docs/theory/models.md, A7).
         if (mu_b == 0.0) {
           for (const MethodResult* r : {&b.empirical, &b.analytical}) {
             const bool moved = r->barrier_displacement.back() > 0.0;
@@ -204,8 +204,8 @@ TEST(ClosedFormStability, PeakForceNonDecreasingInVelocity) {
         pe.push_back(b.empirical.peak_force);
         pa.push_back(b.analytical.peak_force);
         const double vn = v * std::sin(80.0 * kPi / 180.0), mu = m1 * q * m1 / (m1 + q * m1);
-        EXPECT_NEAR(b.empirical.extra.at("impulse"), m1 * vn, kRound * m1 * vn);
-        EXPECT_NEAR(b.analytical.extra.at("impulse"), mu * v, kRound * mu * v);
+        EXPECT_NEAR(b.empirical.scalars.impulse.value(), m1 * vn, kRound * m1 * vn);
+        EXPECT_NEAR(b.analytical.scalars.impulse.value(), mu * v, kRound * mu * v);
       }
       const std::string tag = " (h " + std::to_string(h) + ", m2/m1 " + std::to_string(q) + ")";
       expect_non_decreasing(pe, vs, "empirical peak force vs velocity" + tag);
@@ -290,7 +290,7 @@ TEST(ClosedFormStability, LambdaNearItsBounds) {
         pa.push_back(a.peak_force);
         EXPECT_NEAR(a.peak_force * lambda, 0.75 * mu * v0 * v0 / L, kRound * 0.75 * mu * v0 * v0 / L);
         EXPECT_NEAR(a.impact_duration, 8.0 / 3.0 * lambda * L / v0, kRound * lambda * L / v0);
-        EXPECT_NEAR(a.extra.at("impulse"), mu * v0, kRound * mu * v0);
+        EXPECT_NEAR(a.scalars.impulse.value(), mu * v0, kRound * mu * v0);
       }
       expect_non_increasing(pa, lambdas, "analytical peak force vs lambda");
     }
@@ -327,9 +327,9 @@ TEST(ClosedFormStability, TauNearItsBounds) {
           const double m1 = m1_of(j), vn = 6.0 * std::sin(80.0 * kPi / 180.0);
           // Impulse over [0, T2] of the empirical pulse: rise and decay (the static residual
           // F_stat only starts at T2).
-          EXPECT_NEAR(b.empirical.extra.at("impulse"), m1 * vn, kRound * m1 * vn) << "tau " << tau;
+          EXPECT_NEAR(b.empirical.scalars.impulse.value(), m1 * vn, kRound * m1 * vn) << "tau " << tau;
           const double mu = m1 * q * m1 / (m1 + q * m1);
-          EXPECT_NEAR(b.analytical.extra.at("impulse"), mu * 6.0, kRound * mu * 6.0);
+          EXPECT_NEAR(b.analytical.scalars.impulse.value(), mu * 6.0, kRound * mu * 6.0);
         }
       }
     }
@@ -371,7 +371,7 @@ TEST(ClosedFormStability, AllExtremesTogetherStayFinite) {
     const double friction = mu_b * m2 * kG;
     for (const MethodResult* r : {&b.empirical, &b.analytical}) {
       const double F = r->peak_force;
-      const double F_res = r->method == "empirical" ? r->extra.at("peak_force_static") : 0.0;
+      const double F_res = r->method == "empirical" ? r->scalars.peak_force_static.value() : 0.0;
       if (std::abs(c * F - friction) <= 1e-9 * (std::abs(c * F) + friction)) continue;   // on the edge
       const bool moves = c > 0 && c * F > friction;
       if (!moves) {

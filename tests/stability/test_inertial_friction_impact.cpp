@@ -49,7 +49,7 @@ struct Impact {
 
 Impact run(const json& scene) {
   const lsi::MpmOutcome out = lsi::run_mpm_case(lsi::impact_case(scene_of(scene)));
-  EXPECT_TRUE(out.finished) << out.status;
+  EXPECT_TRUE(out.finished()) << out.status();
   return {out.result.peak_force, out.result.final_displacement};
 }
 

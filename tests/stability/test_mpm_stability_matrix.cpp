@@ -1,4 +1,4 @@
-// The MPM stability matrix (issue 6; docs/stability.md): one small impact scene (a 1 m flow at
+// The MPM stability matrix (issue 6; docs/vv/stability.md): one small impact scene (a 1 m flow at
 // 4 m/s, 45 deg front, against a 2 m barrier, 4 cells through the flow) and one case per extreme
 // (stiff soil, stiff liquid, low conductivity with both drags, very fast and very thin flows,
 // very light and very heavy barriers, zero and high base friction, a rough flow base, low face
@@ -17,7 +17,7 @@
 //     sticks, consistently with the measured forces; frictionless: never stops, momentum
 //     m2 V = integral of F_x dt; light: still sliding at the end).
 // Each case prints one table line (case, status, steps, time step min/max, residual, peak force,
-// wall seconds); docs/stability.md holds the table.
+// wall seconds); docs/vv/stability.md holds the table.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -44,12 +44,12 @@ constexpr double kRhoWater = 1000.0;    // kg/m^3, the impact scenes' pore liqui
 // Energy residual bounds (relative: (total - initial) / (largest kinetic + stored energy +
 // dissipated work + |potential change|), Solver::energy_residual). A stable explicit run does not
 // create energy: the total may only swing by about omega dt / 2 through the leapfrog staggering of
-// kinetic and elastic energy (docs/mpm.md: 1.3 % at 32 cells), so +5 % is a stability bound ten
+// kinetic and elastic energy (docs/notes/mpm.md: 1.3 % at 32 cells), so +5 % is a stability bound ten
 // times tighter than the solver's own stop (+50 %, Settings::energy_growth_limit). Numerical
 // dissipation is not an instability, but a run that loses more than 30 % of its energy scale to
 // numerics (grid-scale inelastic contact at 4 cells through the flow, the transfer's smoothing)
 // no longer represents the impact: the lower bound flags that. Measured: -0.25 % to -23 %
-// (docs/stability.md).
+// (docs/vv/stability.md).
 constexpr double kResidualHigh = 0.05;
 constexpr double kResidualLow = -0.30;
 
@@ -97,7 +97,7 @@ const json kBase = json::parse(R"({
 //  * K_L = 2.2 GPa: the undrained wave speed is ~1600 m/s, the step ~70 us: 0.05 s (700 steps)
 //    covers ~13 transits of the pressure wave through the 6 m landslide;
 //  * explicit drag at k = 1e-8 m/s: the permeability limit makes the step 1.5 ns; 2 us is 1360
-//    steps (a full second would be 7e8 steps, days of computing: docs/stability.md);
+//    steps (a full second would be 7e8 steps, days of computing: docs/vv/stability.md);
 //  * saturated fast (v0 = 30 m/s) and thin (dx = 0.05 m) flows: the two-phase grid update visits
 //    every node of the grid (114 k and 28 k nodes here), so each step costs 8-30 ms: 0.06 s and
 //    0.1 s (1.8 m and 0.4 m of the landslide have reached the face).
@@ -224,7 +224,7 @@ double constrained_modulus(double E, double nu) { return E * (1 - nu) / ((1 + nu
 // diag((1-n) rho_s, n rho_l): the fast wave is the larger root x = c^2 of
 // m_s m_l x^2 - (k11 m_l + k22 m_s) x + (k11 k22 - k12^2) = 0. With strong drag both phases move
 // together: the undrained speed sqrt((M + K_l/n) / rho_m). The time step must respect the faster
-// of the two (eq. 25, docs/two_phase.md).
+// of the two (eq. 25, docs/theory/two_phase.md).
 double saturated_speed(double M, double rho_s, double n, double rho_l, double K_l) {
   const double ms = (1 - n) * rho_s, ml = n * rho_l;
   const double k11 = M + (1 - n) * (1 - n) * K_l / n, k12 = (1 - n) * K_l, k22 = n * K_l;
@@ -309,24 +309,24 @@ TEST_P(MpmStabilityMatrix, RunsCleanly) {
   char line[512];
   std::snprintf(line, sizeof line,
                 "| %s | %s | %ld | %.3g | %.3g | %.3g | %s | %+.4f | %+.4f | %.4g | %.3g | %.2f | %.1f |",
-                k.name, saturated ? "sat" : "dry", out.steps, r.extra.at("end_time"), dt_min,
+                k.name, saturated ? "sat" : "dry", out.run().steps, r.run->end_time, dt_min,
                 dt_max, saturated ? "-" : std::to_string(J).substr(0, 5).c_str(), res_min,
                 residual.empty() ? 0.0 : residual.back(), r.peak_force, r.final_displacement,
                 ke_lost * 100, wall);
-  std::cout << "[ matrix ] " << line << "\n[ matrix ]   status: " << out.status
+  std::cout << "[ matrix ] " << line << "\n[ matrix ]   status: " << out.status()
             << "; expected: " << k.expectation << std::endl;
 
   // --- Status: the run ends with a documented status; every case here is expected to finish (a
-  // documented stop would still be "clear", but none of these should need one: docs/stability.md).
-  EXPECT_TRUE(documented_status(out.status)) << out.status;
+  // documented stop would still be "clear", but none of these should need one: docs/vv/stability.md).
+  EXPECT_TRUE(documented_status(out.status())) << out.status();
   if (k.may_reach_domain_end) {
-    EXPECT_TRUE(out.status == "finished" ||
-                out.status == "finished: the barrier slid to the downstream end of the domain")
-        << out.status;
+    EXPECT_TRUE(out.status() == "finished" ||
+                out.status() == "finished: the barrier slid to the downstream end of the domain")
+        << out.status();
   } else {
-    EXPECT_EQ(out.status, "finished");
+    EXPECT_EQ(out.status(), "finished");
   }
-  EXPECT_TRUE(out.finished) << out.status;
+  EXPECT_TRUE(out.finished()) << out.status();
   ASSERT_GT(r.time.size(), 2u) << "at least the initial, one intermediate and the last output";
 
   // --- No NaN / Inf anywhere.
@@ -349,7 +349,7 @@ TEST_P(MpmStabilityMatrix, RunsCleanly) {
   EXPECT_LE(dt_max, C * dx / c.low * (1 + 1e-9));
   if (k.limit == StepLimit::Courant) {
     // Not collapsed either: C dx / (c sqrt(J) + |v|max) with |v|max <= 4 v0 (a splash reaches up
-    // to 3 v0, docs/two_phase.md "Impacts") and J the largest expansion V / V0 of a point, which
+    // to 3 v0, docs/notes/two_phase.md "Impacts") and J the largest expansion V / V0 of a point, which
     // raises the dry wave speed (kernels/mpm/time_step.hpp; reported as `largest_expansion`; the
     // saturated solver has it in the porosity, inside c.high's range here). Expanded stress-free
     // points of these cohesionless flows are disconnected (stress_update.hpp: V0 again), so J
@@ -372,7 +372,7 @@ TEST_P(MpmStabilityMatrix, RunsCleanly) {
   // for the grid-scale contact at 4 cells per thickness. Only where the step is the CFL step: the
   // forces are impulses per output interval, and the first contact stops the nodes within a cell
   // of the face in one step, which over an interval of a few nanoseconds (explicit drag) is far
-  // above any continuum pressure (docs/stability.md).
+  // above any continuum pressure (docs/vv/stability.md).
   EXPECT_GT(r.peak_force, 0.0) << "the landslide never touched the barrier";
   if (k.limit == StepLimit::Courant) {
     const double rho = scene.landslide.density_kg_m3, h = scene.landslide.thickness_m;
@@ -391,7 +391,7 @@ TEST_P(MpmStabilityMatrix, RunsCleanly) {
       break;
     case BarrierExpect::Sticks:
       EXPECT_EQ(r.final_displacement, 0.0);
-      EXPECT_EQ(r.extra.at("displacement_at_end"), 0.0);
+      EXPECT_EQ(r.scalars.displacement_at_end.value(), 0.0);
       break;
     case BarrierExpect::NeverStops:
       // Cut short while it still slides: no final displacement, and the end state says why.
@@ -399,7 +399,7 @@ TEST_P(MpmStabilityMatrix, RunsCleanly) {
       EXPECT_TRUE(r.end_state == lsi::EndState::EndTimeBarrierSliding ||
                   r.end_state == lsi::EndState::BarrierLeftDomain)
           << lsi::end_state_token(r.end_state);
-      EXPECT_GT(r.extra.at("displacement_at_end"), 0.0);
+      EXPECT_GT(r.scalars.displacement_at_end.value(), 0.0);
       EXPECT_GT(V.back(), 0.0) << "still sliding at the end";
       break;
     case BarrierExpect::Stops:
@@ -417,7 +417,7 @@ TEST_P(MpmStabilityMatrix, RunsCleanly) {
     // A barrier that never moved stuck at every step: |F_x| <= tan(delta_b) (m2 g + F_down) per
     // step, so also for their means over each output interval (the condition is linear in the
     // forces). 1e-9: round-off.
-    if (r.extra.at("displacement_at_end") == 0.0) {
+    if (r.scalars.displacement_at_end.value() == 0.0) {
       for (size_t i = 1; i < x.size(); ++i)
         ASSERT_LE(r.force_horizontal[i],
                   mu_b * (m2 * kG + r.force_vertical[i]) * (1 + 1e-9) + 1e-9)

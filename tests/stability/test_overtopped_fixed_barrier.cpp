@@ -4,7 +4,7 @@
 // their volume and, compressed again in the pile at the downstream heel, were that much stiffer
 // per unit mass: with the time step of the initial density this run stopped "a material point
 // left the grid" at t = 3.5 s (two expanded points in a period-2 oscillation growing x2 per step:
-// docs/mpm.md), as did every fixed L2 and L3 scene; with a step following the expansion
+// docs/theory/mpm.md), as did every fixed L2 and L3 scene; with a step following the expansion
 // (time_step.hpp) it ran, with steps 6 times smaller. Now such points are disconnected
 // (stress_update.hpp: a stress-free cohesionless point gets its initial volume back), so they
 // re-enter the pile at their initial density. The run must finish cleanly, with V / V0 near 1
@@ -55,19 +55,19 @@ TEST(OvertoppedFixedBarrier, RunsToItsEndCleanly) {
   const double dt_c0 = courant * dx / c0;   // the step of c0 alone (no flow speed)
   const double overtopped = r.series.at("overtopped_volume").values.back();
   const double retained = r.series.at("retained_volume").values.back();
-  std::cout << "[ overtopping ] " << out.status << " at t = " << r.time.back() << " s, "
-            << out.steps << " steps; smallest step " << dt_min << " s = " << dt_min / dt_c0
+  std::cout << "[ overtopping ] " << out.status() << " at t = " << r.time.back() << " s, "
+            << out.run().steps << " steps; smallest step " << dt_min << " s = " << dt_min / dt_c0
             << " of C dx / c0; energy residual " << res_min << " .. " << res_max
             << "; overtopped " << overtopped << " m^2, retained " << retained << " m^2\n";
 
-  EXPECT_EQ(out.status, "finished");
-  ASSERT_TRUE(out.finished);
+  EXPECT_EQ(out.status(), "finished");
+  ASSERT_TRUE(out.finished());
   expect_no_nan(r, "L2-B1-fixed-h8");
   // It ran to the scene's end time (one impact time scale of this landslide, 7.36 s). What still
   // moves then is mostly the overtopped flow, sliding away on the smooth base (no base friction,
   // the paper's F1 = 0) after its 4 m fall: measured 11.5 % of the initial kinetic energy; 20 %
   // fails on a flow that has not been stopped by the barrier.
-  EXPECT_NEAR(r.time.back(), r.extra.at("end_time"), 1e-9 * r.time.back());
+  EXPECT_NEAR(r.time.back(), r.run->end_time, 1e-9 * r.time.back());
   EXPECT_GT(r.time.back(), 7.0);
   EXPECT_LT(r.landslide_kinetic_energy.back(), 0.20 * r.landslide_kinetic_energy.front());
   // No energy created: +5 % is the stability bound of the matrix (test_mpm_stability_matrix.cpp:
@@ -89,7 +89,7 @@ TEST(OvertoppedFixedBarrier, RunsToItsEndCleanly) {
   EXPECT_NEAR(overtopped + retained, 50.0, 1e-9 * 50.0);
   EXPECT_GT(overtopped, 0.5);
   EXPECT_GT(retained, 40.0);
-  // The grid contact leaks: points creep into the barrier (docs/mpm.md, "Known limitations").
+  // The grid contact leaks: points creep into the barrier (docs/theory/mpm.md, "Known limitations").
   // Measured at most 1.42 m^2 inside at once (58 points, 2.8 % of the flow); 2 m^2 (4 %) catches
   // a contact that leaks more, and the volume must be positive: the diagnostic sees the leak.
   const auto& interior = r.series.at("barrier_interior_volume").values;
@@ -108,7 +108,7 @@ TEST(OvertoppedFixedBarrier, RunsToItsEndCleanly) {
     EXPECT_LE(leaked[i], over[i]);
   }
   EXPECT_GT(*std::max_element(leaked.begin(), leaked.end()), 0.0);   // points do leak past it
-  EXPECT_EQ(r.extra.at("overtopped_inside_barrier_m2"), leaked.back());
+  EXPECT_EQ(r.scalars.overtopped_inside_barrier_m2.value(), leaked.back());
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // The fastest reference flow, saturated, against the earth barrier: scenes/former-reference/L3-B3.json
 // (3 m at 12.5 m/s, 60 deg face, free barrier) with the two-phase landslide at h / 4. With a
 // smooth downstream wall and no top wall this scene stopped with "a material point left the
-// grid" at t = 4.5 s (docs/two_phase.md, "Impacts"): a splash along the face fell behind the
+// grid" at t = 4.5 s (docs/notes/two_phase.md, "Impacts"): a splash along the face fell behind the
 // barrier and was thrown off the grid. The impact domain's no-slip catch walls (downstream and
 // on top) catch it; this test keeps the scene running to its end, with the balances that must
 // hold whatever the splash does.
@@ -31,15 +31,15 @@ TEST(SaturatedReferenceImpact, FastFlowAgainstTheEarthBarrierRunsToItsEnd) {
   const double res_min = *std::min_element(residual.begin(), residual.end());
   const double overtopped = r.series.at("overtopped_volume").values.back();
   const double retained = r.series.at("retained_volume").values.back();
-  const double p_face = r.extra.at("face_pore_pressure_max_pa");
-  std::cout << "[ saturated L3-B3 h/4 ] " << out.status << " at t = " << r.time.back() << " s, "
-            << out.steps << " steps; energy residual " << res_min << " .. " << res_max
+  const double p_face = r.scalars.face_pore_pressure_max_pa.value();
+  std::cout << "[ saturated L3-B3 h/4 ] " << out.status() << " at t = " << r.time.back() << " s, "
+            << out.run().steps << " steps; energy residual " << res_min << " .. " << res_max
             << "; peak " << r.peak_force / 1e3 << " kN/m; displacement " << r.final_displacement
             << " m; overtopped " << overtopped << " m^2, retained " << retained
             << " m^2; face pore pressure max " << p_face / 1e6 << " MPa\n";
 
-  EXPECT_EQ(out.status, "finished");
-  ASSERT_TRUE(out.finished);
+  EXPECT_EQ(out.status(), "finished");
+  ASSERT_TRUE(out.finished());
   expect_no_nan(r, "L3-B3-saturated-h4");
   // To the scene's end time (one impact time scale of this landslide, 5.86 s), not stopped early
   // (it stopped at 4.5 s).
@@ -48,7 +48,7 @@ TEST(SaturatedReferenceImpact, FastFlowAgainstTheEarthBarrierRunsToItsEnd) {
   // times tighter than the solver's stop); measured 0.0. Numerical dissipation is not
   // instability, but more than the matrix's -30 % would no longer represent the impact: measured
   // -16.8 % (the saturated runs lose more than the dry ones, about -3 %, in the grid transfers:
-  // test_transfer_dissipation_impact.cpp, docs/mpm.md "Energy lost in the transfers").
+  // test_transfer_dissipation_impact.cpp, docs/theory/mpm.md "Energy lost in the transfers").
   EXPECT_LT(res_max, 0.05);
   EXPECT_GT(res_min, -0.30);
   // The free barrier is pushed and stops: base friction 0.5 under a 40 t/m barrier (measured

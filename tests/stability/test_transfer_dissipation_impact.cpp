@@ -26,7 +26,7 @@ class TransferDissipationImpact : public ::testing::TestWithParam<const char*> {
 
 TEST_P(TransferDissipationImpact, ExplainsTheEnergyResidual) {
   const lsi::MpmOutcome out = lsi::run_mpm_case(lsi::impact_case(scene_of(scene(GetParam()))));
-  ASSERT_TRUE(out.finished) << out.status;
+  ASSERT_TRUE(out.finished()) << out.status();
   const auto& r = out.result;
   const auto& residual = r.series.at("energy_residual").values;
   const auto& unexplained = r.series.at("energy_residual_unexplained").values;
@@ -47,7 +47,7 @@ TEST_P(TransferDissipationImpact, ExplainsTheEnergyResidual) {
   // while the residual itself reaches 4 and 17 %.
   EXPECT_GT(un_min, -0.01);
   EXPECT_LT(un_max, 0.01);
-  EXPECT_DOUBLE_EQ(r.extra.at("transfer_dissipation_j_per_m"), lost);
+  EXPECT_DOUBLE_EQ(r.scalars.transfer_dissipation_j_per_m.value(), lost);
 }
 
 INSTANTIATE_TEST_SUITE_P(Phases, TransferDissipationImpact, ::testing::Values("dry", "saturated"));

@@ -1,6 +1,6 @@
 // The granular column collapse of tests/mpm/test_mpm_column_collapse.cpp (its header describes
 // the model, the measurements and the laws), shared with the study program
-// tools/studies/column_collapse_study.cpp that reruns the variants of docs/verification.md.
+// tools/studies/column_collapse_study.cpp that reruns the variants of docs/vv/verification.md.
 #pragma once
 #include <algorithm>
 #include <chrono>
@@ -24,7 +24,7 @@ inline double lube_runout(double a) { return 1.0 + (a < 2.3 ? 1.2 * a : 1.9 * st
 inline double lajeunesse_runout(double a) { return 1.0 + (a < 2.3 ? 1.8 * a : 2.3 * std::cbrt(a * a)); }
 
 // Thickness that bounds the resolved deposit body: L0/16, one cell (two points) of the a = 3 grid,
-// fixed in units of L0 so that every resolution measures the same thing (docs/verification.md).
+// fixed in units of L0 so that every resolution measures the same thing (docs/vv/verification.md).
 inline constexpr double kBodyThickness = 1.0 / 16;
 
 struct Collapse {

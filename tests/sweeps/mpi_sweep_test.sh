@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `lsi-mpi` end to end (docs/sweeps_mpi.md): a 20000-sample study on 2 MPI ranks gives the file an
+# `lsi-mpi` end to end (docs/guide/mpi.md): a 20000-sample study on 2 MPI ranks gives the file an
 # unsharded `lsi sweep` writes (wall times aside); `--resume` reaches every rank; a bad study exits
 # 2 with one line; a failure on one rank stops the job with exit 2 on every rank.
 # Usage: mpi_sweep_test.sh MPIEXEC LSI LSI_MPI SOURCE_DIR WORK_DIR

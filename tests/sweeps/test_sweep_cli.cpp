@@ -407,7 +407,7 @@ TEST(SweepCli, MpmSamplesRunBesideTheClosedForms) {
     const double x = f.table.inputs[0][i];
     const lsi::MpmOutcome o =
         lsi::run_mpm_case(lsi::impact_case(lsi::parse_scene(lsi::sample_scene_document(st, &x))));
-    ASSERT_TRUE(o.finished) << o.status;
+    ASSERT_TRUE(o.finished()) << o.status();
     EXPECT_NEAR(f.table.outputs[2][i], o.result.peak_force, 1e-9 * o.result.peak_force);
     EXPECT_NEAR(f.table.outputs[3][i], o.result.impact_duration, 1e-9 * o.result.impact_duration);
     // The closed form beside it is the scalar model's.
