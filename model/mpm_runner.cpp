@@ -435,6 +435,23 @@ void ensure_kokkos() {
 }
 
 
+namespace {
+// The settings both solvers read (kernels/mpm/solver_settings.hpp), from the case's.
+template <class SettingsT>
+SettingsT solver_settings(const MpmCase& c) {
+  SettingsT s;
+  s.courant = c.settings.courant;
+  s.max_time_step = c.settings.max_time_step_s;
+  s.gravity[0] = c.gravity[0];
+  s.gravity[1] = c.gravity[1];
+  s.transfer = c.settings.apic ? mpm::Transfer::Apic : mpm::Transfer::FlipPic;
+  s.flip_ratio = c.settings.flip_ratio;
+  s.atomic_scatter = c.settings.atomic_scatter;
+  s.track_transfer_dissipation = c.settings.transfer_dissipation;
+  return s;
+}
+}  // namespace
+
 MpmOutcome run_mpm_case(const MpmCase& c) {
   check_mpm_fits(c);
   ensure_kokkos();
@@ -444,16 +461,8 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
   if (!c.two_phase) {   // dry: the single-phase path, no liquid field allocated
     mpm::Grid<Mem> grid(lo, hi, dx);
     auto particles = mpm::build_particles<Mem>(c.bodies, c.materials, lo, dx);
-    mpm::Settings s;
-    s.courant = c.settings.courant;
-    s.max_time_step = c.settings.max_time_step_s;
-    s.gravity[0] = c.gravity[0];
-    s.gravity[1] = c.gravity[1];
-    s.transfer = c.settings.apic ? mpm::Transfer::Apic : mpm::Transfer::FlipPic;
-    s.flip_ratio = c.settings.flip_ratio;
-    s.atomic_scatter = c.settings.atomic_scatter;
+    auto s = solver_settings<mpm::Settings>(c);
     s.small_mass_fraction = c.settings.small_mass_fraction;
-    s.track_transfer_dissipation = c.settings.transfer_dissipation;
     DrySolver solver(grid, particles, c.materials, c.walls, s);
     if (c.barrier) solver.attach_barrier(*c.barrier);
     drive(c, solver, particles.count, out);
@@ -464,29 +473,14 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
   std::vector<tp::TwoPhaseBodySpec> bodies;
   for (const auto& b : c.bodies) {
     tp::TwoPhaseBodySpec t;
-    t.polygon = b.polygon;
-    t.material = b.material;
-    t.velocity = b.velocity;
-    t.points_per_cell_direction = b.points_per_cell_direction;
+    static_cast<mpm::BodySpec&>(t) = b;
     t.porosity = c.two_phase->porosity;
     t.hydraulic_conductivity = c.two_phase->conductivity;
-    t.geostatic_k0 = b.geostatic_k0;
-    t.surface_y = b.surface_y;
-    t.surface_from_polygon = b.surface_from_polygon;
-    t.gravity = b.gravity;
     bodies.push_back(t);
   }
   auto particles = tp::build_two_phase_particles<Mem>(bodies, c.materials, c.two_phase->liquid, lo, dx);
-  tp::TwoPhaseSettings s;
-  s.courant = c.settings.courant;
-  s.max_time_step = c.settings.max_time_step_s;
-  s.gravity[0] = c.gravity[0];
-  s.gravity[1] = c.gravity[1];
+  auto s = solver_settings<tp::TwoPhaseSettings>(c);
   s.drag = c.two_phase->drag;
-  s.transfer = c.settings.apic ? mpm::Transfer::Apic : mpm::Transfer::FlipPic;
-  s.flip_ratio = c.settings.flip_ratio;
-  s.atomic_scatter = c.settings.atomic_scatter;
-  s.track_transfer_dissipation = c.settings.transfer_dissipation;
   s.cell_pore_pressure = c.settings.cell_pore_pressure;
   // The pore liquid does not penetrate the walls (impermeable) and slides along them freely.
   mpm::Boundaries liquid_walls = c.walls;

@@ -24,18 +24,12 @@
 
 namespace lsi::mpm::two_phase {
 
-struct TwoPhaseBodySpec {
-  std::vector<std::array<double, 2>> polygon;   // vertices, either orientation
-  int material = 0;                               // skeleton material (density = grain density)
-  std::array<double, 2> velocity = {0.0, 0.0};    // initial velocity of both phases, m/s
-  int points_per_cell_direction = 2;
+// A saturated body: the dry body's shape, material (the skeleton's; its density is the grain
+// density), velocity (of both phases), points and geostatic state (the surface is also the water
+// table), and the pore liquid's.
+struct TwoPhaseBodySpec : BodySpec {
   double porosity = 0.4;                          // n0
   double hydraulic_conductivity = 1e-4;           // k, m/s
-  // Initial state at rest (see above); both off when geostatic_k0 < 0.
-  double geostatic_k0 = -1.0;
-  double surface_y = 0.0;                         // m, top surface (and water table)
-  bool surface_from_polygon = false;              // true: the polygon's top above each point
-  double gravity = lsi::gravity;                          // m/s^2, magnitude
   double excess_pore_pressure = 0.0;              // Pa, uniform, added to p
   double surface_load = 0.0;                      // Pa, on the top row of points (surface_y)
 };
