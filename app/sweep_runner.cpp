@@ -19,6 +19,7 @@
 #include "model/mpm_impact.hpp"
 #include "io/text_file.hpp"
 #include "model/mpm_runner.hpp"
+#include "model/progress.hpp"
 #include "model/resource_estimate.hpp"
 #include "app/sweep_quantile_mpm.hpp"
 #include "model/sweep_statistics.hpp"
@@ -173,33 +174,6 @@ class ChunkEvaluator {
 };
 
 // Progress on a terminal: samples done, rate, ETA; silent otherwise.
-class SweepProgress {
- public:
-  SweepProgress(std::string label, std::uint64_t total, bool wanted)
-      : label_(std::move(label)), total_(total), enabled_(wanted && isatty(STDERR_FILENO) == 1),
-        start_(Clock::now()) {}
-  void update(std::uint64_t done, std::uint64_t done_here) {
-    if (!enabled_) return;
-    const double s = seconds_since(start_);
-    const double rate = s > 0 ? double(done_here) / s : 0.0;
-    const double left = rate > 0 ? double(total_ - std::min(done, total_)) / rate : 0.0;
-    std::fprintf(stderr, "\r%s: %llu of %llu samples (%.0f %%), %.3g samples/s, ETA %.0f s\033[K",
-                 label_.c_str(), static_cast<unsigned long long>(done),
-                 static_cast<unsigned long long>(total_), 100.0 * double(done) / double(total_),
-                 rate, left);
-    std::fflush(stderr);
-    printed_ = true;
-  }
-  ~SweepProgress() {
-    if (printed_) std::fprintf(stderr, "\r\033[K");
-  }
-
- private:
-  std::string label_;
-  std::uint64_t total_;
-  bool enabled_, printed_ = false;
-  Clock::time_point start_;
-};
 
 // The column of the interval rule among the table's outputs (or -1).
 int rule_column(const Study& s, const SweepTable& t) {
@@ -404,7 +378,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
 
   ensure_kokkos();
   ChunkEvaluator evaluator(study);
-  SweepProgress progress("sweep " + study.name, my_samples, opt.progress);
+  SampleProgress progress("sweep " + study.name, my_samples, opt.progress);
   std::string stopped_by;
   bool rule_met = false;
   std::uint64_t run_here = 0;

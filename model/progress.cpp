@@ -6,13 +6,46 @@
 #include <cstdio>
 
 namespace lsi {
+namespace {
+double seconds_between(std::chrono::steady_clock::time_point a,
+                       std::chrono::steady_clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+}  // namespace
+
+StatusLine::StatusLine(bool enabled)
+    : enabled_(enabled), last_(std::chrono::steady_clock::now()) {}
+
+bool StatusLine::due() {
+  const auto now = std::chrono::steady_clock::now();
+  if (seconds_between(last_, now) < 0.5) return false;
+  last_ = now;
+  return true;
+}
+
+void StatusLine::show(const std::string& text) {
+  if (!enabled_) return;
+  std::fprintf(stderr, "\r%s\033[K", text.c_str());
+  std::fflush(stderr);
+  shown_ = true;
+}
+
+void StatusLine::print_above(const std::string& text) {
+  std::fprintf(stderr, "%s%s\n", shown_ ? "\r\033[K" : "", text.c_str());
+  shown_ = false;
+}
+
+void StatusLine::clear() {
+  if (shown_) std::fprintf(stderr, "\r\033[K");
+  shown_ = false;
+}
 
 Progress::Progress(std::string label, double end_time)
     : Progress(std::move(label), end_time, isatty(STDERR_FILENO) == 1) {}
 
 Progress::Progress(std::string label, double end_time, bool enabled)
-    : label_(std::move(label)), end_time_(end_time), enabled_(enabled),
-      start_(std::chrono::steady_clock::now()), last_(start_) {}
+    : label_(std::move(label)), end_time_(end_time), status_(enabled),
+      start_(std::chrono::steady_clock::now()) {}
 
 std::string Progress::line(const std::string& label, double time, double end_time, long steps,
                            double seconds) {
@@ -47,28 +80,39 @@ std::string Progress::estimate(const std::string& label, double time, double end
 }
 
 void Progress::update(double time, long steps) {
-  if (!enabled_ && estimated_) return;
-  const auto now = std::chrono::steady_clock::now();
-  if (std::chrono::duration<double>(now - last_).count() < 0.5) return;
-  last_ = now;
-  const double seconds = std::chrono::duration<double>(now - start_).count();
+  if (!status_.enabled() && estimated_) return;
+  if (!status_.due()) return;
+  const double seconds = seconds_between(start_, std::chrono::steady_clock::now());
   if (!estimated_ && seconds >= kEstimateAfterSeconds) {
     estimated_ = true;
     const std::string e = estimate(label_, time, end_time_, seconds);
-    if (!e.empty()) {
-      std::fprintf(stderr, "%s%s\n", printed_ ? "\r\033[K" : "", e.c_str());
-      printed_ = false;
-    }
+    if (!e.empty()) status_.print_above(e);
   }
-  if (!enabled_) return;
-  std::fprintf(stderr, "\r%s\033[K", line(label_, time, end_time_, steps, seconds).c_str());
-  std::fflush(stderr);
-  printed_ = true;
+  status_.show(line(label_, time, end_time_, steps, seconds));
 }
 
-void Progress::finish() {
-  if (printed_) std::fprintf(stderr, "\r\033[K");
-  printed_ = false;
+void Progress::finish() { status_.clear(); }
+
+SampleProgress::SampleProgress(std::string label, std::uint64_t total, bool enabled)
+    : label_(std::move(label)), total_(total), status_(enabled && isatty(STDERR_FILENO) == 1),
+      start_(std::chrono::steady_clock::now()) {}
+
+std::string SampleProgress::line(const std::string& label, std::uint64_t done, std::uint64_t total,
+                                 std::uint64_t done_here, double seconds) {
+  const double rate = seconds > 0 ? double(done_here) / seconds : 0.0;
+  const double left = rate > 0 ? double(total - std::min(done, total)) / rate : 0.0;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%s: %llu of %llu samples (%.0f %%), %.3g samples/s, ETA %.0f s",
+                label.c_str(), static_cast<unsigned long long>(done),
+                static_cast<unsigned long long>(total),
+                total > 0 ? 100.0 * double(done) / double(total) : 100.0, rate, left);
+  return buf;
+}
+
+void SampleProgress::update(std::uint64_t done, std::uint64_t done_here) {
+  if (!status_.enabled()) return;
+  status_.show(
+      line(label_, done, total_, done_here, seconds_between(start_, std::chrono::steady_clock::now())));
 }
 
 }  // namespace lsi

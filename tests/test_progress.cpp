@@ -29,3 +29,12 @@ TEST(Progress, EstimateOnlyForLongRuns) {
 }
 
 }  // namespace
+
+TEST(SampleProgress, LineShowsTheSamplesRateAndTimeLeft) {
+  // 300 of 1000 done, 200 of them by this run in 4 s: 50 samples/s, 700 left: 14 s.
+  EXPECT_EQ(lsi::SampleProgress::line("sweep s", 300, 1000, 200, 4.0),
+            "sweep s: 300 of 1000 samples (30 %), 50 samples/s, ETA 14 s");
+  // Nothing run yet: no rate, no estimate; an empty study is complete.
+  EXPECT_EQ(lsi::SampleProgress::line("s", 0, 10, 0, 0.0), "s: 0 of 10 samples (0 %), 0 samples/s, ETA 0 s");
+  EXPECT_EQ(lsi::SampleProgress::line("s", 0, 0, 0, 1.0), "s: 0 of 0 samples (100 %), 0 samples/s, ETA 0 s");
+}
