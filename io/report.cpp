@@ -23,6 +23,9 @@ std::string fmt(double v, const char* format = "%.3g") {
   return buf;
 }
 
+// A safety factor: "inf" where no load of the history can make the barrier slide or tip.
+std::string fmt_safety(double v) { return std::isinf(v) ? "inf" : fmt(v, "%.2f"); }
+
 std::string pad(const std::string& s, size_t width) {
   return s.size() >= width ? s + " " : s + std::string(width - s.size(), ' ');
 }
@@ -181,7 +184,7 @@ std::string design_table(const Scene& scene, const std::vector<MassDesign>& desi
       for (const auto& g : d.geometries)
         o << "      H = " << fmt(g.height_m, "%.2f") << " m, B = " << fmt(g.base_width_m, "%.2f")
           << " m, b = " << fmt(g.top_width_m, "%.2f")
-          << " m; overturning safety factor " << fmt(g.min_overturning_safety, "%.2f") << "\n";
+          << " m; overturning safety factor " << fmt_safety(g.min_overturning_safety) << "\n";
       if (const DesignCheck* c = check_of(checks, d.method); c && !c->skipped.empty()) {
         o << "      MPM check not run: " << c->skipped << "\n";
       } else if (c) {
@@ -191,8 +194,8 @@ std::string design_table(const Scene& scene, const std::vector<MassDesign>& desi
           << " m): displacement " << displacement_cell(c->mpm) << " m against "
           << fmt(max_displacement_m) << " m: " << (c->within ? "within" : "NOT within")
           << " the tolerance; safety under the MPM's loads: sliding "
-          << fmt(scalar_or_nan(c->mpm.scalars.min_sliding_safety), "%.2f") << ", overturning "
-          << fmt(scalar_or_nan(c->mpm.scalars.min_overturning_safety), "%.2f") << " (resultant at "
+          << fmt_safety(scalar_or_nan(c->mpm.scalars.min_sliding_safety)) << ", overturning "
+          << fmt_safety(scalar_or_nan(c->mpm.scalars.min_overturning_safety)) << " (resultant at "
           << fmt(scalar_or_nan(c->mpm.scalars.overturning_resultant_height), "%.2f") << " m)"
           << (note.empty() ? "" : "; " + note) << "\n";
       }

@@ -27,7 +27,7 @@ SceneBarrier barrier_with_mass(const SceneBarrier& b, double m) {
   }
   throw InputError("barrier: no trapezoid of face angle " + format_number(b.face_angle_deg) +
                    " deg and top width " + format_number(b.top_width_m) +
-                   " m holds the designed mass " + format_number(m) +
+                   " m holds the designed mass " + std::to_string(std::llround(m)) +
                    " kg/m at a height of 0.5 to 2 times " + format_number(b.height_m) +
                    " m");
 }

@@ -168,6 +168,16 @@ TEST(Cli, BadInputExitsWithCode2AndOneClearLine) {
   EXPECT_EQ(run("frobnicate").code, 2);
 }
 
+// A safety factor is infinite where no load of the history tips the barrier (its resultant acts
+// below the height at which it could): the table says "inf", not the displacement's "never stops".
+TEST(Cli, DesignTableWritesAnInfiniteSafetyFactorAsInf) {
+  const Outcome r = run("design " + (source_dir / "scenes/tutorial/my-scene.json").string() +
+                        " --max-displacement 0.1 --methods empirical");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("overturning safety factor inf"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("never stops"), std::string::npos) << r.out;
+}
+
 TEST(Cli, LiteratureFamilyGivesOnlyAPeakForce) {
   const std::string scene = (source_dir / "scenes/examples/literature-mixed.json").string();
   const Outcome r = run("run " + scene + " --format json");
