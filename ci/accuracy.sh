@@ -5,8 +5,8 @@
 # the work-precision and convergence diagrams. Writes results/accuracy/: accuracy.md (tables),
 # accuracy.json, *.png, runs/ (each run's histories and record). About 3-4 minutes on 2 cores.
 # Finished runs are kept: a killed study continues where it stopped; delete results/accuracy to
-# start afresh (docs/accuracy.md). Another study writes to results/<its file name without .json>,
-# e.g. scenes/studies/accuracy-overtopping.json (the overtopped volume, docs/accuracy.md).
+# start afresh (docs/vv/accuracy.md). Another study writes to results/<its file name without .json>,
+# e.g. scenes/studies/accuracy-overtopping.json (the overtopped volume, docs/vv/accuracy.md).
 # usage: ci/accuracy.sh [STUDY.json]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # The calibration of the closed forms against the reference study's saturated MPM
-# (docs/calibration.md): lambda, tau and a1, a2, tau per case and per group (fixed, free) beside
+# (docs/theory/calibration.md): lambda, tau and a1, a2, tau per case and per group (fixed, free) beside
 # the paper's, the closed forms' errors against the MPM with each method's run time, and the
 # misfit maps, for both objectives.
 #
 #   bash ci/calibrate.sh    -> results/calibration/<model>-<objective>.{h5,txt}, *_maps.png for
 #                              both barrier models (paper, momentum) and both objectives (nrms,
-#                              peak-duration), and the tables of docs/calibration_results.md
+#                              peak-duration), and the tables of docs/vv/calibration_results.md
 #
 # The MPM histories are those of results/reference/ (bash ci/main.sh, run first if they are
 # missing); `lsi calibrate` runs the MPM itself for any case whose stored run is of other settings.
@@ -40,6 +40,6 @@ for model in paper momentum; do
   done
 done
 rm -rf "$out/.mplconfig"
-/usr/bin/python3 "$root/ci/calibration_report.py" --out "$root/docs/calibration_results.md" \
+/usr/bin/python3 "$root/ci/calibration_report.py" --out "$root/docs/vv/calibration_results.md" \
   "${files[@]}"
-echo "calibration written to ${out#$root/}/ and docs/calibration_results.md"
+echo "calibration written to ${out#$root/}/ and docs/vv/calibration_results.md"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Compiles the whole tree (kernels, driver, tests, benchmarks) for the CUDA backend: the check that
-# the device code still compiles, for a machine with nvcc and no GPU (docs/cuda.md). Builds or
+# the device code still compiles, for a machine with nvcc and no GPU (docs/guide/cuda.md). Builds or
 # reuses the CUDA Kokkos of ci/kokkos_cuda.sh, configures build-cuda/ (or LSI_CUDA_BUILD_DIR)
 # without host-specific vector instructions, and builds every target, going on past a failing one
 # so that one run lists every file nvcc rejects. About 12 minutes on 2 cores from scratch.

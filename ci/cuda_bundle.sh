@@ -3,7 +3,7 @@
 # not the build's libraries or compilers: the test programs, lsi and the benchmarks (stripped),
 # ctest's test lists, the shared libraries they load that are not the C and C++ runtimes (HDF5
 # and its dependencies, Google Benchmark, the CUDA runtime), and CMake's GoogleTestAddTests.cmake,
-# which ctest reads to list the tests when it runs. docs/cuda.md, "Running a CUDA build elsewhere".
+# which ctest reads to list the tests when it runs. docs/guide/cuda.md, "Running a CUDA build elsewhere".
 # usage: ci/cuda_bundle.sh OUT.tar.xz   (environment: LSI_CUDA_BUILD_DIR, default build-cuda/)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

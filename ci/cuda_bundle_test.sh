@@ -3,7 +3,7 @@
 # same revision (the tests read scenes from the source folder): unpacks it, puts the build and the
 # source at the paths they were built with (symbolic links, where those paths are free), and runs
 # ctest with the given arguments (default: the MPM, kernel and stability tests). Needs the NVIDIA
-# driver and CMake's ctest. docs/cuda.md, "Running a CUDA build elsewhere".
+# driver and CMake's ctest. docs/guide/cuda.md, "Running a CUDA build elsewhere".
 # usage: ci/cuda_bundle_test.sh BUNDLE.tar.xz [ctest arguments...]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

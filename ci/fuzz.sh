@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The long fuzz campaign of the scene and study parsers (docs/robustness.md, "Fuzzing"):
+# The long fuzz campaign of the scene and study parsers (docs/vv/robustness.md, "Fuzzing"):
 # libFuzzer with AddressSanitizer and UndefinedBehaviorSanitizer, Debian's clang.
 #
 #   bash ci/fuzz.sh [SECONDS] [TARGET...]    SECONDS per target (default 300); TARGET: scene, study
@@ -15,7 +15,7 @@
 #      mutator. The corpus grown by libFuzzer is kept in the build directory for the next run.
 # Any crash, leak, timeout or out-of-memory input is copied to tests/fuzz/regressions/TARGET/ and
 # the script exits 1: fix the parser, keep the input (the `fuzz` ctest tests replay it in every
-# build) and note it in docs/robustness.md.
+# build) and note it in docs/vv/robustness.md.
 #
 # Environment: LSI_FUZZ_BUILD_DIR (default build-fuzz), LSI_FUZZ_JOBS (build jobs, default 2),
 #              Kokkos_ROOT (as for ci/setup.sh; default: the cached build of ci/kokkos.sh).

@@ -14,7 +14,7 @@ theta (GDR MiDi 2004; Jop, Forterre & Pouliquen 2006):
     u(z) = (2/3) I_theta sqrt(phi g cos(theta)) (h^1.5 - (h - z)^1.5) / d
 
 with phi = rho / rho_s the solid fraction, mu = sin of the scene's Mohr-Coulomb angles
-(docs/mpm.md, "Rate-dependent friction"). Prints the profile, the surface velocity's error and
+(docs/theory/mpm.md, "Rate-dependent friction"). Prints the profile, the surface velocity's error and
 the stress ratio tau / sigma_yy per bin (tan(theta) in a steady uniform layer).
 """
 import json

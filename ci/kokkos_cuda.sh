@@ -4,14 +4,14 @@
 # prefix on stdout. Reuses an existing install. No GPU is needed to build, only nvcc:
 #
 #   prefix=$(LSI_CUDA_ARCH=HOPPER90 bash ci/kokkos_cuda.sh)
-#   cmake -S . -B build-cuda -DKokkos_ROOT=$prefix -DLSI_NATIVE_ARCH=OFF     # docs/cuda.md
+#   cmake -S . -B build-cuda -DKokkos_ROOT=$prefix -DLSI_NATIVE_ARCH=OFF     # docs/guide/cuda.md
 #
 # Environment: LSI_CUDA_ARCH (a Kokkos architecture: VOLTA70, TURING75, AMPERE80, AMPERE86 or
 # HOPPER90; default HOPPER90), CUDA_HOME (default /usr/local/cuda), LSI_CACHE (as ci/kokkos.sh).
 #
 # Debian's Kokkos is 3.4.1, older than CUDA 12 and the Hopper GPUs. Five small changes to the
 # extracted copy (never to anything installed) make it build with CUDA 12/13 and run on an H100;
-# each is checked to apply, and docs/cuda.md says why each is needed.
+# each is checked to apply, and docs/guide/cuda.md says why each is needed.
 set -euo pipefail
 cache="${LSI_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/lsi}"
 arch="${LSI_CUDA_ARCH:-HOPPER90}"

@@ -2,10 +2,10 @@
 """Resolution study of the MPM impact (issue 4): runs reference scenes at several cell sizes
 (cells through the landslide's thickness) and tabulates peak force, impact duration, final
 displacement, overtopped volume, steps and solver time, so that the default resolution of
-scenes/reference/ can be chosen and justified (docs/mpm.md, "Reference study resolution"); also
+scenes/reference/ can be chosen and justified (docs/notes/mpm.md, "Reference study resolution"); also
 the lowest energy residual of each run and the largest volume of points inside the barrier (the
 contact's leak), and, with --set transfer_dissipation=true, the energy lost in the grid
-transfers and the residual it leaves unexplained (docs/mpm.md, "Energy lost in the transfers").
+transfers and the residual it leaves unexplained (docs/theory/mpm.md, "Energy lost in the transfers").
 
 usage: ci/mpm_resolution.py [--cells 4 8 16] [--phases saturated] [--drag semi-implicit]
                             [--out results/mpm_resolution] SCENE.json ...

@@ -5,7 +5,7 @@ resolution, a smaller Courant number. For every case and output it records the v
 resolution, the changes to the finer runs and their spread (the larger change), and whether the
 output converged; writes them to ci/reference_convergence.json, which `lsi compare
 --convergence` reads to print and store the error bars (ci/main.sh does), and the tables of
-docs/reference_convergence.md.
+docs/vv/reference_convergence.md.
 
   ci/reference_convergence.py                       the study as documented (about 20 min on 2 cores)
   ci/reference_convergence.py --tables-only         rewrite the outputs from the runs already made
@@ -178,7 +178,7 @@ def main():
     ap.add_argument("--lsi", default=os.path.join(root, "build", "app", "lsi"))
     ap.add_argument("--work", default=os.path.join(root, "results", "convergence"))
     ap.add_argument("--out", default=os.path.join(root, "ci", "reference_convergence.json"))
-    ap.add_argument("--tables", default=os.path.join(root, "docs", "reference_convergence.md"))
+    ap.add_argument("--tables", default=os.path.join(root, "docs", "vv", "reference_convergence.md"))
     ap.add_argument("--jobs", type=int, default=2, help="runs at a time (one thread each)")
     ap.add_argument("--tables-only", action="store_true")
     a = ap.parse_args()

@@ -3,7 +3,7 @@
 # the `sanitize` preset of CMakePresets.json into build-sanitize/ (-O1 -g, every lsi target built
 # with -fsanitize=address,undefined, any finding fatal), builds it, and runs every test with the
 # environment of the `sanitize` test preset (leak checking on, suppressions in ci/sanitize/lsan.supp).
-# Run before each release; takes about 4 times the normal suite (docs/robustness.md).
+# Run before each release; takes about 4 times the normal suite (docs/vv/robustness.md).
 # usage: ci/sanitize.sh [ctest arguments, e.g. -L mpm or -R Sweep]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

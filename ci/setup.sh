@@ -7,7 +7,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${LSI_BUILD_DIR:-$root/build}"
-# libopenmpi-dev openmpi-bin: OpenMPI from Debian, as the issue asks, for lsi-mpi (docs/sweeps_mpi.md).
+# libopenmpi-dev openmpi-bin: OpenMPI from Debian, as the issue asks, for lsi-mpi (docs/guide/mpi.md).
 packages=(g++ cmake make libeigen3-dev libbenchmark-dev libgtest-dev libhdf5-dev libcli11-dev
           nlohmann-json3-dev python3-matplotlib python3-h5py libopenmpi-dev openmpi-bin)
 missing=()

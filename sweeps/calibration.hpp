@@ -77,7 +77,7 @@ struct CalibrationOptions {
   Objective objective = Objective::NormalisedRms;
   // The analytical model fitted: the paper's two-body pulse (false) or the momentum-consistent
   // barrier under the fixed-barrier two-body pulse (true), whose force on a free barrier is not
-  // a triangle (docs/models.md).
+  // a triangle (docs/theory/models.md).
   bool momentum = false;
   int lambda_cells = 41;          // N: lambda axis (i+1)/N, i = 0..N-1
   int tau_cells = 41;             // M: tau axis (j+1)/(M+1), j = 0..M-1

@@ -1,7 +1,7 @@
 // Grid convergence of one output over three resolutions: observed order of accuracy, Richardson
 // extrapolation, Roache's grid convergence index (GCI) and the asymptotic-range check, following
 // the procedure of Celik et al. (2008), "Procedure for estimation and reporting of uncertainty due
-// to discretization in CFD applications", J. Fluids Eng. 130(7), 078001 (docs/accuracy.md).
+// to discretization in CFD applications", J. Fluids Eng. 130(7), 078001 (docs/vv/accuracy.md).
 //
 // h is the representative spacing of a run (cell size, point spacing, time-step factor): any
 // quantity proportional to the discretisation's step, so that the error behaves as C h^p. The

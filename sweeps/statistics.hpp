@@ -208,7 +208,7 @@ inline void check_values(const std::vector<double>& values, const char* who) {
 // pass, on the order-preserving bit pattern of the doubles (sign bit set for >= +0, all bits
 // flipped for negatives); a pass whose byte is the same for all values (e.g. the sign and the
 // top exponent bits of outputs of one magnitude) is skipped. ~5x faster than std::sort at 1e7
-// values (docs/performance.md, "Sweeps"); small inputs go to std::sort.
+// values (docs/notes/performance.md, "Sweeps"); small inputs go to std::sort.
 inline void sort_values(std::vector<double>& values) {
   const std::size_t n = values.size();
   if (n < 4096) {

@@ -3,7 +3,7 @@
 // of eq. 17 corrected (m2 and tan(delta_b) where m1 and tan(gamma_b) are printed), the sign of the
 // vertical load of an inclined face corrected, and the terms eq. 20 drops restored: the velocity
 // v2(T1) carried through the decay, the stop of the barrier before T2 when friction wins, and the
-// sliding after T2 until the barrier stops. docs/models.md, "Barrier motion", has the derivation.
+// sliding after T2 until the barrier stops. docs/theory/models.md, "Barrier motion", has the derivation.
 //
 // Phases, with k1 = c F_peak / (m2 T1), g' = g tan(delta_b):
 //   stick      0 <= t <= t*,   t* = g' / k1 = m2 g tan(delta_b) T1 / (c F_peak)   (eq. 17, t*)

@@ -42,7 +42,7 @@ struct ClosedFormOutputs {
 // are written without branches or library calls for that: barrier_sliding.hpp, sliding_block.hpp,
 // sincos_first_quadrant.hpp; and the build passes -fno-math-errno). The last, partial block runs
 // one sample at a time. 64: with 8 (one AVX-512 register) GCC 12 unrolled the loop of the OpenMP
-// instantiation and left it scalar, 7x slower (docs/performance.md, "Closed-form models").
+// instantiation and left it scalar, 7x slower (docs/notes/performance.md, "Closed-form models").
 // `#pragma omp simd` is not used: GCC turns the models' local structs into per-lane arrays before
 // inlining, and then does not vectorise.
 constexpr int kSamplesPerBlock = 64;

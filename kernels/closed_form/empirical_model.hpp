@@ -16,7 +16,7 @@
 //   eq. 10 kinetic energy      E_k,1(t) = m1 (v_n(t)^2 + v_t^2) / 2
 // The pulse rises linearly to F_peak at T1 and decays linearly to F_peak,stat at T2 (this is the
 // pulse whose impulse eq. 6 equates to m1 v_n); the printed eq. 8 is not its integral and is
-// discontinuous at T1. Derivations and deviations: docs/models.md, "Empirical model".
+// discontinuous at T1. Derivations and deviations: docs/theory/models.md, "Empirical model".
 #pragma once
 #include "kernels/closed_form/force_pulse.hpp"
 #include "kernels/common/constants.hpp"

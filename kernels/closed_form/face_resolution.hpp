@@ -5,7 +5,7 @@
 // (per metre, pushing on the barrier) acts along -n: horizontal N sin beta (downstream) and
 // vertical N cos beta (DOWNWARDS: the flow presses the leaning face into the ground). Flow sliding
 // up the face with a mobilised shear ratio mu_f = S/N adds S along the face, upwards:
-// horizontal S cos beta, vertical -S sin beta. See docs/models.md, "Force on an inclined face".
+// horizontal S cos beta, vertical -S sin beta. See docs/theory/models.md, "Force on an inclined face".
 #pragma once
 #include "kernels/common/sincos_first_quadrant.hpp"
 

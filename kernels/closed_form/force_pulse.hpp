@@ -22,7 +22,7 @@ struct ForcePulse {
   }
 
   // Impulse I(t) = integral of F from 0 to t, N s/m. Integrated exactly (the printed eq. 8 of the
-  // paper is not the integral of its own pulse; see docs/models.md, "Empirical model").
+  // paper is not the integral of its own pulse; see docs/theory/models.md, "Empirical model").
   KOKKOS_INLINE_FUNCTION double impulse(double t) const {
     if (t <= 0.0) return 0.0;
     if (t <= rise_time) return 0.5 * peak * t * t / rise_time;

@@ -1,5 +1,5 @@
 // A free barrier pushed by the flow at their relative velocity: the momentum-consistent response
-// of a sliding barrier to a fixed-barrier force pulse (beyond the paper; docs/models.md,
+// of a sliding barrier to a fixed-barrier force pulse (beyond the paper; docs/theory/models.md,
 // "Momentum-consistent barrier").
 //
 // The flow (mass m1, horizontal velocity v1 from v0) and the barrier (m2, v2 from rest) interact

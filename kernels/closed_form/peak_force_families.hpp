@@ -3,7 +3,7 @@
 //   hydrostatic   F = k rho g h^2 / 2          (peak pressure k rho g h at the base, triangular)
 //   hydrodynamic  F = alpha rho v_n^2 h        (pressure alpha rho v_n^2, uniform over h)
 //   mixed         F = alpha rho v_n^2 h + k rho g h^2 / 2
-// No named coefficient set is shipped: see docs/models.md, "Literature peak-force families".
+// No named coefficient set is shipped: see docs/theory/models.md, "Literature peak-force families".
 #pragma once
 #include <Kokkos_Macros.hpp>
 

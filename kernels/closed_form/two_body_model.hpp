@@ -14,7 +14,7 @@
 //   momentum that body 1 loses in a perfectly inelastic collision (common velocity v_CM).
 //   eq. 15  v1(t) = v10 - I(t) / m1,      eq. 16  E_k,1 = m1 v1^2 / 2
 // F(t) is the contact force normal to the impacted face (the paper resolves it with sin(beta) and
-// cos(beta) on the barrier, eq. 17). See docs/models.md, "Analytical model".
+// cos(beta) on the barrier, eq. 17). See docs/theory/models.md, "Analytical model".
 #pragma once
 #include "kernels/closed_form/force_pulse.hpp"
 #include "kernels/common/math.hpp"

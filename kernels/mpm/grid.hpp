@@ -20,7 +20,7 @@ struct NodeBox {
 // How a pass over the nodes of a NodeBox is cut into parallel work items. Host threads take whole
 // rows: contiguous nodes, few threads. A device takes one node per work item: one thread per
 // row would leave a GPU nearly idle (a few thousand threads) and uncoalesced; the grid update of
-// 8 M nodes took 3.2 ms that way on an H100 (docs/cuda.md).
+// 8 M nodes took 3.2 ms that way on an H100 (docs/guide/cuda.md).
 template <bool WholeRows>
 struct NodeItemsOf {
   static constexpr bool whole_rows = WholeRows;

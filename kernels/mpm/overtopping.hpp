@@ -4,7 +4,7 @@
 // volume also counts the gaps that open between separating points, +17 % in a test scene).
 // Also the volume of the points whose centre lies inside the barrier: the grid contact stops
 // nodes, and a point straddling a face moves with a mean of stopped and free nodes, so points
-// creep in (docs/mpm.md, "Known limitations"); this measures how much.
+// creep in (docs/theory/mpm.md, "Known limitations"); this measures how much.
 #pragma once
 #include <Kokkos_Core.hpp>
 

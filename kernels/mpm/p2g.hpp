@@ -17,7 +17,7 @@
 //     grid update skips the empty nodes.
 // The two passes are generic in the number of fields per node (detail::scatter_points,
 // detail::gather_nodes): the two-phase P2G (two_phase/two_phase_p2g.hpp) runs them with 11.
-// bench/bench_mpm.cpp and bench/bench_impact.cpp measure the variants (docs/performance.md).
+// bench/bench_mpm.cpp and bench/bench_impact.cpp measure the variants (docs/notes/performance.md).
 #pragma once
 #include <Kokkos_Core.hpp>
 #include <climits>
@@ -84,7 +84,7 @@ struct P2GScatter {
   // The atomic scatter's tiles (detail::scatter_tiles): points per team (0: no tiles, every
   // point adds into the buffer) and the most nodes a tile holds; a team whose points touch more
   // adds them into the buffer directly. On a device 128 by default (an H100: the dry and the
-  // two-phase P2G 3.5 times faster at 8 M points, racecheck clean; docs/cuda.md, "The tiled
+  // two-phase P2G 3.5 times faster at 8 M points, racecheck clean; docs/guide/cuda.md, "The tiled
   // P2G"); on the host none (the atomic scatter there is a benchmark's and a test's choice).
   int tile_points = device_memory ? 128 : 0;
   int tile_nodes = detail::kTileBytes / (kFields * static_cast<int>(sizeof(double)));
@@ -93,7 +93,7 @@ struct P2GScatter {
   bool tile_spread = true;
   // Fewer points than this scatter without tiles: finding each tile's rectangle costs more
   // than the atomics it saves on small sets (an H100: the dry column's P2G 55 us without and
-  // 60 us with tiles at 20 000 points, 182 and 106 us at 200 000; docs/cuda.md).
+  // 60 us with tiles at 20 000 points, 182 and 106 us at 200 000; docs/guide/cuda.md).
   int tile_min_points = 50000;
 
   // Tiles of `points` points at any number of points (a setting's explicit choice).

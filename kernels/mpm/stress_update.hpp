@@ -20,7 +20,7 @@ namespace lsi::mpm {
 // round-off of either computation. mohr_coulomb_return() leaves such a stress unchanged and
 // returns 0, so skipping it changes nothing; it saves the return mapping's divisions and sort
 // for the points that stay elastic (all but the yielding zones of a mostly elastic body; in
-// the collapsing benchmark column only 19 % of the point-steps, docs/performance.md).
+// the collapsing benchmark column only 19 % of the point-steps, docs/notes/performance.md).
 KOKKOS_FORCEINLINE_FUNCTION bool clearly_elastic(const PreparedMaterial& pm, const double s[4]) {
   const double centre = 0.5 * (s[0] + s[1]), h = 0.5 * (s[0] - s[1]);
   const double radius = math::sqrt(h * h + s[2] * s[2]);

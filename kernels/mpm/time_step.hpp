@@ -10,7 +10,7 @@
 // splashing overtopping flow of the reference scenes); when they are compressed again they are
 // that much stiffer per unit mass. With c0 alone such runs became unstable (a period-2 oscillation
 // between two expanded points behind a fixed barrier, growing x2 per step until a point left the
-// grid; docs/mpm.md, "Time step of expanded points"). J is taken as at least 1: a compressed point
+// grid; docs/theory/mpm.md, "Time step of expanded points"). J is taken as at least 1: a compressed point
 // is softer, and ignoring that keeps the step of a run without expansion exactly as before.
 #pragma once
 #include <algorithm>

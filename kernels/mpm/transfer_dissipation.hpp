@@ -11,7 +11,7 @@
 // P2G adds the energy of the points' affine velocity to the grid, and its G2P takes more back, so
 // only the sum over a step means something. Accumulated over a run it is the part of the energy
 // residual (Solver::energy_residual) that the transfers explain: in a violent impact, the kinetic
-// energy destroyed where streams of different velocity merge on the grid (docs/mpm.md, "Energy
+// energy destroyed where streams of different velocity merge on the grid (docs/theory/mpm.md, "Energy
 // lost in the transfers").
 #pragma once
 #include <Kokkos_Core.hpp>

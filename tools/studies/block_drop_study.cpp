@@ -4,11 +4,11 @@
 // restitution e is the largest upward velocity of the block's centroid after the impact over
 // the downward one before it. A dense granular layer dropped flat does not bounce (e near 0); a
 // continuum that compresses elastically where it cannot spread sideways does. Used in
-// docs/verification.md ("Tried: the continuum's impact restitution"). Not a test (nothing
+// docs/notes/verification.md ("Tried: the continuum's impact restitution"). Not a test (nothing
 // asserted); built beside the tests, run by hand, Serial backend (or the default host space).
 //
 //   block_drop_study mc|elastic cell_size_m width_m height_m v0_m_s [nu=0.3]
-// e.g. the rows of docs/verification.md:
+// e.g. the rows of docs/notes/verification.md:
 //   block_drop_study mc 0.05 1 1 3;  block_drop_study mc 0.05 4 0.5 3
 #include <Kokkos_Core.hpp>
 #include <algorithm>

@@ -1,5 +1,5 @@
 // Reruns the granular column collapse of tests/mpm/test_mpm_column_collapse.cpp with other
-// settings: the resolution, sensitivity and mu(I) tables of docs/verification.md. Not a test
+// settings: the resolution, sensitivity and mu(I) tables of docs/vv/verification.md. Not a test
 // (nothing asserted); built beside the tests, run by hand. Serial backend (or the default host
 // space), as the test's a = 3 case; `space=default` runs it on a GPU in a CUDA build.
 //
@@ -8,13 +8,13 @@
 //     dump=FILE  (the final points, "x y" per line in units of L0 from the wall and base)
 //     k0=K       (start from the geostatic stress sigma_xx = sigma_zz = K sigma_yy, not from zero)
 //     space=default  (run on Kokkos's default execution space, a GPU in a CUDA build, instead
-//                     of Serial: the fine grids of docs/verification.md)
+//                     of Serial: the fine grids of docs/notes/verification.md)
 //     trace=1    (the energy shares every T/16, T = sqrt(H0 / g); the deposit then differs
 //                 from the test's by up to 1 %: the output times clip the time step)
 //     mu_i=glass-beads  (Jop, Forterre & Pouliquen 2006: phi_s = asin(tan 20.9 deg) = 22.45,
 //                        phi_2 = asin(tan 32.76 deg) = 40.05 deg, I0 = 0.279, d = 0.5 mm,
 //                        rho_s = 2450 kg/m^3; sets phi to phi_s unless phi= is given after it)
-// e.g. the mu(I) row of docs/verification.md at 24 cells:
+// e.g. the mu(I) row of docs/notes/verification.md at 24 cells:
 //   column_collapse_study 3 24 L0=0.1 mu_i=glass-beads base=0.643 room=2.2
 #include <Kokkos_Core.hpp>
 #include <cmath>

@@ -1,5 +1,5 @@
 // The saturated block stopped by a wall (pressure_impulse.hpp) over resolutions, transfers, wall
-// conditions and pore-pressure forms: the tables of docs/two_phase.md, "The face jet". Not a test
+// conditions and pore-pressure forms: the tables of docs/notes/two_phase.md, "The face jet". Not a test
 // (test_mpm_pressure_impulse.cpp asserts); built beside the tests, run by hand, Serial backend.
 //
 //   pressure_impulse_study [bins]    (bins: also the wall column's velocity per cell)

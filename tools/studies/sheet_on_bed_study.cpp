@@ -5,14 +5,14 @@
 //   base: v0^2 / (2 g tan(phi))   (the base's Coulomb law)
 //   bed:  v0^2 / (2 g sin(phi))   (a psi = 0 Mohr-Coulomb material shearing on a horizontal
 //                                  plane carries tau / sigma_n = sin(phi) there: Davis 1968;
-//                                  docs/mpm.md, "Rate-dependent friction")
-// The bed case is the a = 3 column's tail (docs/verification.md, "Why the farthest point grows
+//                                  docs/theory/mpm.md, "Rate-dependent friction")
+// The bed case is the a = 3 column's tail (docs/notes/verification.md, "Why the farthest point grows
 // with the grid"): a sheet one or two points thick shares its grid nodes with the material under
 // it, and the grid drags the two to one velocity. Not a test (nothing asserted); built beside the
 // tests, run by hand, Serial backend (or the default host space).
 //
 //   sheet_on_bed_study base|bed cell_size_m sheet_thickness_m [v0_m_s=3]
-// e.g. the table of docs/verification.md:
+// e.g. the table of docs/notes/verification.md:
 //   sheet_on_bed_study bed 0.05 0.05;  sheet_on_bed_study bed 0.025 0.05;
 //   sheet_on_bed_study bed 0.0125 0.05
 #include <Kokkos_Core.hpp>

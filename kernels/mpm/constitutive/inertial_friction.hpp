@@ -23,7 +23,7 @@
 // centre p: tau / sigma_n = sin(phi). Jop's mu = |tau| / p is that ratio (tan(theta) of a
 // steady flow down a slope theta). So Jop's glass beads (mu_s = tan 20.9 deg, mu_2 =
 // tan 32.76 deg) are phi_s = asin(0.382) = 22.5 deg, phi_2 = asin(0.643) = 40.0 deg here
-// (docs/mpm.md, "Rate-dependent friction").
+// (docs/theory/mpm.md, "Rate-dependent friction").
 //
 // Written as I / (I0 + I) = gamma_dot k / (I0 sqrt(p) + gamma_dot k), k = d sqrt(rho_s), the rise
 // is finite for every state: a point without pressure (p <= 0, torn apart or at the apex) that

@@ -10,7 +10,7 @@
 //   n_new = 1 - (1 - n) / J.
 // n of the START of the step is used in dp. Solid and liquid masses of the point are constant.
 //
-// Optional stabilisations of saturated impacts (docs/two_phase.md, "Impacts"; all off by default):
+// Optional stabilisations of saturated impacts (docs/notes/two_phase.md, "Impacts"; all off by default):
 // * Artificial bulk viscosity (von Neumann-Richtmyer linear + quadratic, Landshoff form, as in
 //   explicit impact codes), active in compression only:
 //     q = rho_m l (-D) (c1 c + c2 l (-D))   for D < 0,   q = 0 otherwise,

@@ -15,7 +15,7 @@
 // beyond it, but the quadratic B-spline of the first free node above a wall is still 1/8 on the
 // wall, so that free node takes 1/8 of the wall's reaction in the weak form and misses it: the
 // points of the lowest cell layers carry a decaying +15 %, -5 %, +2 % pattern of the stress and
-// pore pressure (the boundary layer of docs/mpm.md, test_mpm_geostatic.cpp). With the correction,
+// pore pressure (the boundary layer of docs/theory/mpm.md, test_mpm_geostatic.cpp). With the correction,
 // each point within 1.5 cells of an active wall adds, to the free nodes only (those more than
 // 1e-9 dx inside the wall) and to the force component NORMAL to the wall only, the force of its
 // mirror image across the wall (a symmetry plane: same normal stresses and pore pressure, shear

@@ -14,7 +14,7 @@
 // true CFL limit when the drag is weak (e.g. M = 1e7 Pa, K_L = 2.2e9 Pa, n = 0.4: c_u = 1664 m/s,
 // c_f = 1857 m/s), c_u when it is strong. Taking c_f is safe in both.
 // Permeability limit of the explicit drag (derived for the grid update of this code, see
-// docs/two_phase.md): the relative velocity w of a node obeys w' = -Q (1/m_L + 1/m_S) w, so
+// docs/theory/two_phase.md): the relative velocity w of a node obeys w' = -Q (1/m_L + 1/m_S) w, so
 // forward Euler is stable for dt < 2 / (Q (1/m_L + 1/m_S)); per unit volume
 // Q = n^2 rho_L g / k, hence
 //   dt_k = 2 k (1 - n) rho_S / (n g rho_m),     rho_m = (1-n) rho_S + n rho_L.
