@@ -28,7 +28,8 @@
 #include "model/scene.hpp"
 #include "app/subcommand.hpp"
 #include "io/text_file.hpp"
-#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
+#include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
+#include "io/scene_overrides.hpp"
 #include "io/scene_parser.hpp"
 
 namespace {
@@ -43,7 +44,8 @@ std::vector<std::string> parse_methods(const std::string& list) {
     bool ok = false;
     for (const char* k : known_methods) ok = ok || m == k;
     if (!ok)
-      throw lsi::InputError("--methods " + m + ": unknown method (allowed: empirical, "
+      throw lsi::InputError("--methods " + m +
+                            ": unknown method (allowed: empirical, "
                             "analytical, literature, mpm)");
     out.push_back(m);
   }
@@ -64,8 +66,19 @@ auto with_path(const std::string& path, F&& f) {
   }
 }
 
-lsi::Scene load(const std::string& path) {
-  return with_path(path, [&] { return lsi::load_scene(path); });
+// The scene document of a file with the command line's --set overrides applied.
+nlohmann::json scene_document(const std::string& path, const std::vector<std::string>& overrides) {
+  nlohmann::json doc = lsi::read_scene_document(path);
+  with_path(path, [&] {
+    lsi::apply_overrides(doc, overrides);
+    return 0;
+  });
+  return doc;
+}
+
+lsi::Scene load(const std::string& path, const std::vector<std::string>& overrides) {
+  const nlohmann::json doc = scene_document(path, overrides);
+  return with_path(path, [&] { return lsi::parse_scene(doc); });
 }
 
 // The methods of a landslide scene: the closed forms it selects (or `only`), then the MPM if the
@@ -85,7 +98,8 @@ std::vector<lsi::MethodResult> run_scene(const std::string& path, const lsi::Sce
   mpm_status.clear();
   if (!want_mpm) return results;
   if (!scene.methods.mpm)
-    throw lsi::InputError(path + ": --methods mpm: the scene has no methods.mpm block "
+    throw lsi::InputError(path +
+                          ": --methods mpm: the scene has no methods.mpm block "
                           "(cell_size_m, ...; docs/reference/scene_schema.md)");
   const lsi::MpmCase c = with_path(path, [&] { return lsi::impact_case(scene); });
   lsi::MpmOutcome o = lsi::run_mpm_case(c);
@@ -114,8 +128,10 @@ int run_mpm_case(const std::string& path, const nlohmann::json& doc, const std::
   }
   const auto& res = o.result.series.at("energy_residual").values;
   if (format == "json") {
-    nlohmann::json j = {{"status", o.status()},        {"finished", o.finished()},
-                        {"steps", o.run().steps},          {"particles", o.run().particles},
+    nlohmann::json j = {{"status", o.status()},
+                        {"finished", o.finished()},
+                        {"steps", o.run().steps},
+                        {"particles", o.run().particles},
                         {"end_time", o.result.time.empty() ? 0.0 : o.result.time.back()},
                         {"energy_residual", res.empty() ? 0.0 : res.back()},
                         {"solver_seconds", o.run().solver_seconds},
@@ -127,7 +143,8 @@ int run_mpm_case(const std::string& path, const nlohmann::json& doc, const std::
                 o.result.time.empty() ? 0.0 : o.result.time.back(),
                 static_cast<long long>(o.run().particles));
     std::printf("energy balance residual %.3g; %.3g s in the solver, %.3g particle-updates/s\n",
-                res.empty() ? 0.0 : res.back(), o.run().solver_seconds, o.run().particle_updates_per_second);
+                res.empty() ? 0.0 : res.back(), o.run().solver_seconds,
+                o.run().particle_updates_per_second);
   }
   if (!o.finished()) {
     std::cerr << "lsi: " << path << ": the MPM run stopped: " << o.status() << "\n";
@@ -151,32 +168,43 @@ int main(int argc, char** argv) {
   // loads, before main, so they are set here and the program restarts itself once; a user's own
   // setting (e.g. OMP_WAIT_POLICY=active on a dedicated machine) is kept.
   if (lsi::set_openmp_wait_defaults())
-    execv("/proc/self/exe", argv);   // returns only on failure: then run as we are
+    execv("/proc/self/exe", argv);  // returns only on failure: then run as we are
 #endif
-  CLI::App app{"lsi: landslide-structure interaction. Empirical (Di Perna et al. 2022) and "
-               "analytical (Cuomo et al. 2022) design methods for barriers hit by flow-like "
-               "landslides."};
-  app.set_version_flag("--version", std::string("lsi ") + LSI_VERSION + " (" + LSI_GIT_REVISION + ")");
+  CLI::App app{
+      "lsi: landslide-structure interaction. Empirical (Di Perna et al. 2022) and "
+      "analytical (Cuomo et al. 2022) design methods for barriers hit by flow-like "
+      "landslides."};
+  app.set_version_flag("--version",
+                       std::string("lsi ") + LSI_VERSION + " (" + LSI_GIT_REVISION + ")");
   app.require_subcommand(1);
 
   std::string scene_path, methods_list, out_path, format = "table";
-  auto* run = app.add_subcommand("run", "Run a scene: print peak force, rise time, impact "
-                                        "duration and final displacement per method");
-  run->add_option("scene", scene_path, "Scene JSON file (docs/reference/scene_schema.md)")->required();
+  std::vector<std::string> overrides;
+  const char* set_help =
+      "Override one scene value, /json/pointer=value (repeatable; the value is JSON, else a "
+      "string), e.g. --set /landslide/velocity_m_s=8; checked as the file is";
+  auto* run = app.add_subcommand("run",
+                                 "Run a scene: print peak force, rise time, impact "
+                                 "duration and final displacement per method");
+  run->add_option("scene", scene_path, "Scene JSON file (docs/reference/scene_schema.md)")
+      ->required();
   run->add_option("--methods", methods_list,
                   "Comma-separated methods to run (default: the scene's methods block)");
   run->add_option("--out", out_path, "Write time histories and summaries to this HDF5 file");
   run->add_option("--format", format, "Summary format: table or json");
+  run->add_option("--set", overrides, set_help)->allow_extra_args(false);
 
   double max_displacement = 0.5;
   std::string design_scene;
-  auto* design = app.add_subcommand("design", "Inverse design: minimum barrier mass per metre "
-                                              "for a tolerable final displacement");
+  auto* design = app.add_subcommand("design",
+                                    "Inverse design: minimum barrier mass per metre "
+                                    "for a tolerable final displacement");
   design->add_option("scene", design_scene, "Scene JSON file")->required();
   design->add_option("--max-displacement", max_displacement, "Tolerable final displacement (m)")
       ->required();
   design->add_option("--methods", methods_list, "empirical and/or analytical");
   design->add_option("--format", format, "table or json");
+  design->add_option("--set", overrides, set_help)->allow_extra_args(false);
   bool verify = false;
   design->add_flag("--verify", verify,
                    "Run the MPM (the scene's methods.mpm) on each designed barrier and report its "
@@ -184,14 +212,17 @@ int main(int argc, char** argv) {
 
   std::vector<std::string> compare_scenes;
   std::string out_dir;
-  auto* compare = app.add_subcommand("compare", "Run several scenes; print the comparison table "
-                                                "of the methods and the masses for a tolerable "
-                                                "displacement (the reference study)");
+  auto* compare = app.add_subcommand("compare",
+                                     "Run several scenes; print the comparison table "
+                                     "of the methods and the masses for a tolerable "
+                                     "displacement (the reference study)");
   compare->add_option("scenes", compare_scenes, "Scene JSON files")->required();
   compare->add_option("--out-dir", out_dir, "Write one HDF5 file per scene here");
   compare->add_option("--max-displacement", max_displacement,
                       "Tolerable final displacement for the mass column (m)");
   compare->add_option("--format", format, "table or json");
+  compare->add_option("--set", overrides, std::string(set_help) + " (in every scene)")
+      ->allow_extra_args(false);
   std::string summary_json_path;
   compare->add_option("--summary-json", summary_json_path,
                       "Also write the comparison as JSON to this file (written atomically)");
@@ -232,7 +263,7 @@ int main(int argc, char** argv) {
         lsi::check_output_file("--out", out_path, {scene_path});
         lsi::check_output_file("--out", lsi::mpm_snapshots_xdmf_path(out_path), {scene_path});
       }
-      const nlohmann::json doc = lsi::read_scene_document(scene_path);
+      const nlohmann::json doc = scene_document(scene_path, overrides);
       if (lsi::is_mpm_case(doc)) return run_mpm_case(scene_path, doc, out_path, format);
       const lsi::Scene scene = with_path(scene_path, [&] { return lsi::parse_scene(doc); });
       std::string mpm_status;
@@ -241,29 +272,32 @@ int main(int argc, char** argv) {
       if (!out_path.empty()) {
         if (snapshots.empty()) {
           lsi::write_results(out_path, scene.source, results);
-        } else {   // as for verification scenes: the XDMF index after its HDF5 file
+        } else {  // as for verification scenes: the XDMF index after its HDF5 file
           lsi::write_results(out_path, scene.source, results, [&](long long file_id) {
             lsi::write_mpm_snapshots(file_id, snapshots);
           });
           lsi::write_mpm_snapshots_xdmf(out_path, snapshots);
         }
       }
-      if (format == "json") std::cout << lsi::summary_json(results).dump(2) << "\n";
-      else std::cout << lsi::summary_table(scene, results);
+      if (format == "json")
+        std::cout << lsi::summary_json(results).dump(2) << "\n";
+      else
+        std::cout << lsi::summary_table(scene, results);
       if (!mpm_status.empty()) {
         std::cerr << "lsi: " << scene_path << ": the MPM run stopped: " << mpm_status << "\n";
         return 3;
       }
     } else if (*design) {
-      const lsi::Scene scene = load(design_scene);
+      const lsi::Scene scene = load(design_scene, overrides);
       const auto designs = lsi::design_barrier_mass(scene, max_displacement, only);
-      const auto checks = verify ? with_path(design_scene, [&] {
-                                     return lsi::verify_designs(scene, designs, max_displacement);
-                                   })
-                                 : std::vector<lsi::DesignCheck>{};
+      const auto checks =
+          verify ? with_path(design_scene,
+                             [&] { return lsi::verify_designs(scene, designs, max_displacement); })
+                 : std::vector<lsi::DesignCheck>{};
       if (format == "json")
         std::cout << lsi::design_json(designs, max_displacement, checks).dump(2) << "\n";
-      else std::cout << lsi::design_table(scene, designs, max_displacement, checks);
+      else
+        std::cout << lsi::design_table(scene, designs, max_displacement, checks);
     } else if (*compare) {
       std::vector<lsi::ComparisonRow> rows;
       bool unstable = false;
@@ -273,20 +307,21 @@ int main(int argc, char** argv) {
       // name would write one file, a name with a path in it would write outside --out-dir.
       std::vector<std::string> inputs = compare_scenes;
       if (!convergence_path.empty()) inputs.push_back(convergence_path);
-      if (!summary_json_path.empty()) lsi::check_output_file("--summary-json", summary_json_path, inputs);
+      if (!summary_json_path.empty())
+        lsi::check_output_file("--summary-json", summary_json_path, inputs);
       std::vector<lsi::Scene> scenes;
       std::map<std::string, std::string> file_of_name;
       for (const auto& path : compare_scenes) {
-        scenes.push_back(load(path));
+        scenes.push_back(load(path, overrides));
         const std::string& name = scenes.back().name;
         if (!out_dir.empty()) {
           lsi::check_file_name(path + ": name", name);
           const auto [it, fresh] = file_of_name.emplace(name, path);
           if (!fresh)
-            throw lsi::InputError(path + ": name = \"" + name + "\": also the name of " + it->second +
-                                  " (--out-dir writes one file per name)");
-          lsi::check_output_file("--out-dir", (std::filesystem::path(out_dir) / (name + ".h5")).string(),
-                                 inputs);
+            throw lsi::InputError(path + ": name = \"" + name + "\": also the name of " +
+                                  it->second + " (--out-dir writes one file per name)");
+          lsi::check_output_file(
+              "--out-dir", (std::filesystem::path(out_dir) / (name + ".h5")).string(), inputs);
         }
       }
       if (!out_dir.empty()) lsi::check_output_directory("--out-dir", out_dir);
@@ -312,7 +347,8 @@ int main(int argc, char** argv) {
               std::cerr << "lsi: " << path << ": no error bars from " << convergence_path << ": "
                         << why << "\n";
           }
-        if (!scene.barrier.fixed) row.designs = lsi::design_barrier_mass(scene, max_displacement, only);
+        if (!scene.barrier.fixed)
+          row.designs = lsi::design_barrier_mass(scene, max_displacement, only);
         if (!checked_methods.empty() && !scene.barrier.fixed)
           row.checks = with_path(path, [&] {
             return lsi::verify_designs(scene, row.designs, max_displacement, checked_methods);
@@ -323,8 +359,10 @@ int main(int argc, char** argv) {
         }
         rows.push_back(std::move(row));
       }
-      if (format == "json") std::cout << lsi::comparison_json(rows, max_displacement).dump(2) << "\n";
-      else std::cout << lsi::comparison_table(rows, max_displacement);
+      if (format == "json")
+        std::cout << lsi::comparison_json(rows, max_displacement).dump(2) << "\n";
+      else
+        std::cout << lsi::comparison_table(rows, max_displacement);
       if (!summary_json_path.empty()) {
         lsi::write_text_atomically(summary_json_path,
                                    lsi::comparison_json(rows, max_displacement).dump(2) + "\n");

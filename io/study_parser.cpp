@@ -9,7 +9,7 @@
 #include <limits>
 
 #include "io/json_fields.hpp"
-#include "model/mpm_runner.hpp"   // ensure_kokkos
+#include "model/mpm_runner.hpp"  // ensure_kokkos
 #include "io/scene_reference.hpp"
 #include "io/scene_parser.hpp"
 
@@ -20,13 +20,12 @@ using nlohmann::json;
 using namespace json_fields;
 
 const std::vector<std::string> kStudyKeys = {
-    "name",    "scene",      "inputs",     "correlation", "design",      "samples",
-    "seed",    "methods",    "outputs",    "thresholds",  "confidence",  "stop",
-    "chunk_samples", "mpm_at_quantiles"};
+    "name",       "scene", "inputs",        "correlation",     "design",
+    "samples",    "seed",  "methods",       "outputs",         "thresholds",
+    "confidence", "stop",  "chunk_samples", "mpm_at_quantiles"};
 const std::vector<std::string> kDesigns = {"monte-carlo", "latin-hypercube", "sobol", "grid"};
-const std::vector<std::string> kDistributions = {"constant", "uniform",          "normal",
-                                                 "lognormal", "truncated-normal", "discrete",
-                                                 "grid"};
+const std::vector<std::string> kDistributions = {
+    "constant", "uniform", "normal", "lognormal", "truncated-normal", "discrete", "grid"};
 const std::vector<std::string> kSweepMethods = {"empirical", "analytical", "mpm"};
 const std::vector<std::string> kOutputs = {"peak_force", "rise_time", "impact_duration",
                                            "final_displacement"};
@@ -46,11 +45,11 @@ std::string method_reading(int field) {
   if (field < 0 || only_mpm_reads(field)) return "mpm";
   if (field >= empirical_a1 && field <= empirical_kappa) return "empirical";
   if (field >= analytical_lambda) return "analytical";
-  return "";   // every method
+  return "";  // every method
 }
 
 std::string fingerprint_of(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;   // FNV-1a, 64 bit
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a, 64 bit
   for (unsigned char c : text) {
     h ^= c;
     h *= 1099511628211ull;
@@ -95,8 +94,8 @@ std::vector<double> number_list(const ObjectReader& r, const std::string& key, c
 
 // One input: its path, the scene field it sets, and its distribution.
 StudyInput parse_input(const json& j, const std::string& at) {
-  static const std::vector<std::string> keys = {"path", "distribution", "value", "min", "max",
-                                                "mean", "sd", "values", "weights", "count"};
+  static const std::vector<std::string> keys = {
+      "path", "distribution", "value", "min", "max", "mean", "sd", "values", "weights", "count"};
   const ObjectReader r(j, at, keys);
   StudyInput in;
   in.path = r.string("path");
@@ -165,7 +164,7 @@ StudyInput parse_input(const json& j, const std::string& at) {
     d.kind = K::Discrete;
     d.values = number_list(r, "values", any_number());
     if (r.has("weights")) d.weights = number_list(r, "weights", greater_than(0));
-  } else {   // grid: evenly spaced points (min, max, count) or the listed values
+  } else {  // grid: evenly spaced points (min, max, count) or the listed values
     d.kind = K::Discrete;
     if (r.has("values")) {
       if (r.has("min") || r.has("max") || r.has("count"))
@@ -176,7 +175,8 @@ StudyInput parse_input(const json& j, const std::string& at) {
       const long long n = r.integer("count", interval('[', 2, 1000000, ']'));
       if (!(hi > lo)) r.fail_at("max", "must be > min = " + format_number(lo));
       if (!std::isfinite(hi - lo)) r.fail_at("max", "max - min overflows a double: must be finite");
-      for (long long i = 0; i < n; ++i) d.values.push_back(lo + (hi - lo) * double(i) / double(n - 1));
+      for (long long i = 0; i < n; ++i)
+        d.values.push_back(lo + (hi - lo) * double(i) / double(n - 1));
       d.values.back() = hi;
     }
   }
@@ -192,12 +192,17 @@ StudyInput parse_input(const json& j, const std::string& at) {
 double typical_value(const sweeps::DistributionSpec& d) {
   using K = sweeps::DistributionKind;
   switch (d.kind) {
-    case K::Constant: return d.value;
-    case K::Uniform: return 0.5 * (d.min + d.max);
+    case K::Constant:
+      return d.value;
+    case K::Uniform:
+      return 0.5 * (d.min + d.max);
     case K::Normal:
-    case K::Lognormal: return d.mean;
-    case K::TruncatedNormal: return std::clamp(d.mean, d.min, d.max);
-    case K::Discrete: return d.values.front();
+    case K::Lognormal:
+      return d.mean;
+    case K::TruncatedNormal:
+      return std::clamp(d.mean, d.min, d.max);
+    case K::Discrete:
+      return d.values.front();
   }
   return d.value;
 }
@@ -224,8 +229,9 @@ std::vector<std::vector<double>> parse_correlation(const ObjectReader& root,
     const json* pair = r.find("inputs");
     if (!pair || !pair->is_array() || pair->size() != 2 || !(*pair)[0].is_string() ||
         !(*pair)[1].is_string())
-      r.fail_missing("inputs", "two input paths, e.g. [\"/landslide/thickness_m\", "
-                               "\"/landslide/velocity_m_s\"]");
+      r.fail_missing("inputs",
+                     "two input paths, e.g. [\"/landslide/thickness_m\", "
+                     "\"/landslide/velocity_m_s\"]");
     std::size_t idx[2];
     for (int s = 0; s < 2; ++s) {
       const std::string p = (*pair)[s].get<std::string>();
@@ -248,8 +254,9 @@ StudyStop parse_stop(const ObjectReader& root, const Study& s) {
   StudyStop stop;
   const ObjectReader r = root.object("stop", {"wall_time_s", "interval"});
   stop.wall_time_s = r.number_or("wall_time_s", stop.wall_time_s, greater_than(0, "s"));
-  if (auto iv = r.optional_object("interval", {"method", "output", "statistic", "threshold",
-                                               "relative_half_width", "half_width", "min_samples"})) {
+  if (auto iv =
+          r.optional_object("interval", {"method", "output", "statistic", "threshold",
+                                         "relative_half_width", "half_width", "min_samples"})) {
     stop.has_interval_rule = true;
     stop.method = iv->choice("method", s.methods);
     stop.output = iv->choice("output", s.outputs);
@@ -272,6 +279,26 @@ StudyStop parse_stop(const ObjectReader& root, const Study& s) {
   }
   return stop;
 }
+
+// A study none of whose first kValidityProbe samples is a valid scene (a lognormal with an
+// enormous sd, fractional values for an integer field) would run every sample as invalid: it is
+// refused, with the first sample's reason.
+constexpr std::uint64_t kValidityProbe = 256;
+void require_some_valid_samples(const Study& s, const sweeps::Sampler<Kokkos::HostSpace>& sampler) {
+  const std::uint64_t n = std::min(s.samples, kValidityProbe);
+  std::string first_reason;
+  double x[sweeps::Sampler<Kokkos::HostSpace>::max_dimensions];
+  for (std::uint64_t k = 0; k < n; ++k) {
+    sampler.sample(k, x);
+    const std::string why = invalid_sample_reason(s, x);
+    if (why.empty()) return;
+    if (k == 0) first_reason = why;
+  }
+  fail("inputs: none of the first " + std::to_string(n) + " samples is a valid scene (sample 0: " +
+       first_reason + "); check the distributions against the scene's allowed ranges");
+}
+
+}  // namespace
 
 sweeps::SceneValues scene_values(const Scene& sc) {
   using namespace sweeps;
@@ -320,27 +347,6 @@ sweeps::SceneValues scene_values(const Scene& sc) {
   return v;
 }
 
-// A study none of whose first kValidityProbe samples is a valid scene (a lognormal with an
-// enormous sd, fractional values for an integer field) would run every sample as invalid: it is
-// refused, with the first sample's reason.
-constexpr std::uint64_t kValidityProbe = 256;
-void require_some_valid_samples(const Study& s, const sweeps::Sampler<Kokkos::HostSpace>& sampler) {
-  const std::uint64_t n = std::min(s.samples, kValidityProbe);
-  std::string first_reason;
-  double x[sweeps::Sampler<Kokkos::HostSpace>::max_dimensions];
-  for (std::uint64_t k = 0; k < n; ++k) {
-    sampler.sample(k, x);
-    const std::string why = invalid_sample_reason(s, x);
-    if (why.empty()) return;
-    if (k == 0) first_reason = why;
-  }
-  fail("inputs: none of the first " + std::to_string(n) +
-       " samples is a valid scene (sample 0: " + first_reason +
-       "); check the distributions against the scene's allowed ranges");
-}
-
-}  // namespace
-
 Study parse_study(const json& j, const std::string& base_dir) {
   if (!j.is_object()) fail("(top level) = " + format_value(j) + ": a study must be a JSON object");
   const ObjectReader root(j, "", kStudyKeys);
@@ -363,12 +369,14 @@ Study parse_study(const json& j, const std::string& base_dir) {
     if (s.base.methods.empirical) s.methods.push_back("empirical");
     if (s.base.methods.analytical) s.methods.push_back("analytical");
     if (s.methods.empty())
-      root.fail_missing("methods", "the scene selects neither empirical nor analytical; list the "
-                                   "methods (allowed: empirical, analytical, mpm)");
+      root.fail_missing("methods",
+                        "the scene selects neither empirical nor analytical; list the "
+                        "methods (allowed: empirical, analytical, mpm)");
   }
   if (s.runs("mpm") && !s.base.methods.mpm)
-    root.fail_at("methods", "\"mpm\" needs a methods.mpm block in the scene (cell_size_m, ...; "
-                            "docs/reference/scene_schema.md)");
+    root.fail_at("methods",
+                 "\"mpm\" needs a methods.mpm block in the scene (cell_size_m, ...; "
+                 "docs/reference/scene_schema.md)");
   s.outputs = root.has("outputs") ? string_list(root, "outputs", kOutputs) : kOutputs;
 
   // Inputs.
@@ -429,31 +437,35 @@ Study parse_study(const json& j, const std::string& base_dir) {
         s.inputs[k].distribution.kind = sweeps::DistributionKind::Discrete;
         s.inputs[k].distribution.values = {d.value};
       } else if (d.kind != sweeps::DistributionKind::Discrete || !d.weights.empty()) {
-        fail("inputs[" + std::to_string(k) + "].distribution: the grid design takes \"grid\", "
+        fail("inputs[" + std::to_string(k) +
+             "].distribution: the grid design takes \"grid\", "
              "\"discrete\" (without weights) or \"constant\" inputs");
       }
       product *= static_cast<double>(s.inputs[k].distribution.values.size());
     }
     if (product > kMaxSamples) root.fail_at("design", "the grid has more than 9e15 points");
-    if (root.has("samples") &&
-        root.integer("samples", interval('[', 1, kMaxSamples, ']')) != static_cast<long long>(product))
+    if (root.has("samples") && root.integer("samples", interval('[', 1, kMaxSamples, ']')) !=
+                                   static_cast<long long>(product))
       root.fail_at("samples", "a grid design runs every grid point: " + format_number(product) +
                                   " (or leave samples out)");
     if (root.has("correlation")) root.fail_at("correlation", "not used by the grid design");
     s.samples = static_cast<std::uint64_t>(product);
   } else {
-    s.samples = static_cast<std::uint64_t>(root.integer("samples", interval('[', 1, kMaxSamples, ']')));
+    s.samples =
+        static_cast<std::uint64_t>(root.integer("samples", interval('[', 1, kMaxSamples, ']')));
   }
-  s.seed = root.has("seed") ? static_cast<std::uint64_t>(
-                                  root.integer("seed", interval('[', 0, kMaxSamples, ']')))
-                            : 0;
+  s.seed =
+      root.has("seed")
+          ? static_cast<std::uint64_t>(root.integer("seed", interval('[', 0, kMaxSamples, ']')))
+          : 0;
   s.confidence = root.number_or("confidence", s.confidence, interval('(', 0.5, 1, ')'));
 
   if (root.has("thresholds")) {
     const json& t = *root.find("thresholds");
     if (!t.is_array()) root.fail_at("thresholds", "must be an array of {output, above, method?}");
     for (std::size_t k = 0; k < t.size(); ++k) {
-      const ObjectReader r(t[k], "thresholds[" + std::to_string(k) + "]", {"method", "output", "above"});
+      const ObjectReader r(t[k], "thresholds[" + std::to_string(k) + "]",
+                           {"method", "output", "above"});
       StudyThreshold th;
       if (r.has("method")) th.method = r.choice("method", s.methods);
       th.output = r.choice("output", s.outputs);
@@ -482,7 +494,7 @@ Study parse_study(const json& j, const std::string& base_dir) {
                                 : default_chunk);
 
   // The sampler checks what only it can (a positive-definite correlation, Sobol's dimensions).
-  ensure_kokkos();   // the sampler keeps its tables in Views
+  ensure_kokkos();  // the sampler keeps its tables in Views
   std::optional<sweeps::Sampler<Kokkos::HostSpace>> sampler;
   try {
     sampler.emplace(s.sampler<Kokkos::HostSpace>());
@@ -506,7 +518,8 @@ Study parse_study(const json& j, const std::string& base_dir) {
 
 Study load_study(const std::string& path) {
   namespace fs = std::filesystem;
-  const json doc = read_scene_document(path, "study");   // file errors and malformed JSON, with the path
+  const json doc =
+      read_scene_document(path, "study");  // file errors and malformed JSON, with the path
   try {
     Study s = parse_study(doc, fs::path(path).parent_path().string());
     s.path = path;

@@ -14,6 +14,8 @@ Study load_study(const std::string& path);
 
 // The scene of one sample: the base scene with each input's JSON pointer set to its value.
 nlohmann::json sample_scene_document(const Study& study, const double* input_values);
+// A parsed scene's numeric values as the closed-form sweep kernel sees them.
+sweeps::SceneValues scene_values(const Scene& scene);
 // The one-line reason a sample is invalid (the scene parser's message), or "" if it is valid.
 std::string invalid_sample_reason(const Study& study, const double* input_values);
 

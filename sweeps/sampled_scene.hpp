@@ -1,10 +1,12 @@
 // One sample of a sweep as the closed-form models see it: the numeric scene values in a flat,
-// device-copyable struct, their validity check (the same ranges as the scene parser,
-// io/scene_parser.cpp) and the evaluation of the empirical and analytical models. Used inside the
-// batched sweep kernel (sweeps/closed_form_sweep.hpp): no allocation, no strings, no I/O.
+// device-copyable struct, their validity check and the evaluation of the empirical and analytical
+// models. Used inside the batched sweep kernel (sweeps/closed_form_sweep.hpp): no allocation, no
+// strings, no I/O.
 //
-// The ranges below mirror io/scene_parser.cpp; tests/sweeps/test_sweep_study.cpp checks on random
-// samples that a sample is valid here exactly when the scene parser accepts it.
+// The ranges below are the one definition of the numeric scene keys' ranges: the scene parser
+// (io/scene_parser.cpp) reads them from here. The checks beyond single ranges (the top width
+// against the base width, the face in the base) are repeated there with its messages; a test on
+// random samples checks that a sample is valid here exactly when the scene parser accepts it.
 #pragma once
 #include <Kokkos_Core.hpp>
 
@@ -20,28 +22,66 @@ namespace lsi::sweeps {
 
 // The numeric scene keys a study may sample (JSON pointers in scene_field_pointer).
 enum SceneField : int {
-  thickness_m, velocity_m_s, density_kg_m3, body_squares, length_m, flow_base_friction,
-  porosity, friction_angle_deg, cohesion_kpa, young_modulus_mpa, poisson_ratio,
-  hydraulic_conductivity_m_s, liquid_bulk_modulus_mpa, liquid_viscosity_kpa_s,
-  height_m, base_width_m, top_width_m, face_angle_deg, barrier_density_kg_m3,
-  barrier_mass_kg_per_m, base_friction, face_friction,
-  empirical_a1, empirical_a2, empirical_tau, empirical_kappa,
-  analytical_lambda, analytical_tau,
+  thickness_m,
+  velocity_m_s,
+  density_kg_m3,
+  body_squares,
+  length_m,
+  flow_base_friction,
+  porosity,
+  friction_angle_deg,
+  cohesion_kpa,
+  young_modulus_mpa,
+  poisson_ratio,
+  hydraulic_conductivity_m_s,
+  liquid_bulk_modulus_mpa,
+  liquid_viscosity_kpa_s,
+  height_m,
+  base_width_m,
+  top_width_m,
+  face_angle_deg,
+  barrier_density_kg_m3,
+  barrier_mass_kg_per_m,
+  base_friction,
+  face_friction,
+  empirical_a1,
+  empirical_a2,
+  empirical_tau,
+  empirical_kappa,
+  analytical_lambda,
+  analytical_tau,
   scene_field_count
 };
 
 inline constexpr const char* scene_field_pointer[scene_field_count] = {
-    "/landslide/thickness_m", "/landslide/velocity_m_s", "/landslide/density_kg_m3",
-    "/landslide/shape/body_squares", "/landslide/shape/length_m", "/landslide/base_friction",
-    "/landslide/material/porosity", "/landslide/material/friction_angle_deg",
-    "/landslide/material/cohesion_kpa", "/landslide/material/young_modulus_mpa",
-    "/landslide/material/poisson_ratio", "/landslide/material/hydraulic_conductivity_m_s",
-    "/landslide/material/liquid_bulk_modulus_mpa", "/landslide/material/liquid_viscosity_kpa_s",
-    "/barrier/height_m", "/barrier/base_width_m", "/barrier/top_width_m",
-    "/barrier/face_angle_deg", "/barrier/density_kg_m3", "/barrier/mass_kg_per_m",
-    "/barrier/base_friction", "/barrier/face_friction",
-    "/methods/empirical/a1", "/methods/empirical/a2", "/methods/empirical/tau",
-    "/methods/empirical/kappa", "/methods/analytical/lambda", "/methods/analytical/tau"};
+    "/landslide/thickness_m",
+    "/landslide/velocity_m_s",
+    "/landslide/density_kg_m3",
+    "/landslide/shape/body_squares",
+    "/landslide/shape/length_m",
+    "/landslide/base_friction",
+    "/landslide/material/porosity",
+    "/landslide/material/friction_angle_deg",
+    "/landslide/material/cohesion_kpa",
+    "/landslide/material/young_modulus_mpa",
+    "/landslide/material/poisson_ratio",
+    "/landslide/material/hydraulic_conductivity_m_s",
+    "/landslide/material/liquid_bulk_modulus_mpa",
+    "/landslide/material/liquid_viscosity_kpa_s",
+    "/barrier/height_m",
+    "/barrier/base_width_m",
+    "/barrier/top_width_m",
+    "/barrier/face_angle_deg",
+    "/barrier/density_kg_m3",
+    "/barrier/mass_kg_per_m",
+    "/barrier/base_friction",
+    "/barrier/face_friction",
+    "/methods/empirical/a1",
+    "/methods/empirical/a2",
+    "/methods/empirical/tau",
+    "/methods/empirical/kappa",
+    "/methods/analytical/lambda",
+    "/methods/analytical/tau"};
 
 // Allowed range of each field: lo/hi with open or closed ends (infinite = unbounded); `integer`
 // for counts. top_width_m's upper bound is base_width_m and face_angle_deg must also fit the
@@ -57,35 +97,64 @@ inline constexpr double unbounded = math::infinity();
 // sweep kernel, 12 % of its time in perf); the switch folds to constants once inlined.
 KOKKOS_INLINE_FUNCTION constexpr FieldRange scene_field_range(int field) {
   switch (field) {
-    case thickness_m: return {0, unbounded, false, false, false};               // > 0
-    case velocity_m_s: return {0, unbounded, false, false, false};              // > 0
-    case density_kg_m3: return {0, unbounded, false, false, false};             // > 0
-    case body_squares: return {0, 1000000, true, true, true};   // integer in [0, 1e6]
-    case length_m: return {0, unbounded, false, false, false};                  // > 0
-    case porosity: return {0, 1, false, false, false};                          // (0, 1)
-    case friction_angle_deg: return {0, 90, true, false, false};                // [0, 90)
-    case cohesion_kpa: return {0, unbounded, true, false, false};               // >= 0
-    case young_modulus_mpa: return {0, unbounded, false, false, false};         // > 0
-    case poisson_ratio: return {-1, 0.5, false, false, false};                  // (-1, 0.5)
-    case hydraulic_conductivity_m_s: return {0, unbounded, false, false, false};  // > 0
-    case liquid_bulk_modulus_mpa: return {0, unbounded, false, false, false};   // > 0
-    case liquid_viscosity_kpa_s: return {0, unbounded, false, false, false};    // > 0
-    case height_m: return {0, unbounded, false, false, false};                  // > 0
-    case base_width_m: return {0, unbounded, false, false, false};              // > 0
-    case top_width_m: return {0, unbounded, true, true, false};                 // [0, base_width_m]
-    case face_angle_deg: return {0, 90, false, true, false};                    // (0, 90]
-    case barrier_density_kg_m3: return {0, unbounded, false, false, false};     // > 0
-    case barrier_mass_kg_per_m: return {0, unbounded, false, false, false};     // > 0
-    case base_friction: return {0, unbounded, true, false, false};              // >= 0
-    case face_friction: return {0, unbounded, true, false, false};              // >= 0
-    case flow_base_friction: return {0, unbounded, true, false, false};         // >= 0
-    case empirical_a1: return {0, unbounded, false, false, false};              // > 0
-    case empirical_a2: return {-5, 5, true, true, false};                       // [-5, 5]
-    case empirical_tau: return {0, 1, false, false, false};                     // (0, 1)
-    case empirical_kappa: return {0, unbounded, true, false, false};            // >= 0
-    case analytical_lambda: return {0, 1, false, true, false};                  // (0, 1]
-    case analytical_tau: return {0, 1, false, false, false};                    // (0, 1)
-    default: return {0, 0, false, false, false};   // not a field: nothing is in range
+    case thickness_m:
+      return {0, unbounded, false, false, false};  // > 0
+    case velocity_m_s:
+      return {0, unbounded, false, false, false};  // > 0
+    case density_kg_m3:
+      return {0, unbounded, false, false, false};  // > 0
+    case body_squares:
+      return {0, 1000000, true, true, true};  // integer in [0, 1e6]
+    case length_m:
+      return {0, unbounded, false, false, false};  // > 0
+    case porosity:
+      return {0, 1, false, false, false};  // (0, 1)
+    case friction_angle_deg:
+      return {0, 90, true, false, false};  // [0, 90)
+    case cohesion_kpa:
+      return {0, unbounded, true, false, false};  // >= 0
+    case young_modulus_mpa:
+      return {0, unbounded, false, false, false};  // > 0
+    case poisson_ratio:
+      return {-1, 0.5, false, false, false};  // (-1, 0.5)
+    case hydraulic_conductivity_m_s:
+      return {0, unbounded, false, false, false};  // > 0
+    case liquid_bulk_modulus_mpa:
+      return {0, unbounded, false, false, false};  // > 0
+    case liquid_viscosity_kpa_s:
+      return {0, unbounded, false, false, false};  // > 0
+    case height_m:
+      return {0, unbounded, false, false, false};  // > 0
+    case base_width_m:
+      return {0, unbounded, false, false, false};  // > 0
+    case top_width_m:
+      return {0, unbounded, true, true, false};  // [0, base_width_m]
+    case face_angle_deg:
+      return {0, 90, false, true, false};  // (0, 90]
+    case barrier_density_kg_m3:
+      return {0, unbounded, false, false, false};  // > 0
+    case barrier_mass_kg_per_m:
+      return {0, unbounded, false, false, false};  // > 0
+    case base_friction:
+      return {0, unbounded, true, false, false};  // >= 0
+    case face_friction:
+      return {0, unbounded, true, false, false};  // >= 0
+    case flow_base_friction:
+      return {0, unbounded, true, false, false};  // >= 0
+    case empirical_a1:
+      return {0, unbounded, false, false, false};  // > 0
+    case empirical_a2:
+      return {-5, 5, true, true, false};  // [-5, 5]
+    case empirical_tau:
+      return {0, 1, false, false, false};  // (0, 1)
+    case empirical_kappa:
+      return {0, unbounded, true, false, false};  // >= 0
+    case analytical_lambda:
+      return {0, 1, false, true, false};  // (0, 1]
+    case analytical_tau:
+      return {0, 1, false, false, false};  // (0, 1)
+    default:
+      return {0, 0, false, false, false};  // not a field: nothing is in range
   }
 }
 
@@ -94,13 +163,13 @@ inline constexpr double face_run_out_tolerance_m = 1e-9;
 
 struct SceneValues {
   double value[scene_field_count] = {};
-  bool rectangle = false;            // landslide shape kind (else front-body-tail)
+  bool rectangle = false;  // landslide shape kind (else front-body-tail)
   bool barrier_given_by_mass = false;
   bool fixed = false;
   bool analytical_lambda_given = false, analytical_tau_given = false;
   // The barrier model of each closed form (model/scene.hpp, BarrierModel): false = the paper's.
   bool empirical_momentum = false, analytical_momentum = false;
-  bool saturated_flow = true;   // the flow's base friction acts on its grains' share of the weight
+  bool saturated_flow = true;  // the flow's base friction acts on its grains' share of the weight
 };
 
 // The flow's base friction as a deceleration of the flow, F1 / m1 (m/s^2): tan(phi_b) g times the
@@ -114,7 +183,7 @@ KOKKOS_INLINE_FUNCTION double flow_friction_deceleration(double base_friction, d
 }
 
 KOKKOS_INLINE_FUNCTION bool in_range(double v, const FieldRange& r) {
-  if (!(v == v) || v == unbounded || v == -unbounded) return false;   // NaN, inf: never valid
+  if (!(v == v) || v == unbounded || v == -unbounded) return false;  // NaN, inf: never valid
   if (r.lo_closed ? v < r.lo : v <= r.lo) return false;
   if (r.hi_closed ? v > r.hi : v >= r.hi) return false;
   return !r.integer || v == math::floor(v);
@@ -167,12 +236,17 @@ KOKKOS_INLINE_FUNCTION ModelInputs model_inputs(const SceneValues& s) {
 }
 
 // The four scalar outputs of a closed-form method, in this order in the sweep tables.
-enum ClosedFormOutput : int { peak_force, rise_time, impact_duration, final_displacement,
-                              closed_form_output_count };
+enum ClosedFormOutput : int {
+  peak_force,
+  rise_time,
+  impact_duration,
+  final_displacement,
+  closed_form_output_count
+};
 inline constexpr const char* closed_form_output_name[closed_form_output_count] = {
     "peak_force", "rise_time", "impact_duration", "final_displacement"};
-inline constexpr const char* closed_form_output_units[closed_form_output_count] = {
-    "N/m", "s", "s", "m"};
+inline constexpr const char* closed_form_output_units[closed_form_output_count] = {"N/m", "s", "s",
+                                                                                   "m"};
 
 KOKKOS_INLINE_FUNCTION void store_pulse(const ForcePulse& p, const ModelInputs& m,
                                         const SceneValues& s, double* out) {
@@ -189,8 +263,8 @@ KOKKOS_INLINE_FUNCTION void store_momentum(const ForcePulse& fixed_pulse, const 
                                            const SceneValues& s, const FaceResolution& face,
                                            double* out) {
   MomentumBarrierSetup b;
-  b.fixed_pulse = momentum_capped_pulse(fixed_pulse, m.landslide_mass, s.value[velocity_m_s],
-                                        face.horizontal);
+  b.fixed_pulse =
+      momentum_capped_pulse(fixed_pulse, m.landslide_mass, s.value[velocity_m_s], face.horizontal);
   b.landslide_mass = m.landslide_mass;
   b.velocity = s.value[velocity_m_s];
   b.barrier_mass = m.barrier_mass;
@@ -213,11 +287,12 @@ KOKKOS_INLINE_FUNCTION void evaluate_empirical(const SceneValues& s, double* out
   c.a2 = s.value[empirical_a2];
   c.tau = s.value[empirical_tau];
   c.kappa = s.value[empirical_kappa];
-  const EmpiricalImpact imp = empirical_impact(s.value[thickness_m], s.value[velocity_m_s],
-                                               s.value[density_kg_m3], m.landslide_mass,
-                                               m.face_angle_rad, c);
+  const EmpiricalImpact imp =
+      empirical_impact(s.value[thickness_m], s.value[velocity_m_s], s.value[density_kg_m3],
+                       m.landslide_mass, m.face_angle_rad, c);
   if (s.empirical_momentum)
-    store_momentum(imp.pulse, m, s, resolve_face_force(m.face_angle_rad, s.value[face_friction]), out);
+    store_momentum(imp.pulse, m, s, resolve_face_force(m.face_angle_rad, s.value[face_friction]),
+                   out);
   else
     store_pulse(imp.pulse, m, s, out);
 }
