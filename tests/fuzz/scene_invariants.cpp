@@ -182,8 +182,8 @@ void check_material(const mpm::Material& m, MpmCaseKind kind) {
     at_least("material cohesion (Pa)", m.cohesion, 0);
     at_least("material tension cut-off (Pa)", m.tension_cutoff, 0);
     if (m.rate_dependent()) {
-      between("material limit friction angle (rad)", m.limit_friction_angle, '[',
-              m.friction_angle, kPi / 2, ')');
+      between("material limit friction angle (rad)", m.limit_friction_angle, '[', m.friction_angle,
+              kPi / 2, ')');
       positive("material reference inertial number", m.reference_inertial_number);
       positive("material grain diameter (m)", m.grain_diameter);
       positive("material grain density (kg/m^3)", m.grain_density);

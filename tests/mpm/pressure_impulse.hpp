@@ -46,21 +46,21 @@ using namespace lsi::mpm;
 using namespace lsi::mpm::two_phase;
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr int kTerms = 200000;   // series terms: the x-averaged terms fall as 1 / k^2
+constexpr int kTerms = 200000;  // series terms: the x-averaged terms fall as 1 / k^2
 
 // The block: height H, length L, speed U, mixture density rho_m = (1 - n) rho_S + n rho_L.
 struct Block {
-  double height = 1.0, length = 4.0;   // m
-  double speed = 0.1;                  // m/s: Mach U / c = 5.5e-4, U t / H < 0.033 in the window
+  double height = 1.0, length = 4.0;  // m
+  double speed = 0.1;                 // m/s: Mach U / c = 5.5e-4, U t / H < 0.033 in the window
   double porosity = 0.5, grain_density = 2600.0, liquid_density = 1000.0;
-  double liquid_bulk_modulus = 3e7;    // Pa: c = sqrt(K_L / (n rho_m)) = 183 m/s
+  double liquid_bulk_modulus = 3e7;  // Pa: c = sqrt(K_L / (n rho_m)) = 183 m/s
   double mixture_density() const {
     return (1 - porosity) * grain_density + porosity * liquid_density;
   }
   double wave_speed() const {
     return std::sqrt(liquid_bulk_modulus / (porosity * mixture_density()));
   }
-  double impulse_scale() const { return mixture_density() * speed * height * height; }   // N s/m
+  double impulse_scale() const { return mixture_density() * speed * height * height; }  // N s/m
 };
 
 // cosh(k (L - x)) / cosh(k L), x in [0, L], without overflow.
@@ -84,7 +84,7 @@ inline double theory_vertical_momentum(const Block& b) {
   for (int n = 0; n < kTerms; ++n) {
     const double k = (n + 0.5) * kPi / b.height;
     const double A = 2 * b.speed * (n % 2 ? -1.0 : 1.0) / (k * b.height);
-    s += A / (k * k) * (1 - cosh_ratio(k, b.length, b.length));   // 1 - 1 / cosh(k L)
+    s += A / (k * k) * (1 - cosh_ratio(k, b.length, b.length));  // 1 - 1 / cosh(k L)
   }
   return b.mixture_density() * s;
 }
@@ -96,7 +96,7 @@ inline double theory_vertical_velocity(const Block& b, double x0, double x1, dou
   for (int n = 0; n < kTerms; ++n) {
     const double k = (n + 0.5) * kPi / H;
     const double A = 2 * b.speed * (n % 2 ? -1.0 : 1.0) / (k * H);
-    const double iy = (std::cos(k * y0) - std::cos(k * y1)) / k;   // integral of sin(k y)
+    const double iy = (std::cos(k * y0) - std::cos(k * y1)) / k;  // integral of sin(k y)
     // integral of sinh(k (L - x)) / cosh(k L) over [x0, x1]
     const double ix = (cosh_ratio(k, L, x0) - cosh_ratio(k, L, x1)) / k;
     s += A * iy * ix;
@@ -106,23 +106,23 @@ inline double theory_vertical_velocity(const Block& b, double x0, double x1, dou
 
 // How the block meets the wall and how it is discretised.
 struct Setup {
-  int cells = 16;                     // per height; 2 x 2 points per cell
-  Transfer transfer = Transfer::FlipPic;   // with flip_ratio 1
-  bool held = true;                   // wall and base bilateral: the linear problem (above)
-  bool cell_pore_pressure = true;     // TwoPhaseSettings::cell_pore_pressure
-  double window_begin = 10, window_end = 60;   // the averaging window, in acoustic times H / c
+  int cells = 16;                             // per height; 2 x 2 points per cell
+  Transfer transfer = Transfer::FlipPic;      // with flip_ratio 1
+  bool held = true;                           // wall and base bilateral: the linear problem (above)
+  bool cell_pore_pressure = true;             // TwoPhaseSettings::cell_pore_pressure
+  double window_begin = 10, window_end = 60;  // the averaging window, in acoustic times H / c
 };
 
 struct Measured {
   bool finished = false;
   long steps = 0;
-  double wall_impulse = 0.0;       // time mean over the window of the wall's impulse, N s/m
-  double vertical_momentum = 0.0;  // time mean of the block's vertical momentum, N s/m
-  double largest_wall_force = 0.0; // largest |F_x| on the wall in the window, N/m
+  double wall_impulse = 0.0;        // time mean over the window of the wall's impulse, N s/m
+  double vertical_momentum = 0.0;   // time mean of the block's vertical momentum, N s/m
+  double largest_wall_force = 0.0;  // largest |F_x| on the wall in the window, N/m
   // Time-mean vertical velocity of the points of the column next to the wall, per cell of height
   // (by initial position), m/s; the last entry is the corner cell.
   std::vector<double> wall_velocity;
-  double corner_point_speed = 0.0; // largest time-mean speed of a point of the corner cell, m/s
+  double corner_point_speed = 0.0;  // largest time-mean speed of a point of the corner cell, m/s
 };
 
 // The block touches the wall at t = 0. Velocities are the mixture's (mass-weighted solid and
@@ -132,11 +132,11 @@ Measured impact(const Block& b, const Setup& setup) {
   using Mem = typename Exec::memory_space;
   const int cells = setup.cells;
   const double H = b.height, L = b.length, dx = H / cells;
-  const double wall = L + 2 * dx;   // x of the wall: a grid line
+  const double wall = L + 2 * dx;  // x of the wall: a grid line
   const double lo[2] = {0.0, -2 * dx}, hi[2] = {wall + 4 * dx, H + 8 * dx};
   TwoPhaseGrid<Mem> grid(lo, hi, dx);
   Material skeleton;
-  skeleton.model = Material::Model::MohrCoulomb;   // phi = c = 0
+  skeleton.model = Material::Model::MohrCoulomb;  // phi = c = 0
   skeleton.density = b.grain_density;
   skeleton.young_modulus = 2e6;
   skeleton.poisson_ratio = 0.25;
@@ -146,10 +146,10 @@ Measured impact(const Block& b, const Setup& setup) {
   TwoPhaseBodySpec body;
   body.polygon = {{{wall - L, 0.0}}, {{wall, 0.0}}, {{wall, H}}, {{wall - L, H}}};
   body.porosity = b.porosity;
-  body.hydraulic_conductivity = 1e-4;   // undrained: drag time k / (n g) = 20 us
+  body.hydraulic_conductivity = 1e-4;  // undrained: drag time k / (n g) = 20 us
   body.velocity = {b.speed, 0.0};
   auto pts = build_two_phase_particles<Mem>({body}, {skeleton}, liquid, lo, dx);
-  Boundaries walls;   // the same for the liquid: impermeable
+  Boundaries walls;  // the same for the liquid: impermeable
   walls.right = {true, wall, 0.0, setup.held};
   walls.bottom = {true, 0.0, 0.0, setup.held};
   TwoPhaseSettings s;
@@ -174,7 +174,7 @@ Measured impact(const Block& b, const Setup& setup) {
   while (solver.time() < t_end) {
     if (solver.step() != Status::Running) return m;
     const double dt = solver.time_step();
-    impulse += solver.wall_force()[0] * dt;   // the block's push on the wall
+    impulse += solver.wall_force()[0] * dt;  // the block's push on the wall
     if (solver.time() < t_begin) continue;
     window += dt;
     m.wall_impulse += dt * impulse;
@@ -194,12 +194,13 @@ Measured impact(const Block& b, const Setup& setup) {
   m.wall_velocity.assign(cells, 0.0);
   std::vector<int> count(cells, 0);
   for (int q = 0; q < pts.count; ++q) {
-    if (x0(q, 0) < wall - dx) continue;   // the column of points next to the wall
+    if (x0(q, 0) < wall - dx) continue;  // the column of points next to the wall
     const int j = std::min(cells - 1, static_cast<int>(x0(q, 1) / dx));
     const double v[2] = {mean_v[0][q] / window, mean_v[1][q] / window};
     m.wall_velocity[j] += v[1];
     count[j] += 1;
-    if (j == cells - 1) m.corner_point_speed = std::max(m.corner_point_speed, std::hypot(v[0], v[1]));
+    if (j == cells - 1)
+      m.corner_point_speed = std::max(m.corner_point_speed, std::hypot(v[0], v[1]));
   }
   for (int j = 0; j < cells; ++j) m.wall_velocity[j] /= count[j];
   return m;

@@ -23,10 +23,22 @@
 
 #include "kernels/mpm/constitutive/inertial_friction.hpp"
 #include "kernels/mpm/stress_update.hpp"
+#include "support/tolerances.hpp"
 
 namespace {
 using namespace lsi::mpm;
 using HostParticles = Particles<Kokkos::HostSpace>;
+using lsi::test::kFewOpsAbs;
+using lsi::test::kRoundOffAbs;
+using lsi::test::kTwoRoutesRel;
+using lsi::test::kUnitArithmeticAbs;
+
+// I = gamma_dot d / sqrt(p / rho_s) recomputed from the rate made for it: a square root, a few
+// products and a quotient, relative.
+constexpr double kInertialNumberRel = 1e-14;
+// Invariants after 4000 stress updates (Jaumann rotation and return) in steady shear: the
+// round-off accumulated over the steps.
+constexpr double kSteadyShearRel = 1e-9;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -53,15 +65,15 @@ double mu_of_I(double I) { return kMuS + (kMu2 - kMuS) * I / (kI0 + I); }
 
 TEST(InertialFriction, ShearRateIsDuDyInSimpleShearAndFrameIndependent) {
   // Simple shear u = g y: Dxy = g / 2.
-  EXPECT_NEAR(shear_rate(0.0, 0.0, 0.5 * 3.0), 3.0, 1e-15);
+  EXPECT_NEAR(shear_rate(0.0, 0.0, 0.5 * 3.0), 3.0, kFewOpsAbs);
   // Pure shear Dxx = -Dyy = e is simple shear rotated by 45 degrees: gamma_dot = 2 e.
-  EXPECT_NEAR(shear_rate(1.5, -1.5, 0.0), 3.0, 1e-15);
+  EXPECT_NEAR(shear_rate(1.5, -1.5, 0.0), 3.0, kFewOpsAbs);
   // A general plane rate tensor, rotated by 0.3 rad: the same gamma_dot.
   const double Dxx = 0.7, Dyy = -0.2, Dxy = 0.45, c = std::cos(0.3), s = std::sin(0.3);
   const double Rxx = c * c * Dxx + s * s * Dyy + 2 * c * s * Dxy;
   const double Ryy = s * s * Dxx + c * c * Dyy - 2 * c * s * Dxy;
   const double Rxy = (c * c - s * s) * Dxy + c * s * (Dyy - Dxx);
-  EXPECT_NEAR(shear_rate(Rxx, Ryy, Rxy), shear_rate(Dxx, Dyy, Dxy), 1e-14);
+  EXPECT_NEAR(shear_rate(Rxx, Ryy, Rxy), shear_rate(Dxx, Dyy, Dxy), kUnitArithmeticAbs);
 }
 
 TEST(InertialFriction, AngleRunsFromStaticAtRestToLimitWithoutPressure) {
@@ -69,25 +81,25 @@ TEST(InertialFriction, AngleRunsFromStaticAtRestToLimitWithoutPressure) {
   ASSERT_TRUE(pm.rate_dependent);
   // At rest: the static angle, whatever the pressure.
   EXPECT_EQ(at_inertial_state(pm, 0.0, 1e3).sin_phi, pm.sin_phi);
-  EXPECT_NEAR(at_inertial_state(pm, 0.0, 1e3).sin_phi, kMuS, 1e-15);
+  EXPECT_NEAR(at_inertial_state(pm, 0.0, 1e3).sin_phi, kMuS, kFewOpsAbs);
   // Shearing without pressure (p <= 0): the limit angle (I infinite).
-  EXPECT_NEAR(at_inertial_state(pm, 5.0, 0.0).sin_phi, kMu2, 1e-15);
-  EXPECT_NEAR(at_inertial_state(pm, 5.0, -20.0).sin_phi, kMu2, 1e-15);
+  EXPECT_NEAR(at_inertial_state(pm, 5.0, 0.0).sin_phi, kMu2, kFewOpsAbs);
+  EXPECT_NEAR(at_inertial_state(pm, 5.0, -20.0).sin_phi, kMu2, kFewOpsAbs);
   // In between, the formula: p = 100 Pa, gamma_dot such that I = 0.05, 0.279, 2.
   for (double I : {0.05, kI0, 2.0}) {
     const double p = 100.0, g = I * std::sqrt(p / kRhoS) / kD;
-    EXPECT_NEAR(inertial_number(pm, g, p), I, 1e-14 * I);
+    EXPECT_NEAR(inertial_number(pm, g, p), I, kInertialNumberRel * I);
     const PreparedMaterial mi = at_inertial_state(pm, g, p);
-    EXPECT_NEAR(mi.sin_phi, mu_of_I(I), 1e-14) << "I = " << I;
-    EXPECT_NEAR(mi.cos_phi, std::sqrt(1 - mu_of_I(I) * mu_of_I(I)), 1e-14);
+    EXPECT_NEAR(mi.sin_phi, mu_of_I(I), kUnitArithmeticAbs) << "I = " << I;
+    EXPECT_NEAR(mi.cos_phi, std::sqrt(1 - mu_of_I(I) * mu_of_I(I)), kUnitArithmeticAbs);
     // The return constants are those of a rate-independent material at that angle.
     Material fixed = glass_beads();
     fixed.reference_inertial_number = 0.0;
     fixed.friction_angle = std::asin(mu_of_I(I));
     const PreparedMaterial ref(fixed);
-    EXPECT_NEAR(mi.main_plane, ref.main_plane, 1e-12 * ref.main_plane);
-    EXPECT_NEAR(mi.edge_upper, ref.edge_upper, 1e-12 * ref.main_plane);
-    EXPECT_NEAR(mi.edge_lower, ref.edge_lower, 1e-12 * ref.main_plane);
+    EXPECT_NEAR(mi.main_plane, ref.main_plane, kTwoRoutesRel * ref.main_plane);
+    EXPECT_NEAR(mi.edge_upper, ref.edge_upper, kTwoRoutesRel * ref.main_plane);
+    EXPECT_NEAR(mi.edge_lower, ref.edge_lower, kTwoRoutesRel * ref.main_plane);
   }
 }
 
@@ -108,7 +120,7 @@ Sheared shear(const Material& m, double P, double g, int n, double dt) {
 
 TEST(InertialFriction, SteadySimpleShearEndsOnTheRateDependentYieldSurface) {
   const Material m = glass_beads();
-  const double P = 200.0;   // Pa: about 14 mm of glass beads
+  const double P = 200.0;  // Pa: about 14 mm of glass beads
   for (double I : {0.1 * kI0, kI0, 10 * kI0}) {
     const double g = I * std::sqrt(P / kRhoS) / kD;
     // Shear strain 2 (far past the elastic strain P / G ~ 5e-5) in 4000 steps.
@@ -118,21 +130,22 @@ TEST(InertialFriction, SteadySimpleShearEndsOnTheRateDependentYieldSurface) {
     const double radius = std::hypot(0.5 * (s[0] - s[1]), s[2]);
     // Volume-preserving shear, psi = 0, Jaumann rotation: the in-plane mean pressure (the one
     // in I) and the mean pressure are unchanged.
-    EXPECT_NEAR(-centre, P, 1e-9 * P);
-    EXPECT_NEAR(-(s[0] + s[1] + s[3]) / 3, P, 1e-9 * P);
+    EXPECT_NEAR(-centre, P, kSteadyShearRel * P);
+    EXPECT_NEAR(-(s[0] + s[1] + s[3]) / 3, P, kSteadyShearRel * P);
     // s_zz is the intermediate principal stress: the yield surface is the in-plane circle's.
     ASSERT_LT(s[3], centre + radius);
     ASSERT_GT(s[3], centre - radius);
     const double sin_phi = radius / -centre;
-    EXPECT_NEAR(sin_phi, mu_of_I(I), 1e-9) << "I = " << I;
+    EXPECT_NEAR(sin_phi, mu_of_I(I), kSteadyShearRel) << "I = " << I;
     // On the shear plane (normal y): tau / sigma_n = mu(I) within 1e-4 (the normal-stress
     // difference s_xx - s_yy that the Jaumann rate keeps in steady shear; measured 2-4e-5 P,
     // -1e-5 to -2e-5 relative on the ratio).
     const double slope_friction = std::fabs(s[2]) / -s[1];
-    std::printf("[measured] I = %.4f: sin(phi) = %.6f, mu(I) = %.6f, tau/sigma_n = %.6f "
-                "(%+.3f %%), (s_xx - s_yy)/P = %.2e\n",
-                I, sin_phi, mu_of_I(I), slope_friction,
-                100 * (slope_friction / mu_of_I(I) - 1), (s[0] - s[1]) / P);
+    std::printf(
+        "[measured] I = %.4f: sin(phi) = %.6f, mu(I) = %.6f, tau/sigma_n = %.6f "
+        "(%+.3f %%), (s_xx - s_yy)/P = %.2e\n",
+        I, sin_phi, mu_of_I(I), slope_friction, 100 * (slope_friction / mu_of_I(I) - 1),
+        (s[0] - s[1]) / P);
     EXPECT_NEAR(slope_friction / mu_of_I(I), 1.0, 1e-4) << "I = " << I;
     EXPECT_GT(r.plastic_work, 0.0);
   }
@@ -153,7 +166,8 @@ TEST(InertialFriction, RateIndependentMaterialIsUnchanged) {
     p.stress(0, XY) = 80.0;
     p.stress(0, ZZ) = -200.0;
     update_point_stress<true>(p, 0, PreparedMaterial(m), 0.0, 0.0, 0.0, 0.0, 1e-3);
-    return std::array<double, 4>{p.stress(0, XX), p.stress(0, YY), p.stress(0, XY), p.stress(0, ZZ)};
+    return std::array<double, 4>{p.stress(0, XX), p.stress(0, YY), p.stress(0, XY),
+                                 p.stress(0, ZZ)};
   };
   // L = 0 (no rate): both materials have the static angle.
   const auto a = one_step(fixed), b = one_step(rate);
@@ -162,7 +176,7 @@ TEST(InertialFriction, RateIndependentMaterialIsUnchanged) {
   const double centre = -200.0, radius = std::hypot(100.0, 80.0);
   ASSERT_GT(radius / -centre, std::sin(fixed.friction_angle));
   EXPECT_NEAR(std::hypot(0.5 * (a[0] - a[1]), a[2]) / -(0.5 * (a[0] + a[1])),
-              std::sin(fixed.friction_angle), 1e-12);
+              std::sin(fixed.friction_angle), kRoundOffAbs);
 }
 
 }  // namespace

@@ -91,7 +91,7 @@ TEST(BarrierMotion, TriangularPulseMatchesTheExactRigidBlockResponse) {
     return t < T1 ? P * t / T1 : P * (T2 - t) / (T2 - T1);
   };
   BarrierMotion b = block(M, mu);
-  const int steps = 120000;   // to 2 T2: the block has stopped
+  const int steps = 120000;  // to 2 T2: the block has stopped
   const double dt = 2 * T2 / steps;
   for (int i = 0; i < steps; ++i) {
     const double n = N((i + 0.5) * dt);
@@ -105,7 +105,7 @@ TEST(BarrierMotion, TriangularPulseMatchesTheExactRigidBlockResponse) {
   const lsi::RigidBlockSummary exact = lsi::rigid_block_response(t, f, 4, sb);
   std::printf("[measured] pulse: barrier %.9f m, exact %.9f m\n", b.displacement,
               exact.final_displacement);
-  ASSERT_GT(exact.final_displacement, 0.01);   // the pulse does move it
+  ASSERT_GT(exact.final_displacement, 0.01);  // the pulse does move it
   EXPECT_NEAR(b.displacement / exact.final_displacement, 1.0, 1e-6);
   EXPECT_EQ(b.velocity, 0.0);
 }
@@ -116,12 +116,12 @@ TEST(BarrierMotion, TriangularPulseMatchesTheExactRigidBlockResponse) {
 // c = sqrt(E / rho), with the constant force rho c v0 h, and the bar leaves at -v0: impulse
 // 2 M v0.
 struct ImpactRun {
-  double impulse = 0;              // N s/m on the barrier (x), time integral of the contact force
-  double momentum_change = 0;      // kg m/s per m, block before - after (x)
-  double rebound = 0;              // final velocity / -v0
-  double duration = 0;             // s, time with a contact force
-  double plateau = 0;              // N/m, median contact force while in contact
-  double barrier_momentum = 0;     // free barrier: M_b V at the end
+  double impulse = 0;           // N s/m on the barrier (x), time integral of the contact force
+  double momentum_change = 0;   // kg m/s per m, block before - after (x)
+  double rebound = 0;           // final velocity / -v0
+  double duration = 0;          // s, time with a contact force
+  double plateau = 0;           // N/m, median contact force while in contact
+  double barrier_momentum = 0;  // free barrier: M_b V at the end
   double block_mass = 0;
 };
 
@@ -136,7 +136,7 @@ ImpactRun impact(bool free_barrier, double barrier_mass = 0.0, double dx = 0.05)
   const double lo[2] = {0, 0}, hi[2] = {4.0, 1.0};
   Grid<Mem> grid(lo, hi, dx);
   BodySpec body;
-  const double x0 = 0.5, y0 = 0.3;   // the block's front touches the face at t = 0
+  const double x0 = 0.5, y0 = 0.3;  // the block's front touches the face at t = 0
   body.polygon = {{{x0, y0}}, {{x0 + L, y0}}, {{x0 + L, y0 + h}}, {{x0, y0 + h}}};
   auto particles = build_particles<Mem>({body}, {m}, lo, dx);
   {
@@ -172,7 +172,7 @@ ImpactRun impact(bool free_barrier, double barrier_mass = 0.0, double dx = 0.05)
   for (int q = 0; q < particles.count; ++q) r.block_mass += mass(q);
   const double p0 = momentum();
   const double c = std::sqrt(m.young_modulus / m.density);
-  const double t_end = 2 * L / c + 0.1;   // contact, and a margin
+  const double t_end = 2 * L / c + 0.1;  // contact, and a margin
   std::vector<double> forces;
   while (solver.time() < t_end) {
     EXPECT_EQ(solver.step(), Status::Running);
@@ -206,10 +206,11 @@ TYPED_TEST(MpmBarrier, ElasticBlockOnFixedBarrierReturnsItsMomentumChange) {
   const ImpactRun coarse = impact<TypeParam>(false, 0.0, 0.05);
   const ImpactRun r = impact<TypeParam>(false, 0.0, 0.025);
   for (const ImpactRun* q : {&coarse, &r}) {
-    std::printf("[measured] impulse %.2f N s/m, momentum change %.2f, 2 M v0 %.2f, rebound "
-                "%.4f, contact %.4f s (2L/c %.4f s), plateau force %.0f N/m (rho c v0 h %.0f)\n",
-                q->impulse, q->momentum_change, 2 * q->block_mass * v0, q->rebound, q->duration,
-                2 * L / c, q->plateau, rho * c * v0 * h);
+    std::printf(
+        "[measured] impulse %.2f N s/m, momentum change %.2f, 2 M v0 %.2f, rebound "
+        "%.4f, contact %.4f s (2L/c %.4f s), plateau force %.0f N/m (rho c v0 h %.0f)\n",
+        q->impulse, q->momentum_change, 2 * q->block_mass * v0, q->rebound, q->duration, 2 * L / c,
+        q->plateau, rho * c * v0 * h);
     // The impulse the barrier receives is the block's momentum change: the contact is the only
     // horizontal force, so they agree to round-off (the brief's bound is 2 %).
     EXPECT_NEAR(q->impulse / q->momentum_change, 1.0, 1e-9);
@@ -234,7 +235,7 @@ TYPED_TEST(MpmBarrier, FreeBarrierConservesMomentum) {
   const ImpactRun r = impact<TypeParam>(true, block_mass);
   std::printf("[measured] free barrier: block lost %.4f, barrier gained %.4f kg m/s per m\n",
               r.momentum_change, r.barrier_momentum);
-  EXPECT_GT(r.barrier_momentum, 0.3 * block_mass * 2.0);   // it did push the barrier
+  EXPECT_GT(r.barrier_momentum, 0.3 * block_mass * 2.0);  // it did push the barrier
   EXPECT_NEAR(r.barrier_momentum / r.momentum_change, 1.0, 1e-9);
 }
 
@@ -250,21 +251,23 @@ TYPED_TEST(MpmBarrier, UpstreamFaceMomentIsTheSumOverTheNodesForces) {
   const double lo[2] = {0.0, 0.0}, hi[2] = {6.0, 6.0};
   Grid<Mem> grid(lo, hi, dx);
   grid.mark_all_active();
-  const double n[2] = {-std::sin(beta), std::cos(beta)};   // the face's outward normal
+  const double n[2] = {-std::sin(beta), std::cos(beta)};  // the face's outward normal
   struct Node {
     int i, j;
     double m, vx, vy;
   };
   // Nodes on the face's line (x = toe + shift + y / tan(beta)), rounded to the grid: at y = 1, 2,
   // 3 m the face is at x = 1.426, 1.603, 1.779; the nodes at 1.5, 1.75 and 2.0 lie inside.
-  const Node nodes[] = {{6, 4, 3.0, 2.0, 0.0}, {7, 8, 2.0, 3.0, -0.5}, {8, 12, 1.0, 1.0, 0.2},
-                        {6, 5, 5.0, -2.0, 0.0}};   // the last moves away: no contact
+  const Node nodes[] = {{6, 4, 3.0, 2.0, 0.0},
+                        {7, 8, 2.0, 3.0, -0.5},
+                        {8, 12, 1.0, 1.0, 0.2},
+                        {6, 5, 5.0, -2.0, 0.0}};  // the last moves away: no contact
   auto m_h = Kokkos::create_mirror_view(grid.mass);
   auto v_h = Kokkos::create_mirror_view(grid.velocity);
   Kokkos::deep_copy(m_h, 0.0);
   Kokkos::deep_copy(v_h, 0.0);
   double want = 0.0;
-  const double x_down = 1.0 + 3.0;   // the downstream toe, in the barrier's frame
+  const double x_down = 1.0 + 3.0;  // the downstream toe, in the barrier's frame
   for (const Node& q : nodes) {
     const int k = q.i + grid.nx * q.j;
     m_h(k) = q.m;
@@ -283,7 +286,7 @@ TYPED_TEST(MpmBarrier, UpstreamFaceMomentIsTheSumOverTheNodesForces) {
   Kokkos::deep_copy(grid.velocity_old, v_h);
   const BarrierContactReport r = barrier_contact<TypeParam>(grid, shape, shift, 0.0, 0.0, dt);
   EXPECT_EQ(r.nodes, 3);
-  EXPECT_GT(want, 0.0);   // pushed downstream above the base: it tips the barrier
+  EXPECT_GT(want, 0.0);  // pushed downstream above the base: it tips the barrier
   EXPECT_NEAR(r.upstream_moment, want, 1e-12 * std::fabs(want));
 }
 
@@ -295,24 +298,24 @@ TYPED_TEST(MpmBarrier, UpstreamFaceMomentIsTheSumOverTheNodesForces) {
 // exactly which counted: exact equality.
 TYPED_TEST(MpmBarrier, InteriorVolumeCountsThePointsInsideTheDisplacedBarrier) {
   using Mem = typename TypeParam::memory_space;
-  const double beta = 80.0 * kPi / 180.0, run = 4.0 / std::tan(beta);   // the face's run, 0.705 m
+  const double beta = 80.0 * kPi / 180.0, run = 4.0 / std::tan(beta);  // the face's run, 0.705 m
   const BarrierShape shape(1.0, 0.0, 4.0, 2.0, 1.0, beta);
-  const double shift = 0.5, toe = 1.0 + shift;   // the displaced toe
+  const double shift = 0.5, toe = 1.0 + shift;  // the displaced toe
   // Face x at y = 2: toe + run / 2; back face x at y: toe + 2 - y (2 - 1.705) / 4.
   struct P {
     double x, y;
     bool inside_displaced, inside_at_rest;
   };
   const P pts[] = {
-      {toe + 1.0, 2.0, true, true},                // mid-barrier
-      {toe + run / 2 + 0.01, 2.0, true, true},     // 1 cm behind the displaced face
-      {toe + run / 2 - 0.01, 2.0, false, true},    // 1 cm in front of it
-      {toe + run + 0.4, 3.99, true, true},         // 1 cm below the crest
-      {toe + run + 0.4, 4.01, false, false},       // 1 cm above it
-      {toe + 1.9, 0.05, true, false},              // near the displaced heel, inside
-      {toe + 2.01, 0.05, false, false},            // beyond the heel
-      {toe + 1.0, 0.0, false, false},              // on the base: the base wall's
-      {1.0 + run / 2 + 0.2, 2.0, false, true},     // behind the face at rest, in front once displaced
+      {toe + 1.0, 2.0, true, true},              // mid-barrier
+      {toe + run / 2 + 0.01, 2.0, true, true},   // 1 cm behind the displaced face
+      {toe + run / 2 - 0.01, 2.0, false, true},  // 1 cm in front of it
+      {toe + run + 0.4, 3.99, true, true},       // 1 cm below the crest
+      {toe + run + 0.4, 4.01, false, false},     // 1 cm above it
+      {toe + 1.9, 0.05, true, false},            // near the displaced heel, inside
+      {toe + 2.01, 0.05, false, false},          // beyond the heel
+      {toe + 1.0, 0.0, false, false},            // on the base: the base wall's
+      {1.0 + run / 2 + 0.2, 2.0, false, true},   // behind the face at rest, in front once displaced
   };
   const int n = sizeof(pts) / sizeof(pts[0]);
   Particles<Mem> p(n);

@@ -42,8 +42,8 @@ namespace {
 using namespace lsi::mpm;
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kL = 1.0, kRho = 1000.0, kE = 1e7;   // c = 100 m/s, period 4 L / c = 0.04 s
-constexpr double kV0 = 0.01;                          // peak strain v0 / c = 1e-4: linear regime
+constexpr double kL = 1.0, kRho = 1000.0, kE = 1e7;  // c = 100 m/s, period 4 L / c = 0.04 s
+constexpr double kV0 = 0.01;                         // peak strain v0 / c = 1e-4: linear regime
 const double kC = std::sqrt(kE / kRho);
 const double kOmega = kPi * kC / (2.0 * kL);
 const double kPeriod = 2.0 * kPi / kOmega;
@@ -54,7 +54,7 @@ struct Sample {
 };
 
 struct BarRun {
-  std::vector<Sample> samples;   // one per output, the first at t = 0
+  std::vector<Sample> samples;  // one per output, the first at t = 0
   Status status = Status::Running;
   long steps = 0;
   double seconds = 0.0;
@@ -78,7 +78,7 @@ BarRun run_bar(int cells, double flip_ratio, double courant, double periods,
   BodySpec body;
   body.polygon = {{{-kL, 0.0}}, {{kL, 0.0}}, {{kL, h}}, {{-kL, h}}};
   auto particles = build_particles<Mem>({body}, {m}, lo, dx);
-  auto x = Kokkos::create_mirror(Kokkos::HostSpace(), particles.position);   // real copies
+  auto x = Kokkos::create_mirror(Kokkos::HostSpace(), particles.position);  // real copies
   auto v = Kokkos::create_mirror(Kokkos::HostSpace(), particles.velocity);
   auto mass = Kokkos::create_mirror(Kokkos::HostSpace(), particles.mass);
   Kokkos::deep_copy(x, particles.position);
@@ -94,21 +94,20 @@ BarRun run_bar(int cells, double flip_ratio, double courant, double periods,
   Kokkos::deep_copy(particles.velocity, v);
   Settings s;
   s.courant = courant;
-  s.transfer = flip_ratio > 0.0 ? Transfer::FlipPic : Transfer::Apic;   // 0: APIC
+  s.transfer = flip_ratio > 0.0 ? Transfer::FlipPic : Transfer::Apic;  // 0: APIC
   s.flip_ratio = flip_ratio;
   s.gravity[0] = s.gravity[1] = 0.0;
   Solver<Exec> solver(grid, particles, {m}, Boundaries{}, s);
   BarRun run;
   auto vh = Kokkos::create_mirror(Kokkos::HostSpace(), particles.velocity);
-  run.status = solver.run(periods * kPeriod, kPeriod / outputs_per_period,
-                          [&](const Solver<Exec>& sv) {
-                            Kokkos::deep_copy(vh, sv.particles().velocity);
-                            double mv = 0.0;
-                            for (int q = 0; q < sv.particles().count; ++q)
-                              if (right[q]) mv += mass(q) * vh(q, 0);
-                            run.samples.push_back(
-                                {sv.time(), sv.time_step(), mv / right_mass, sv.energy().total()});
-                          });
+  run.status =
+      solver.run(periods * kPeriod, kPeriod / outputs_per_period, [&](const Solver<Exec>& sv) {
+        Kokkos::deep_copy(vh, sv.particles().velocity);
+        double mv = 0.0;
+        for (int q = 0; q < sv.particles().count; ++q)
+          if (right[q]) mv += mass(q) * vh(q, 0);
+        run.samples.push_back({sv.time(), sv.time_step(), mv / right_mass, sv.energy().total()});
+      });
   run.steps = solver.steps();
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return run;
@@ -133,7 +132,7 @@ TYPED_TEST(MpmElasticBar, FirstModeCentreOfMassVelocityConverges) {
   const int cells[3] = {8, 16, 32};
   double centred[3], nominal[3];
   for (int k = 0; k < 3; ++k) {
-    const BarRun run = run_bar<Exec>(cells[k], 0.0, 0.5, 1.0, 64);   // APIC, one period
+    const BarRun run = run_bar<Exec>(cells[k], 0.0, 0.5, 1.0, 64);  // APIC, one period
     ASSERT_EQ(run.status, Status::Finished) << describe(run.status);
     ASSERT_GE(run.samples.size(), 64u);
     centred[k] = vcm_error(run, 0.5);
@@ -143,7 +142,7 @@ TYPED_TEST(MpmElasticBar, FirstModeCentreOfMassVelocityConverges) {
               << run.seconds << " s\n";
   }
   const double order_centred[2] = {std::log2(centred[0] / centred[1]),
-                                    std::log2(centred[1] / centred[2])};
+                                   std::log2(centred[1] / centred[2])};
   const double order_nominal[2] = {std::log2(nominal[0] / nominal[1]),
                                    std::log2(nominal[1] / nominal[2])};
   std::cout << "[ bar ] observed order at t - dt/2: " << order_centred[0] << ", "
@@ -175,12 +174,12 @@ TYPED_TEST(MpmElasticBar, EnergyIsConservedOverTenPeriods) {
   for (int k = 0; k < 2; ++k) {
     const BarRun run = run_bar<Exec>(cells, flip[k], 0.5, 10.0, per_period);
     ASSERT_EQ(run.status, Status::Finished) << describe(run.status);
-    ASSERT_EQ(run.samples.size(), 10u * per_period + 1u);   // one sample per output interval
+    ASSERT_EQ(run.samples.size(), 10u * per_period + 1u);  // one sample per output interval
     const double e0 = run.samples.front().energy;
     for (size_t i = 0; i < run.samples.size(); ++i) {
       const double rel = (run.samples[i].energy - e0) / e0;
       oscillation[k] = std::max(oscillation[k], std::abs(rel));
-      if (i % (per_period / 4) == 0) drift[k] = std::max(drift[k], std::abs(rel));   // t = k T / 4
+      if (i % (per_period / 4) == 0) drift[k] = std::max(drift[k], std::abs(rel));  // t = k T / 4
     }
     final_drift[k] = (run.samples.back().energy - e0) / e0;
     std::cout << "[ bar ] " << cells << " cells, flip_ratio " << flip[k]
@@ -190,7 +189,7 @@ TYPED_TEST(MpmElasticBar, EnergyIsConservedOverTenPeriods) {
   }
   // The acceptance threshold, 1 %, on the APIC drift at quarter periods (measured 0.23 %).
   EXPECT_LT(drift[0], 0.01);
-  EXPECT_LE(final_drift[0], 0.0);   // the transfers dissipate; they must never create energy
+  EXPECT_LE(final_drift[0], 0.0);  // the transfers dissipate; they must never create energy
   // Within a period the total also carries the leapfrog offset ~ omega dt / 2 = 1.2 % (see the
   // header); it is bounded, not a drift. 2 % bounds it with room for the 0.2 % drift on top.
   EXPECT_LT(oscillation[0], 0.02);

@@ -22,7 +22,7 @@ TYPED_TEST(MpmFreeFall, VelocityAndPositionAreExact) {
   using Exec = TypeParam;
   lsi::test::FallingBlock<Exec> block;
   auto& particles = block.particles;
-  auto y0 = Kokkos::create_mirror(Kokkos::HostSpace(), particles.position);   // a real copy
+  auto y0 = Kokkos::create_mirror(Kokkos::HostSpace(), particles.position);  // a real copy
   Kokkos::deep_copy(y0, particles.position);
   Settings s;
   s.courant = 0.5;
@@ -40,7 +40,7 @@ TYPED_TEST(MpmFreeFall, VelocityAndPositionAreExact) {
     EXPECT_NEAR(v(q, 0), 0.0, 1e-10) << q;
     EXPECT_NEAR(x(q, 1), y0(q, 1) - 0.5 * g * t * t, 1e-10) << q;
     EXPECT_NEAR(x(q, 0), y0(q, 0), 1e-10) << q;
-    EXPECT_NEAR(st(q, 1), 0.0, 1e-6) << q;   // Pa, against stresses of order rho g h ~ 4e4
+    EXPECT_NEAR(st(q, 1), 0.0, 1e-6) << q;  // Pa, against stresses of order rho g h ~ 4e4
   }
   EXPECT_GT(solver.steps(), 100);
 }

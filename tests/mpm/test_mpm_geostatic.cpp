@@ -43,14 +43,14 @@ using namespace lsi::mpm;
 constexpr double kG = 9.81;
 
 struct ColumnResult {
-  double base_extrapolated = 0;   // Pa, sigma_yy extrapolated to the base (time mean)
-  double slope = 0;               // Pa/m, d sigma_yy / dy of the fit (time mean)
-  double lowest_layer = 0;        // Pa, mean sigma_yy of the lowest cell layer (time mean)
-  double lowest_layer_xx = 0;     // Pa, mean sigma_xx of the lowest cell layer (time mean)
-  double reaction = 0;            // N/m, time mean of wall_force()[1]
-  double weight = 0;              // N/m, sum of particle masses times g
-  double plastic = 0;             // J/m, plastic work dissipated over the run
-  double elastic = 0;             // J/m, elastic energy at the end
+  double base_extrapolated = 0;  // Pa, sigma_yy extrapolated to the base (time mean)
+  double slope = 0;              // Pa/m, d sigma_yy / dy of the fit (time mean)
+  double lowest_layer = 0;       // Pa, mean sigma_yy of the lowest cell layer (time mean)
+  double lowest_layer_xx = 0;    // Pa, mean sigma_xx of the lowest cell layer (time mean)
+  double reaction = 0;           // N/m, time mean of wall_force()[1]
+  double weight = 0;             // N/m, sum of particle masses times g
+  double plastic = 0;            // J/m, plastic work dissipated over the run
+  double elastic = 0;            // J/m, elastic energy at the end
   double h = 0, dx = 0, rho = 0, k0 = 0;
   Status status = Status::Running;
 };
@@ -101,7 +101,8 @@ ColumnResult run_column(const Material& mat, bool geostatic_start, double t_end,
     R.status = solver.step();
     if (R.status != Status::Running) return R;
     if (solver.time() <= t_avg) continue;
-    const double w = 1 - std::cos(2 * 3.14159265358979323846 * (solver.time() - t_avg) / (t_end - t_avg));
+    const double w =
+        1 - std::cos(2 * 3.14159265358979323846 * (solver.time() - t_avg) / (t_end - t_avg));
     react_sum += w * solver.wall_force()[1] * solver.time_step();
     react_t += w * solver.time_step();
     if (++step % 5) continue;
@@ -110,9 +111,17 @@ ColumnResult run_column(const Material& mat, bool geostatic_start, double t_end,
     for (int q = 0; q < particles.count; ++q) {
       const double y = xh(q, 1) - yb;
       if (y > 2 * dx && y < 20 * dx) {
-        Sw += w; Sy += w * y; Syy += w * y * y; Ss += w * sh(q, 1); Sys += w * y * sh(q, 1);
+        Sw += w;
+        Sy += w * y;
+        Syy += w * y * y;
+        Ss += w * sh(q, 1);
+        Sys += w * y * sh(q, 1);
       }
-      if (y < dx) { low_sum += w * sh(q, 1); low_xx += w * sh(q, 0); low_n += w; }
+      if (y < dx) {
+        low_sum += w * sh(q, 1);
+        low_xx += w * sh(q, 0);
+        low_n += w;
+      }
     }
   }
   const double slope = (Sw * Sys - Sy * Ss) / (Sw * Syy - Sy * Sy);
@@ -145,18 +154,19 @@ Material soil(Material::Model model) {
 
 void check(const ColumnResult& R, const char* label) {
   ASSERT_EQ(R.status, Status::Finished) << describe(R.status);
-  const double base = R.rho * kG * R.h;                  // rho g h, Pa
-  const double layer = R.rho * kG * (R.h - R.dx / 2);    // at the mean depth of the lowest layer
+  const double base = R.rho * kG * R.h;                // rho g h, Pa
+  const double layer = R.rho * kG * (R.h - R.dx / 2);  // at the mean depth of the lowest layer
   const double err_base = -R.base_extrapolated / base - 1;
   const double err_slope = R.slope / (R.rho * kG) - 1;
   const double err_layer = -R.lowest_layer / layer - 1;
   const double err_k0 = R.lowest_layer_xx / R.lowest_layer / R.k0 - 1;
   const double err_reaction = -R.reaction / R.weight - 1;
-  std::printf("[measured] %s: base sigma_yy (extrapolated) %.6g Pa vs rho g h %.6g: %+.3f %%; "
-              "gradient %+.3f %%; lowest layer %+.3f %%; K0 (lowest layer) %+.3f %%; base reaction "
-              "%.6g N/m vs weight %.6g: %+.3f %%\n",
-              label, -R.base_extrapolated, base, 100 * err_base, 100 * err_slope, 100 * err_layer,
-              100 * err_k0, -R.reaction, R.weight, 100 * err_reaction);
+  std::printf(
+      "[measured] %s: base sigma_yy (extrapolated) %.6g Pa vs rho g h %.6g: %+.3f %%; "
+      "gradient %+.3f %%; lowest layer %+.3f %%; K0 (lowest layer) %+.3f %%; base reaction "
+      "%.6g N/m vs weight %.6g: %+.3f %%\n",
+      label, -R.base_extrapolated, base, 100 * err_base, 100 * err_slope, 100 * err_layer,
+      100 * err_k0, -R.reaction, R.weight, 100 * err_reaction);
   // 2 % (the brief's tolerance) on the base stress extrapolated from outside the boundary layer:
   // the discrete static solution is +0.5 % off, the rest is residual oscillation.
   EXPECT_LT(std::fabs(err_base), 0.02) << label;
@@ -181,7 +191,7 @@ TYPED_TEST_SUITE(MpmGeostatic, lsi::test::Backends);
 // forces at the free surface and the base excites only small oscillations).
 TYPED_TEST(MpmGeostatic, ElasticColumnStaysGeostatic) {
   const Material m = soil(Material::Model::LinearElastic);
-  const double T1 = 4 * 10.0 / m.wave_speed();   // fundamental period of the column, s
+  const double T1 = 4 * 10.0 / m.wave_speed();  // fundamental period of the column, s
   check(run_column<TypeParam>(m, true, 3 * T1, T1), "elastic, geostatic start");
 }
 
@@ -205,7 +215,7 @@ TYPED_TEST(MpmGeostatic, MohrCoulombColumnStaysGeostatic) {
 // +1.2 % on the extrapolated base stress: the 1/N leakage of the oscillation.)
 TYPED_TEST(MpmGeostatic, ElasticColumnFromZeroStressAveragesToGeostatic) {
   const Material m = soil(Material::Model::LinearElastic);
-  const double T1 = 4 * 10.0 / m.wave_speed();   // fundamental period of the column, s
+  const double T1 = 4 * 10.0 / m.wave_speed();  // fundamental period of the column, s
   check(run_column<TypeParam>(m, false, 7 * T1, T1), "elastic, zero-stress start");
 }
 

@@ -45,8 +45,8 @@ struct SlideResult {
   double min_margin = 1e300;  // m, smallest distance of a point to the grid edge during the run
   double boundary_work = 0;   // J/m dissipated by the wall
   double energy_residual = 0;
-  double mass = 0;            // kg/m
-  double mean_velocity = 0;   // m/s along the slope at the end
+  double mass = 0;           // kg/m
+  double mean_velocity = 0;  // m/s along the slope at the end
 };
 
 template <class Exec>
@@ -58,7 +58,7 @@ SlideResult slide(double theta, double mu, double t_end, double young_modulus = 
   m.young_modulus = young_modulus;
   m.poisson_ratio = 0.3;
   const double dx = 0.1;
-  const double yb = 2 * dx;                      // wall on a grid line, 2 cells above the origin
+  const double yb = 2 * dx;  // wall on a grid line, 2 cells above the origin
   const double x0 = 0.3, L = 1.0, H = 0.4;
   const double lo[2] = {0, 0}, hi[2] = {2.8, 1.0};
   Grid<Mem> grid(lo, hi, dx);
@@ -70,7 +70,7 @@ SlideResult slide(double theta, double mu, double t_end, double young_modulus = 
   Settings s;
   s.courant = 0.5;
   s.transfer = transfer;
-  s.flip_ratio = 0.0;   // FlipPic only: plain PIC
+  s.flip_ratio = 0.0;  // FlipPic only: plain PIC
   s.gravity[0] = kG * std::sin(theta);
   s.gravity[1] = -kG * std::cos(theta);
   Solver<Exec> solver(grid, particles, {m}, walls, s);
@@ -99,7 +99,7 @@ SlideResult slide(double theta, double mu, double t_end, double young_modulus = 
   centre(cx0, cy0);
   R.status = solver.run(t_end, t_end / 10, [&](const Solver<Exec>&) {
     double cx, cy;
-    centre(cx, cy);   // margin check at every output
+    centre(cx, cy);  // margin check at every output
   });
   double cx, cy;
   centre(cx, cy);
@@ -120,8 +120,8 @@ template <class Exec>
 class MpmInclinedBlock : public ::testing::Test {};
 TYPED_TEST_SUITE(MpmInclinedBlock, lsi::test::Backends);
 
-constexpr double kTheta = 30.0 * kPi / 180.0;   // tan(30 deg) = 0.577: mu = 0.5 still slides
-constexpr double kEnd = 0.5;                      // s; mu = 0 travels 0.61 m, the grid allows 1.3 m
+constexpr double kTheta = 30.0 * kPi / 180.0;  // tan(30 deg) = 0.577: mu = 0.5 still slides
+constexpr double kEnd = 0.5;                   // s; mu = 0 travels 0.61 m, the grid allows 1.3 m
 
 double closed_form_displacement(double mu, double t) {
   return 0.5 * kG * (std::sin(kTheta) - mu * std::cos(kTheta)) * t * t;
@@ -134,10 +134,11 @@ void check_sliding(const SlideResult& R, double mu, bool normal) {
   const double a = kG * (std::sin(kTheta) - mu * std::cos(kTheta));
   const double s = closed_form_displacement(mu, R.time), v = a * R.time;
   const double err = R.displacement / s - 1;
-  std::printf("[measured] mu %.1f: s = %.6f m vs %.6f m (%+.4f %%), v = %.5f vs %.5f m/s "
-              "(%+.4f %%), normal drift %.2e m, margin %.2f m, energy residual %.1e\n",
-              mu, R.displacement, s, 100 * err, R.mean_velocity, v, 100 * (R.mean_velocity / v - 1),
-              R.normal_drift, R.min_margin, R.energy_residual);
+  std::printf(
+      "[measured] mu %.1f: s = %.6f m vs %.6f m (%+.4f %%), v = %.5f vs %.5f m/s "
+      "(%+.4f %%), normal drift %.2e m, margin %.2f m, energy residual %.1e\n",
+      mu, R.displacement, s, 100 * err, R.mean_velocity, v, 100 * (R.mean_velocity / v - 1),
+      R.normal_drift, R.min_margin, R.energy_residual);
   // 1 % (the brief's tolerance) on the displacement along the slope.
   EXPECT_LT(std::fabs(err), 0.01) << "mu " << mu;
   // The block's speed, 1 % likewise (it is the time integral of the same forces).
@@ -181,8 +182,8 @@ TYPED_TEST(MpmInclinedBlock, ExcessSlidingVanishesAsTheBlockStiffens) {
   }
   for (int k = 0; k < 2; ++k) {
     const double exponent = std::log10(excess[k] / excess[k + 1]);
-    std::printf("[measured] observed exponent of E between %.0e and %.0e: %.3f\n", E[k],
-                E[k + 1], exponent);
+    std::printf("[measured] observed exponent of E between %.0e and %.0e: %.3f\n", E[k], E[k + 1],
+                exponent);
     EXPECT_GT(exponent, 0.4);
     EXPECT_LT(exponent, 0.6);
   }
@@ -196,8 +197,10 @@ TYPED_TEST(MpmInclinedBlock, ExcessSlidingVanishesAsTheBlockStiffens) {
 TYPED_TEST(MpmInclinedBlock, SticksWhenFrictionExceedsSlope) {
   const SlideResult R = slide<TypeParam>(kTheta, 0.7, kEnd, 1e8, Transfer::FlipPic);
   ASSERT_EQ(R.status, Status::Finished) << describe(R.status);
-  std::printf("[measured] mu 0.7 (stick, PIC): displacement %.3e m, velocity %.3e m/s, normal "
-              "drift %.2e m\n", R.displacement, R.mean_velocity, R.normal_drift);
+  std::printf(
+      "[measured] mu 0.7 (stick, PIC): displacement %.3e m, velocity %.3e m/s, normal "
+      "drift %.2e m\n",
+      R.displacement, R.mean_velocity, R.normal_drift);
   EXPECT_LT(std::fabs(R.displacement), 1e-4);
   // A creeping block would keep a steady speed (APIC: 3.5 cm/s); the elastic vibration, damped
   // by PIC, leaves far less: bound 1e-3 m/s (measured with the mass-weighted particle velocity).

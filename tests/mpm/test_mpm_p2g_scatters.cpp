@@ -83,7 +83,7 @@ struct Collapse {
         force_max = std::fmax(force_max, std::fabs(f1(n, d)));
       }
     }
-    ASSERT_GT(momentum_max, 0.0);   // the column moves
+    ASSERT_GT(momentum_max, 0.0);  // the column moves
     // The scatters add the same terms in another order: round-off of a few additions, 1e-12
     // of the largest nodal value.
     int compared = 0;
@@ -129,15 +129,15 @@ TYPED_TEST(MpmP2GScatters, AtomicAndBufferedScattersGiveTheSameGrid) {
 TYPED_TEST(MpmP2GScatters, TiledAtomicScatterGivesTheSameGrid) {
   using Exec = TypeParam;
   if (!P2GScatter<Exec, true>::atomic) GTEST_SKIP() << "Serial adds without atomics or tiles";
-  const Collapse<Exec> c;   // 0.5 m wide, dx 0.05: 10 cells per row
+  const Collapse<Exec> c;  // 0.5 m wide, dx 0.05: 10 cells per row
   {
-    SCOPED_TRACE("every team in a tile");   // 128 points: 32 cells, 12 x 6 nodes at most
+    SCOPED_TRACE("every team in a tile");  // 128 points: 32 cells, 12 x 6 nodes at most
     P2GScatter<Exec, true> tiled(c.grid);
-    tiled.use_tiles(128);   // any number of points (800 here)
+    tiled.use_tiles(128);  // any number of points (800 here)
     c.expect_same_grid(tiled);
   }
   {
-    SCOPED_TRACE("no team in a tile");   // 128 points need more than 12 nodes
+    SCOPED_TRACE("no team in a tile");  // 128 points need more than 12 nodes
     P2GScatter<Exec, true> direct(c.grid);
     direct.use_tiles(128);
     direct.tile_nodes = 12;

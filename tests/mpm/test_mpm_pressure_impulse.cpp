@@ -32,12 +32,13 @@ TYPED_TEST(MpmPressureImpulse, TimeMeansAreTheIncompressibleImpulse) {
   const Measured m8 = impact<TypeParam>(b, coarse), m16 = impact<TypeParam>(b, fine);
   const Measured p16 = impact<TypeParam>(b, point);
   ASSERT_TRUE(m8.finished && m16.finished && p16.finished);
-  for (const auto& [name, m] : {std::pair{"8 cells", &m8}, {"16 cells", &m16},
-                                {"16 cells, point pressure", &p16}})
-    std::printf("[measured] %s: %ld steps, wall impulse %.4f rho_m U H^2 (theory %.4f), vertical "
-                "momentum %.4f (theory %.4f), corner cell %.3f U, corner point %.3f U\n",
-                name, m->steps, m->wall_impulse / scale, I / scale, m->vertical_momentum / scale,
-                Py / scale, m->wall_velocity.back() / U, m->corner_point_speed / U);
+  for (const auto& [name, m] :
+       {std::pair{"8 cells", &m8}, {"16 cells", &m16}, {"16 cells, point pressure", &p16}})
+    std::printf(
+        "[measured] %s: %ld steps, wall impulse %.4f rho_m U H^2 (theory %.4f), vertical "
+        "momentum %.4f (theory %.4f), corner cell %.3f U, corner point %.3f U\n",
+        name, m->steps, m->wall_impulse / scale, I / scale, m->vertical_momentum / scale,
+        Py / scale, m->wall_velocity.back() / U, m->corner_point_speed / U);
   // 1. The wall impulse converges to the theory's, about first order in the cell (measured
   //    +13.7 % at 8 cells, +6.7 % at 16, +4.5 % at 32: the pressure of the wall's cell is spread
   //    over the B-spline's support). 10 % at 16 cells, and at least a 0.7 error ratio per halving.
@@ -83,11 +84,12 @@ TYPED_TEST(MpmPressureImpulse, FreeCornerMovesAtTheTheorysCornerSpeed) {
     ASSERT_TRUE(m.finished);
     const double dx = b.height / cells;
     const double theory = theory_vertical_velocity(b, 0, dx, b.height - dx, b.height);
-    std::printf("[measured] unilateral, %d cells: wall impulse %.4f rho_m U H^2, largest wall force "
-                "in the window %.3g rho_m c U H, corner cell %.3f U (theory %.3f U)\n",
-                cells, m.wall_impulse / b.impulse_scale(),
-                m.largest_wall_force / (b.mixture_density() * b.wave_speed() * U * b.height),
-                m.wall_velocity.back() / U, theory / U);
+    std::printf(
+        "[measured] unilateral, %d cells: wall impulse %.4f rho_m U H^2, largest wall force "
+        "in the window %.3g rho_m c U H, corner cell %.3f U (theory %.3f U)\n",
+        cells, m.wall_impulse / b.impulse_scale(),
+        m.largest_wall_force / (b.mixture_density() * b.wave_speed() * U * b.height),
+        m.wall_velocity.back() / U, theory / U);
     // The block has left the wall before the window: its force there is under 5 % of the
     // water-hammer force rho_m c U H (measured 1.3 % and 0.3 %).
     EXPECT_LT(m.largest_wall_force, 0.05 * b.mixture_density() * b.wave_speed() * U * b.height);

@@ -36,7 +36,7 @@ Bore bore(double h1, double v, double rho, double g) {
     const double h2 = h1 * (v + c) / c;
     return 0.5 * g * (h2 * h2 - h1 * h1) - h1 * (v + c) * v;
   };
-  double lo = 0.1, hi = 20.0;   // the gap is positive at lo, negative at hi
+  double lo = 0.1, hi = 20.0;  // the gap is positive at lo, negative at hi
   for (int i = 0; i < 200; ++i) {
     const double mid = 0.5 * (lo + hi);
     (momentum_gap(mid) > 0.0 ? lo : hi) = mid;
@@ -63,7 +63,7 @@ TEST(MpmReflectedBore, DissipatesWhatTheJumpConditionsSay) {
   ASSERT_TRUE(out.finished()) << out.status();
   const lsi::MethodResult& r = out.result;
   const Bore b = bore(1.0, 3.0, 1000.0, 9.81);
-  EXPECT_NEAR(b.h2, 2.116, 1e-3);   // the depth the scene gives the still region
+  EXPECT_NEAR(b.h2, 2.116, 1e-3);  // the depth the scene gives the still region
   auto lost = [&](size_t i) {
     return r.series.at("transfer_dissipation").values.at(i) +
            r.series.at("plastic_dissipation").values.at(i) +

@@ -20,10 +20,10 @@ namespace {
 using namespace lsi::mpm;
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kL = 1.0, kRho = 1000.0, kE = 1e7, kV0 = 0.01;   // c = 100 m/s
+constexpr double kL = 1.0, kRho = 1000.0, kE = 1e7, kV0 = 0.01;  // c = 100 m/s
 const double kC = std::sqrt(kE / kRho);
-const double kPeriod = 4.0 * kL / kC;   // first fixed-free mode of each half: 0.04 s
-constexpr int kCells = 16;              // cells along L
+const double kPeriod = 4.0 * kL / kC;  // first fixed-free mode of each half: 0.04 s
+constexpr int kCells = 16;             // cells along L
 constexpr double kDx = kL / kCells;
 
 template <class Exec>
@@ -32,7 +32,7 @@ struct Bar {
   Material material;
   Grid<Mem> grid;
   Particles<Mem> particles;
-  double max_speed = 0.0;   // largest initial particle speed, m/s
+  double max_speed = 0.0;  // largest initial particle speed, m/s
 
   Bar() {
     material.density = kRho;
@@ -44,7 +44,7 @@ struct Bar {
     BodySpec body;
     body.polygon = {{{-kL, 0.0}}, {{kL, 0.0}}, {{kL, h}}, {{-kL, h}}};
     particles = build_particles<Mem>({body}, {material}, lo, kDx);
-    auto x = Kokkos::create_mirror(Kokkos::HostSpace(), particles.position);   // real copies
+    auto x = Kokkos::create_mirror(Kokkos::HostSpace(), particles.position);  // real copies
     auto v = Kokkos::create_mirror(Kokkos::HostSpace(), particles.velocity);
     Kokkos::deep_copy(x, particles.position);
     for (int q = 0; q < particles.count; ++q) {
@@ -87,7 +87,7 @@ TYPED_TEST(MpmStability, CourantFiveIsStoppedByRun) {
   Bar<Exec> bar;
   auto solver = bar.solver(5.0);
   const double t_end = 10.0 * kPeriod;
-  const long steps_to_end = static_cast<long>(std::ceil(t_end / (5.0 * kDx / kC)));   // ~128
+  const long steps_to_end = static_cast<long>(std::ceil(t_end / (5.0 * kDx / kC)));  // ~128
   const Status s = solver.run(t_end, kPeriod / 16);
   std::cout << "[ stability ] Courant 5, run(): " << describe(s) << " after " << solver.steps()
             << " steps (t = " << solver.time() << " s of " << t_end << ")\n";
@@ -104,7 +104,7 @@ TYPED_TEST(MpmStability, CourantFiveIsStoppedByRun) {
   EXPECT_LT(solver.steps(), steps_to_end);
   const std::string message = describe(s);
   EXPECT_FALSE(message.empty());
-  EXPECT_EQ(message.rfind("unstable", 0), 0u) << message;   // starts with "unstable"
+  EXPECT_EQ(message.rfind("unstable", 0), 0u) << message;  // starts with "unstable"
 }
 
 // Manual stepping has no energy check: the per-step health checks of G2P alone (non-finite values,
@@ -140,7 +140,7 @@ TYPED_TEST(MpmStability, CourantHalfFinishes) {
   double worst_residual = 0.0, dt_min = 1e300, dt_max = 0.0;
   const Status s = solver.run(t_end, kPeriod / 16, [&](const Solver<Exec>& sv) {
     worst_residual = std::max(worst_residual, std::abs(sv.energy_residual(sv.energy())));
-    if (sv.steps() > 0 && sv.time() < t_end * (1 - 1e-9)) {   // the last step is cut to t_end
+    if (sv.steps() > 0 && sv.time() < t_end * (1 - 1e-9)) {  // the last step is cut to t_end
       dt_min = std::min(dt_min, sv.time_step());
       dt_max = std::max(dt_max, sv.time_step());
     }
@@ -162,9 +162,9 @@ TYPED_TEST(MpmStability, CourantHalfFinishes) {
     // Stable: no speed above the initial peak v0 (energy cannot grow; 5 % for the discrete
     // transfer of the mode).
     ASSERT_LE(std::abs(v(q, 0)), 1.05 * kV0) << q;
-    ASSERT_LE(std::abs(v(q, 1)), 1e-9) << q;                  // stays one-dimensional (round-off)
+    ASSERT_LE(std::abs(v(q, 1)), 1e-9) << q;  // stays one-dimensional (round-off)
     ASSERT_TRUE(std::isfinite(st(q, 0))) << q;
-    ASSERT_LE(std::abs(st(q, 0)), 1.05 * kE * kV0 / kC) << q;   // peak stress E v0 / c = 1 kPa
+    ASSERT_LE(std::abs(st(q, 0)), 1.05 * kE * kV0 / kC) << q;  // peak stress E v0 / c = 1 kPa
   }
   // At 16 cells, Courant 0.5 the total oscillates by ~omega dt / 2 = 2.5 % (leapfrog staggering,
   // see test_mpm_elastic_bar) plus ~1 % dissipation over 10 periods; 5 % bounds both, far below
@@ -204,8 +204,8 @@ TYPED_TEST(MpmStability, ExpandedPointsAreStifferAndTheStepFollows) {
   };
   const double q0 = quarter_period(Bar<Exec>().solver(0.5));
   const double qJ = quarter_period(expanded_bar().solver(0.5));
-  std::cout << "[ stability ] quarter period: J = 1 " << q0 << " s, J = 4 " << qJ
-            << " s (ratio " << q0 / qJ << ", sqrt(J) = 2)\n";
+  std::cout << "[ stability ] quarter period: J = 1 " << q0 << " s, J = 4 " << qJ << " s (ratio "
+            << q0 / qJ << ", sqrt(J) = 2)\n";
   ASSERT_GT(q0, 0.0);
   ASSERT_GT(qJ, 0.0);
   // The discrete bar's dispersion (16 cells: ~0.3 % on the period) is the same for both and
@@ -217,17 +217,17 @@ TYPED_TEST(MpmStability, ExpandedPointsAreStifferAndTheStepFollows) {
   const Bar<Exec> b1 = expanded_bar();
   auto s1 = b1.solver(0.5);
   s1.step();
-  EXPECT_NEAR(s1.time_step(), 0.5 * kDx / (std::sqrt(kJ) * kC + b1.max_speed),
-              1e-12 * kDx / kC);
+  EXPECT_NEAR(s1.time_step(), 0.5 * kDx / (std::sqrt(kJ) * kC + b1.max_speed), 1e-12 * kDx / kC);
 
   // (3) Courant 0.9 of the expanded speed: 10 periods of the expanded bar, energy bounded.
   auto s3 = expanded_bar().solver(0.9);
   double worst = 0.0;
-  const Status st3 = s3.run(10.0 * kPeriod / std::sqrt(kJ), kPeriod / 64, [&](const Solver<Exec>& sv) {
-    worst = std::max(worst, std::abs(sv.energy_residual(sv.energy())));
-  });
-  std::cout << "[ stability ] J = 4, Courant 0.9: " << describe(st3) << ", largest |energy residual| "
-            << worst << "\n";
+  const Status st3 =
+      s3.run(10.0 * kPeriod / std::sqrt(kJ), kPeriod / 64, [&](const Solver<Exec>& sv) {
+        worst = std::max(worst, std::abs(sv.energy_residual(sv.energy())));
+      });
+  std::cout << "[ stability ] J = 4, Courant 0.9: " << describe(st3)
+            << ", largest |energy residual| " << worst << "\n";
   EXPECT_EQ(st3, Status::Finished) << describe(st3);
   // The staggering swing at Courant 0.9, omega dt / 2 ~ 4.5 %, plus dissipation; 10 % bounds it,
   // far below the growth of the unstable run (0.5, Settings::energy_growth_limit).

@@ -20,7 +20,7 @@ template <class Exec>
 Solver<Exec> falling_block(Transfer transfer, bool track) {
   Settings s;
   s.transfer = transfer;
-  s.flip_ratio = 0.0;   // plain PIC when FlipPic
+  s.flip_ratio = 0.0;  // plain PIC when FlipPic
   s.track_transfer_dissipation = track;
   return lsi::test::FallingBlock<Exec>().solver(s);
 }

@@ -58,12 +58,12 @@ double terzaghi(double z_over_h, double Tv) {
 
 struct ColumnSpec {
   double H = 1.0;
-  int cells = 20;          // over the height
+  int cells = 20;  // over the height
   Material skeleton;
   Liquid liquid;
   double porosity = 0.4, k = 1e-3;
-  bool gravity = false;    // body force (hydrostatic) or none (Terzaghi)
-  double load = 0.0;       // Pa, Terzaghi: surface load = initial excess pore pressure
+  bool gravity = false;  // body force (hydrostatic) or none (Terzaghi)
+  double load = 0.0;     // Pa, Terzaghi: surface load = initial excess pore pressure
   Drag drag = Drag::SemiImplicit;
   double courant = 0.5;
   bool wall_correction = true;
@@ -75,7 +75,7 @@ struct Column {
   double dx, xl, xr, yb, top;
   TwoPhaseGrid<Mem> grid;
   TwoPhaseParticles<Mem> particles;
-  std::vector<double> depth0;   // initial depth of each point below the surface
+  std::vector<double> depth0;  // initial depth of each point below the surface
 };
 
 template <class Exec>
@@ -179,8 +179,8 @@ double consolidation_coefficient(const ColumnSpec& c) {
 }
 
 struct Isochrones {
-  std::vector<double> Tv, max_error;            // max |p - p_exact| / q over the points
-  std::vector<std::vector<double>> p;           // pore pressure of every point at each Tv
+  std::vector<double> Tv, max_error;   // max |p - p_exact| / q over the points
+  std::vector<std::vector<double>> p;  // pore pressure of every point at each Tv
   long steps = 0;
   double dt = 0, permeability_dt = 0, seconds = 0;
   Status status = Status::Running;
@@ -201,7 +201,7 @@ Isochrones run_terzaghi(const ColumnSpec& c, const std::vector<double>& Tvs) {
     const double t = Tv * c.H * c.H / cv;
     R.status = solver.run(t, t - solver.time());
     if (R.status != Status::Finished) return R;
-    if (R.steps == 0) {   // the CFL step (run() shortens the last step to hit t)
+    if (R.steps == 0) {  // the CFL step (run() shortens the last step to hit t)
       R.dt = c.courant * (c.H / c.cells) / solver.time_step_limits().wave_speed;
       R.permeability_dt = c.courant * solver.time_step_limits().permeability_dt;
     }
@@ -216,8 +216,8 @@ Isochrones run_terzaghi(const ColumnSpec& c, const std::vector<double>& Tvs) {
     }
     if (std::getenv("LSI_TWO_PHASE_DUMP")) {
       for (int q = 0; q < col.particles.count; q += 2)
-        std::printf("dump Tv %.2f depth %.4f p %.5f exact %.5f\n", Tv, col.depth0[q], ph(q) / c.load,
-                    terzaghi(col.depth0[q] / c.H, Tv));
+        std::printf("dump Tv %.2f depth %.4f p %.5f exact %.5f\n", Tv, col.depth0[q],
+                    ph(q) / c.load, terzaghi(col.depth0[q] / c.H, Tv));
     }
     R.Tv.push_back(Tv);
     R.max_error.push_back(err);
@@ -239,11 +239,12 @@ TYPED_TEST(MpmTwoPhase, TerzaghiConsolidation) {
   const ColumnSpec c = terzaghi_spec(Drag::SemiImplicit);
   const Isochrones R = run_terzaghi<TypeParam>(c, {0.05, 0.1, 0.2, 0.5, 1.0});
   ASSERT_EQ(R.status, Status::Finished) << describe(R.status);
-  std::printf("[measured] Terzaghi (semi-implicit drag): c_v %.4g m^2/s, %ld steps, CFL step %.3g s "
-              "(the explicit drag would need %.3g s), %.2f s wall; drag dissipation %.4g J/m, load "
-              "work %.4g J/m, energy residual %+.3f %%\n",
-              consolidation_coefficient(c), R.steps, R.dt, R.permeability_dt, R.seconds, R.drag,
-              R.load_work, 100 * R.energy_residual);
+  std::printf(
+      "[measured] Terzaghi (semi-implicit drag): c_v %.4g m^2/s, %ld steps, CFL step %.3g s "
+      "(the explicit drag would need %.3g s), %.2f s wall; drag dissipation %.4g J/m, load "
+      "work %.4g J/m, energy residual %+.3f %%\n",
+      consolidation_coefficient(c), R.steps, R.dt, R.permeability_dt, R.seconds, R.drag,
+      R.load_work, 100 * R.energy_residual);
   for (size_t i = 0; i < R.Tv.size(); ++i) {
     std::printf("[measured] Terzaghi T_v = %.2f: max |p - p_exact| / q = %.3f %%\n", R.Tv[i],
                 100 * R.max_error[i]);
@@ -267,15 +268,18 @@ TYPED_TEST(MpmTwoPhase, ExplicitAndSemiImplicitDragAgree) {
   ASSERT_EQ(E.status, Status::Finished) << describe(E.status);
   ASSERT_EQ(S.status, Status::Finished) << describe(S.status);
   const double q = terzaghi_spec(Drag::Explicit).load;
-  std::printf("[measured] drag: explicit %ld steps (%.2f s wall), semi-implicit %ld steps "
-              "(%.2f s wall) to T_v = %.2f\n", E.steps, E.seconds, S.steps, S.seconds, Tvs.back());
+  std::printf(
+      "[measured] drag: explicit %ld steps (%.2f s wall), semi-implicit %ld steps "
+      "(%.2f s wall) to T_v = %.2f\n",
+      E.steps, E.seconds, S.steps, S.seconds, Tvs.back());
   for (size_t i = 0; i < Tvs.size(); ++i) {
     double diff = 0;
     for (size_t k = 0; k < E.p[i].size(); ++k)
       diff = std::max(diff, std::fabs(E.p[i][k] - S.p[i][k]) / q);
-    std::printf("[measured] drag: T_v = %.2f: max |p_explicit - p_semi| / q = %.4f %% (vs exact: "
-                "explicit %.3f %%, semi-implicit %.3f %%)\n",
-                Tvs[i], 100 * diff, 100 * E.max_error[i], 100 * S.max_error[i]);
+    std::printf(
+        "[measured] drag: T_v = %.2f: max |p_explicit - p_semi| / q = %.4f %% (vs exact: "
+        "explicit %.3f %%, semi-implicit %.3f %%)\n",
+        Tvs[i], 100 * diff, 100 * E.max_error[i], 100 * S.max_error[i]);
     EXPECT_LT(diff, 0.005) << "T_v = " << Tvs[i];
   }
   // The semi-implicit drag is not bound by the permeability: fewer steps.
@@ -300,7 +304,8 @@ TYPED_TEST(MpmTwoPhase, HydrostaticColumnStays) {
   const double T1 = undrained_period(c);
   const auto t0 = std::chrono::steady_clock::now();
   const Status st = solver.run(3 * T1, T1);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ASSERT_EQ(st, Status::Finished) << describe(st);
   auto ph = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), col.particles.pore_pressure);
   auto sh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), col.particles.solid.stress);
@@ -313,18 +318,19 @@ TYPED_TEST(MpmTwoPhase, HydrostaticColumnStays) {
     if (std::getenv("LSI_TWO_PHASE_DUMP") && q % 2 == 0)
       std::printf("dump depth %.3f p/exact-1 %+.5f eff/exact-1 %+.5f\n", d, ph(q) / exact - 1,
                   sh(q, 1) / eff - 1);
-    if (d > 2 * col.dx) {   // below the top two cells: relative to the local value
+    if (d > 2 * col.dx) {  // below the top two cells: relative to the local value
       err_rel = std::max(err_rel, std::fabs(ph(q) - exact) / exact);
       err_eff = std::max(err_eff, std::fabs(sh(q, 1) - eff) / std::fabs(eff));
     }
   }
   const TwoPhaseEnergyReport e = solver.energy();
-  std::printf("[measured] hydrostatic column: %ld steps (%.2f s wall); max |p - rho_L g d| / "
-              "(rho_L g d) below the top two cells %.3f %%, max |p - rho_L g d| / (rho_L g H) all "
-              "points %.3f %%; effective sigma_yy vs buoyant geostatic below the top two cells "
-              "%.3f %%; kinetic energy %.3g J/m; energy residual %+.4f %%\n",
-              solver.steps(), seconds, 100 * err_rel, 100 * err_base, 100 * err_eff, e.kinetic(),
-              100 * solver.energy_residual(e));
+  std::printf(
+      "[measured] hydrostatic column: %ld steps (%.2f s wall); max |p - rho_L g d| / "
+      "(rho_L g d) below the top two cells %.3f %%, max |p - rho_L g d| / (rho_L g H) all "
+      "points %.3f %%; effective sigma_yy vs buoyant geostatic below the top two cells "
+      "%.3f %%; kinetic energy %.3g J/m; energy residual %+.4f %%\n",
+      solver.steps(), seconds, 100 * err_rel, 100 * err_base, 100 * err_eff, e.kinetic(),
+      100 * solver.energy_residual(e));
   // The brief's tolerance, 2 %: of the local hydrostatic pressure below the top two cells, and of
   // the base pressure everywhere. The free surface has a boundary layer of the pore pressure (as
   // the base had before the wall correction): the drained surface is the natural condition p = 0
@@ -371,10 +377,10 @@ TYPED_TEST(MpmTwoPhase, WallForceCarriesTheWeight) {
     }
     fx /= wt;
     fy /= wt;
-    std::printf("[measured] hydrostatic column, wall correction %s: mean wall force on the walls "
-                "x %+.4e, y %+.6e N/m against -weight %.6e N/m (%+.3f %%); %ld steps\n",
-                corrected ? "on" : "off", fx, fy, -weight, 100 * (-fy / weight - 1),
-                solver.steps());
+    std::printf(
+        "[measured] hydrostatic column, wall correction %s: mean wall force on the walls "
+        "x %+.4e, y %+.6e N/m against -weight %.6e N/m (%+.3f %%); %ld steps\n",
+        corrected ? "on" : "off", fx, fy, -weight, 100 * (-fy / weight - 1), solver.steps());
     // 0.1 %: ten times the larger of the measured differences (2e-6 with the correction, 1.0e-4
     // without: what the window leaves of the higher undrained modes). Before wall_force()
     // included the mirror share, the corrected column's walls carried 12.5 % less than its
@@ -444,7 +450,8 @@ BlockOnWall saturated_block_on_wall(TwoPhaseSettings s) {
     auto vs = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), pts.solid.velocity);
     if (solver.time() > 0.05)
       for (int q = 0; q < pts.count; ++q)
-        r.max_speed_after_0_05_s = std::max(r.max_speed_after_0_05_s, std::hypot(vs(q, 0), vs(q, 1)));
+        r.max_speed_after_0_05_s =
+            std::max(r.max_speed_after_0_05_s, std::hypot(vs(q, 0), vs(q, 1)));
   }
   r.momentum_after = momentum();
   const TwoPhaseEnergyReport e = solver.energy();
@@ -462,14 +469,14 @@ TYPED_TEST(MpmTwoPhase, StabilisedBlockHitsWall) {
   s.free_surface_fill = 0.7;
   const BlockOnWall r = saturated_block_on_wall<TypeParam>(s);
   const double p0 = r.momentum_before, p1 = r.momentum_after, v0 = kBlockSpeed;
-  std::printf("[measured] stabilised block on a wall: %ld steps, momentum %.6g -> %.6g, wall "
-              "impulse %.6g (balance %.2e), max speed after 0.05 s %.3f v0, viscous + drainage "
-              "dissipation %.4g J/m of %.4g, energy residual %+.3f %%\n",
-              r.steps, p0, p1, r.impulse, (p0 - p1 - r.impulse) / p0,
-              r.max_speed_after_0_05_s / v0, r.viscous,
-              0.5 * (2600 * 0.5 + 1000 * 0.5) * 8 * v0 * v0, 100 * r.residual);
-  EXPECT_NEAR(p0 - p1, r.impulse, 1e-9 * std::fabs(p0));   // eq. 26 is the momentum change
-  EXPECT_GT(p0 - p1, 0.5 * p0);                            // the wall did stop the block
+  std::printf(
+      "[measured] stabilised block on a wall: %ld steps, momentum %.6g -> %.6g, wall "
+      "impulse %.6g (balance %.2e), max speed after 0.05 s %.3f v0, viscous + drainage "
+      "dissipation %.4g J/m of %.4g, energy residual %+.3f %%\n",
+      r.steps, p0, p1, r.impulse, (p0 - p1 - r.impulse) / p0, r.max_speed_after_0_05_s / v0,
+      r.viscous, 0.5 * (2600 * 0.5 + 1000 * 0.5) * 8 * v0 * v0, 100 * r.residual);
+  EXPECT_NEAR(p0 - p1, r.impulse, 1e-9 * std::fabs(p0));  // eq. 26 is the momentum change
+  EXPECT_GT(p0 - p1, 0.5 * p0);                           // the wall did stop the block
   EXPECT_LT(r.max_speed_after_0_05_s, 1.5 * v0);
   EXPECT_GE(r.viscous, 0.0);
   // Measured -10.1 %, of which -9.4 % is APIC's transfer loss (the same block without the
@@ -494,11 +501,12 @@ TYPED_TEST(MpmTwoPhase, FlipPicTransferConservesMomentumAndOrdersTheLosses) {
   const std::pair<const char*, const BlockOnWall*> runs[] = {
       {"APIC", &apic}, {"FLIP", &flip}, {"FLIP 0.95", &blend}, {"PIC", &pic}};
   for (const auto& [name, r] : runs) {
-    std::printf("[measured] saturated block on a wall, %s: %ld steps, momentum %.6g -> %.6g, "
-                "wall impulse %.6g (balance %.2e), energy residual %+.2f %%\n",
-                name, r->steps, r->momentum_before, r->momentum_after, r->impulse,
-                (r->momentum_before - r->momentum_after - r->impulse) / r->momentum_before,
-                100 * r->residual);
+    std::printf(
+        "[measured] saturated block on a wall, %s: %ld steps, momentum %.6g -> %.6g, "
+        "wall impulse %.6g (balance %.2e), energy residual %+.2f %%\n",
+        name, r->steps, r->momentum_before, r->momentum_after, r->impulse,
+        (r->momentum_before - r->momentum_after - r->impulse) / r->momentum_before,
+        100 * r->residual);
     // Every transfer conserves momentum: P2G sums the points' momenta, the FLIP increment adds
     // the grid's change, so the wall's impulse (eq. 26) is the momentum change to round-off
     // (as StabilisedBlockHitsWall: 1e-9 of the momentum).
@@ -506,7 +514,7 @@ TYPED_TEST(MpmTwoPhase, FlipPicTransferConservesMomentumAndOrdersTheLosses) {
                 1e-9 * std::fabs(r->momentum_before))
         << name;
     EXPECT_GT(r->momentum_before - r->momentum_after, 0.5 * r->momentum_before) << name;
-    EXPECT_LE(r->residual, 0.01) << name;   // no energy created (1 %: the explicit integration)
+    EXPECT_LE(r->residual, 0.01) << name;  // no energy created (1 %: the explicit integration)
   }
   // The transfers' own losses (the block rebounds elastically, so the residual is mostly what
   // the transfers lose), ordered as the single-phase ones (docs/vv/accuracy.md): PIC, which smooths

@@ -28,10 +28,18 @@
 #include "kernels/mpm/two_phase/two_phase_builder.hpp"
 #include "kernels/mpm/two_phase/two_phase_solver.hpp"
 #include "support/backends.hpp"
+#include "support/tolerances.hpp"
 
 namespace {
 using namespace lsi::mpm;
 using namespace lsi::mpm::two_phase;
+using lsi::test::kTwoRoutesRel;
+
+// The viscous work, a sum over all points in another order in the two reductions: round-off of
+// many additions, relative.
+constexpr double kReorderedSumRel = 1e-9;
+// Pa m^2: an absolute floor for the n V p integral's comparison, should the integral be near zero.
+constexpr double kIntegralFloorAbs = 1e-9;
 
 constexpr double kG = 9.81;
 
@@ -48,7 +56,7 @@ struct CollapsingColumn {
   TwoPhaseSettings settings;
   TwoPhaseGrid<Mem> grid;
   TwoPhaseParticles<Mem> particles;
-  double lo[2] = {0.0, 0.0}, hi[2] = {3.0, 2.0};   // the grid, m
+  double lo[2] = {0.0, 0.0}, hi[2] = {3.0, 2.0};  // the grid, m
 
   CollapsingColumn() {
     skeleton.model = Material::Model::MohrCoulomb;
@@ -145,10 +153,10 @@ TYPED_TEST(MpmTwoPhaseKernels, AtomicAndBufferedP2GGiveTheSameGrid) {
   };
   for (const Tiling tiling : {Tiling{0, 0}, Tiling{128, 0}, Tiling{12, 30}}) {
     SCOPED_TRACE("tiles of " + std::to_string(tiling.points) + " points");
-    if (tiling.points > 0 && !TwoPhaseScatter<Exec, true>::atomic) continue;   // Serial: none
+    if (tiling.points > 0 && !TwoPhaseScatter<Exec, true>::atomic) continue;  // Serial: none
     TwoPhaseGrid<Mem> atomic_grid(c.lo, c.hi, c.grid.dx());
     TwoPhaseScatter<Exec, true> atomic(atomic_grid.solid);
-    atomic.use_tiles(tiling.points);   // at any number of points (800 here)
+    atomic.use_tiles(tiling.points);  // at any number of points (800 here)
     if (tiling.nodes > 0) atomic.tile_nodes = tiling.nodes;
     two_phase_p2g(c.particles, atomic_grid, atomic, g, c.liquid.density, kG, &c.walls, &c.walls);
 
@@ -177,10 +185,10 @@ TYPED_TEST(MpmTwoPhaseKernels, AtomicAndBufferedP2GGiveTheSameGrid) {
     for (const Field& f : fields) {
       double largest = 0.0;
       for (double v : f.buffered) largest = std::max(largest, std::fabs(v));
-      EXPECT_GT(largest, 0.0) << f.name;   // every field has content (the column moves)
+      EXPECT_GT(largest, 0.0) << f.name;  // every field has content (the column moves)
       // The same terms added in another order: round-off of a few additions, 1e-12 of the
       // largest nodal value.
-      EXPECT_LT(relative_difference(f.buffered, f.atomic), 1e-12) << f.name;
+      EXPECT_LT(relative_difference(f.buffered, f.atomic), kTwoRoutesRel) << f.name;
     }
   }
 }
@@ -215,7 +223,7 @@ TYPED_TEST(MpmTwoPhaseKernels, FusedPointPassMatchesTheSeparateKernels) {
   work.plastic = true;
   work.pore_pressure = true;
   work.constants = {c.liquid.density, c.liquid.bulk_modulus, kG,
-                    viscosity.linear, viscosity.quadratic, dx};
+                    viscosity.linear, viscosity.quadratic,   dx};
   const TwoPhaseG2PReport b =
       two_phase_g2p_update<Exec>(fused, c.grid, dt, materials, work, &c.walls, &c.walls);
 
@@ -245,7 +253,7 @@ TYPED_TEST(MpmTwoPhaseKernels, FusedPointPassMatchesTheSeparateKernels) {
       {"volumetric rate", values(separate.volumetric_rate), values(fused.volumetric_rate)},
       {"viscous pressure", values(separate.viscous_pressure), values(fused.viscous_pressure)}};
   for (const Field& field : fields)
-    EXPECT_LT(relative_difference(field.separate, field.fused), 1e-12) << field.name;
+    EXPECT_LT(relative_difference(field.separate, field.fused), kTwoRoutesRel) << field.name;
   // The column yields and compresses somewhere: the plastic and viscous branches ran.
   double plastic = 0.0, viscous_pressure = 0.0;
   for (double v : fields[6].fused) plastic = std::max(plastic, v);
@@ -255,14 +263,14 @@ TYPED_TEST(MpmTwoPhaseKernels, FusedPointPassMatchesTheSeparateKernels) {
 
   EXPECT_EQ(a.health.non_finite, b.health.non_finite);
   EXPECT_EQ(a.health.outside, b.health.outside);
-  EXPECT_NEAR(a.health.max_speed, b.health.max_speed, 1e-12 * a.health.max_speed);
-  EXPECT_NEAR(a.load_work, b.load_work, 1e-12 * std::fabs(a.load_work) + 1e-300);
+  EXPECT_NEAR(a.health.max_speed, b.health.max_speed, kTwoRoutesRel * a.health.max_speed);
+  EXPECT_NEAR(a.load_work, b.load_work, kTwoRoutesRel * std::fabs(a.load_work) + 1e-300);
   // The viscous work is a sum over the points: their order differs between the two reductions.
-  EXPECT_NEAR(viscous_a, b.viscous_work, 1e-9 * std::fabs(viscous_a));
+  EXPECT_NEAR(viscous_a, b.viscous_work, kReorderedSumRel * std::fabs(viscous_a));
   EXPECT_NE(viscous_a, 0.0);
-  EXPECT_NEAR(limits_a.wave_speed, b.limits.wave_speed, 1e-12 * limits_a.wave_speed);
+  EXPECT_NEAR(limits_a.wave_speed, b.limits.wave_speed, kTwoRoutesRel * limits_a.wave_speed);
   EXPECT_NEAR(limits_a.permeability_dt, b.limits.permeability_dt,
-              1e-12 * limits_a.permeability_dt);
+              kTwoRoutesRel * limits_a.permeability_dt);
 }
 
 TYPED_TEST(MpmTwoPhaseKernels, CellMeanPorePressureRemovesTheCheckerboard) {
@@ -272,9 +280,12 @@ TYPED_TEST(MpmTwoPhaseKernels, CellMeanPorePressureRemovesTheCheckerboard) {
   // A smooth field (hydrostatic in y) plus +-50 kPa alternating from point to point: 2 x 2 points
   // per cell, numbered along rows, so each cell holds two of each sign.
   auto p_host = Kokkos::create_mirror_view(c.particles.pore_pressure);
-  const auto x_host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.particles.solid.position);
-  const auto n_host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.particles.porosity);
-  const auto v_host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.particles.solid.volume);
+  const auto x_host =
+      Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.particles.solid.position);
+  const auto n_host =
+      Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.particles.porosity);
+  const auto v_host =
+      Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.particles.solid.volume);
   const double dx = c.grid.dx();
   for (int q = 0; q < c.particles.count; ++q) {
     // The point's column and row on the half-cell lattice (the column has not moved yet).
@@ -286,7 +297,8 @@ TYPED_TEST(MpmTwoPhaseKernels, CellMeanPorePressureRemovesTheCheckerboard) {
   Kokkos::View<double*, Mem> mean("mean", c.particles.count);
   cell_mean_pore_pressure<Exec>(c.particles, c.grid, mean);
   const auto m_host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), mean);
-  const auto p_after = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.particles.pore_pressure);
+  const auto p_after =
+      Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), c.particles.pore_pressure);
   double integral_before = 0.0, integral_after = 0.0, worst = 0.0;
   for (int q = 0; q < c.particles.count; ++q) {
     EXPECT_EQ(p_after(q), p_host(q)) << "the points' own field must not change, point " << q;
@@ -296,9 +308,10 @@ TYPED_TEST(MpmTwoPhaseKernels, CellMeanPorePressureRemovesTheCheckerboard) {
     // smooth field's mean over the cell, within its variation across one cell (1e4 Pa/m x dx).
     worst = std::max(worst, std::fabs(m_host(q) - 1e4 * (1.1 - x_host(q, 1))));
   }
-  EXPECT_LT(worst, 1e4 * dx);   // the checkerboard's 5e4 Pa would be far above this
+  EXPECT_LT(worst, 1e4 * dx);  // the checkerboard's 5e4 Pa would be far above this
   // A projection: the n V weighted integral is kept, to round-off of the sums.
-  EXPECT_NEAR(integral_after, integral_before, 1e-12 * std::fabs(integral_before) + 1e-9);
+  EXPECT_NEAR(integral_after, integral_before,
+              kTwoRoutesRel * std::fabs(integral_before) + kIntegralFloorAbs);
 }
 
 TEST(SaturatedWaveSpeed, IsTheFastestWaveOfTheTwoPhases) {
@@ -317,11 +330,10 @@ TEST(SaturatedWaveSpeed, IsTheFastestWaveOfTheTwoPhases) {
         const Eigen::Vector2d inv_sqrt_m(1 / std::sqrt(mS), 1 / std::sqrt(mL));
         // symmetric form m^-1/2 K m^-1/2: the same eigenvalues c^2, computed stably
         const Eigen::Matrix2d A = inv_sqrt_m.asDiagonal() * K * inv_sqrt_m.asDiagonal();
-        const double c_max = std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(A)
-                                           .eigenvalues()
-                                           .maxCoeff());
+        const double c_max =
+            std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(A).eigenvalues().maxCoeff());
         // Both are a few roundings of the same numbers: 1e-12 relative.
-        EXPECT_NEAR(saturated_wave_speed(M, rho_S, n, rho_L, K_L), c_max, 1e-12 * c_max)
+        EXPECT_NEAR(saturated_wave_speed(M, rho_S, n, rho_L, K_L), c_max, kTwoRoutesRel * c_max)
             << "M " << M << " K_L " << K_L << " n " << n;
         ++cases;
       }

@@ -40,16 +40,16 @@ void expect_each_node_once(const NodeBox& box) {
 }
 
 TEST(NodeItems, WholeRowsVisitEachNodeOnce) {
-  EXPECT_EQ(NodeItemsOf<true>(NodeBox{3, 9, 2, 5}).count(), 4);   // one item per row
+  EXPECT_EQ(NodeItemsOf<true>(NodeBox{3, 9, 2, 5}).count(), 4);  // one item per row
   expect_each_node_once<true>(NodeBox{3, 9, 2, 5});
-  expect_each_node_once<true>(NodeBox{0, 0, 7, 7});                // a single node
+  expect_each_node_once<true>(NodeBox{0, 0, 7, 7});  // a single node
 }
 
 TEST(NodeItems, SingleNodesVisitEachNodeOnce) {
   EXPECT_EQ(NodeItemsOf<false>(NodeBox{3, 9, 2, 5}).count(), 28);  // one item per node
   expect_each_node_once<false>(NodeBox{3, 9, 2, 5});
   expect_each_node_once<false>(NodeBox{0, 0, 7, 7});
-  expect_each_node_once<false>(NodeBox{5, 5, 0, 40});               // one column
+  expect_each_node_once<false>(NodeBox{5, 5, 0, 40});  // one column
 }
 
 TEST(NodeItems, AnEmptyBoxHasNoItems) {

@@ -94,7 +94,8 @@ inline void expect_no_nan(const MethodResult& r, const std::string& where,
   }
   EXPECT_TRUE(std::isfinite(r.peak_force)) << where << ": peak_force = " << r.peak_force;
   EXPECT_TRUE(std::isfinite(r.rise_time)) << where << ": rise_time = " << r.rise_time;
-  EXPECT_TRUE(std::isfinite(r.impact_duration)) << where << ": impact_duration = " << r.impact_duration;
+  EXPECT_TRUE(std::isfinite(r.impact_duration))
+      << where << ": impact_duration = " << r.impact_duration;
   if (allowed.infinite_final_displacement) {
     if (has_final_displacement(r.end_state))
       EXPECT_FALSE(std::isnan(r.final_displacement)) << where << ": final_displacement is NaN";
@@ -102,7 +103,8 @@ inline void expect_no_nan(const MethodResult& r, const std::string& where,
       EXPECT_TRUE(std::isnan(r.final_displacement))
           << where << ": a run cut short while the barrier slid has no final displacement, got "
           << r.final_displacement;
-    EXPECT_FALSE(r.final_displacement < 0.0) << where << ": final_displacement = " << r.final_displacement;
+    EXPECT_FALSE(r.final_displacement < 0.0)
+        << where << ": final_displacement = " << r.final_displacement;
   } else {
     EXPECT_TRUE(std::isfinite(r.final_displacement))
         << where << ": final_displacement = " << r.final_displacement;
@@ -116,10 +118,12 @@ inline void expect_no_nan(const MethodResult& r, const std::string& where,
   }
   for (const auto& [name, v] : named_scalars(r)) {
     if (name == "barrier_stop_time" && std::isinf(v)) {
-      EXPECT_TRUE(std::isinf(r.final_displacement)) << where << ": stops never, displacement finite";
+      EXPECT_TRUE(std::isinf(r.final_displacement))
+          << where << ": stops never, displacement finite";
       continue;
     }
-    if ((name == "min_overturning_safety" || name == "min_sliding_safety") && v == INFINITY) continue;
+    if ((name == "min_overturning_safety" || name == "min_sliding_safety") && v == INFINITY)
+      continue;
     EXPECT_TRUE(std::isfinite(v)) << where << ": " << name << " = " << v;
   }
 }

@@ -29,7 +29,7 @@ using lsi::MethodResult;
 
 constexpr double kG = 9.81;
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kRound = 1e-9;   // relative round-off of the closed forms
+constexpr double kRound = 1e-9;  // relative round-off of the closed forms
 
 // L1-B1 of the reference study (h 2 m, v 6 m/s, 1800 kg/m^3, 6 body squares: m1 = 57600 kg/m,
 // L1,0 = 16 m) against a free barrier given by its mass (so that the geometry can change without
@@ -94,13 +94,15 @@ void expect_non_increasing(const std::vector<double>& a, const std::vector<doubl
                            const std::string& what) {
   for (size_t i = 1; i < a.size(); ++i)
     ASSERT_LE(a[i], a[i - 1] * (1 + kRound) + 1e-12)
-        << what << " rises from " << a[i - 1] << " at " << x[i - 1] << " to " << a[i] << " at " << x[i];
+        << what << " rises from " << a[i - 1] << " at " << x[i - 1] << " to " << a[i] << " at "
+        << x[i];
 }
 void expect_non_decreasing(const std::vector<double>& a, const std::vector<double>& x,
                            const std::string& what) {
   for (size_t i = 1; i < a.size(); ++i)
     ASSERT_GE(a[i], a[i - 1] * (1 - kRound) - 1e-12)
-        << what << " falls from " << a[i - 1] << " at " << x[i - 1] << " to " << a[i] << " at " << x[i];
+        << what << " falls from " << a[i - 1] << " at " << x[i - 1] << " to " << a[i] << " at "
+        << x[i];
 }
 
 // Barrier mass, m2/m1 from 1e-2 to 1e4 on a dense log grid. Empirical: N(t) does not depend on m2,
@@ -112,7 +114,7 @@ void expect_non_decreasing(const std::vector<double>& a, const std::vector<doubl
 // empirical peak does not depend on m2.
 TEST(ClosedFormStability, DisplacementNonIncreasingInBarrierMass) {
   const double m1 = m1_of(kBase);
-  const std::vector<double> ratios = log_grid(1e-2, 1e4, 121);   // 20 per decade
+  const std::vector<double> ratios = log_grid(1e-2, 1e4, 121);  // 20 per decade
   int both_regimes_e = 0, both_regimes_a = 0;
   for (double mu_b : {0.0, 0.1, 0.5, 1.0, 2.0}) {
     for (double beta : {30.0, 60.0, 80.0, 90.0}) {
@@ -122,8 +124,8 @@ TEST(ClosedFormStability, DisplacementNonIncreasingInBarrierMass) {
         j["barrier"]["mass_kg_per_m"] = q * m1;
         j["barrier"]["base_friction"] = mu_b;
         j["barrier"]["face_angle_deg"] = beta;
-        const std::string where = "mu_b " + std::to_string(mu_b) + " beta " +
-                                  std::to_string(beta) + " m2/m1 " + std::to_string(q);
+        const std::string where = "mu_b " + std::to_string(mu_b) + " beta " + std::to_string(beta) +
+                                  " m2/m1 " + std::to_string(q);
         const Both b = run_checked(j, where);
         if (HasFailure()) return;
         de.push_back(b.empirical.final_displacement);
@@ -131,7 +133,8 @@ TEST(ClosedFormStability, DisplacementNonIncreasingInBarrierMass) {
         pe.push_back(b.empirical.peak_force);
         pa.push_back(b.analytical.peak_force);
       }
-      const std::string tag = " (mu_b " + std::to_string(mu_b) + ", beta " + std::to_string(beta) + ")";
+      const std::string tag =
+          " (mu_b " + std::to_string(mu_b) + ", beta " + std::to_string(beta) + ")";
       expect_non_increasing(de, ratios, "empirical final displacement vs m2" + tag);
       expect_non_increasing(da, ratios, "analytical final displacement vs m2" + tag);
       expect_non_decreasing(pa, ratios, "analytical peak force vs m2" + tag);
@@ -176,7 +179,8 @@ TEST(ClosedFormStability, DisplacementNonIncreasingInBaseFriction) {
           }
         }
       }
-      const std::string tag = " (m2/m1 " + std::to_string(q) + ", beta " + std::to_string(beta) + ")";
+      const std::string tag =
+          " (m2/m1 " + std::to_string(q) + ", beta " + std::to_string(beta) + ")";
       expect_non_increasing(de, mus, "empirical final displacement vs base friction" + tag);
       expect_non_increasing(da, mus, "analytical final displacement vs base friction" + tag);
     }
@@ -232,12 +236,14 @@ TEST(ClosedFormStability, PeakForceNonDecreasingInThickness) {
       if (HasFailure()) return;
       pe.push_back(b.empirical.peak_force);
       pa.push_back(b.analytical.peak_force);
-      j["barrier"]["fixed"] = false;   // free: finite only
+      j["barrier"]["fixed"] = false;  // free: finite only
       run_checked(j, "thickness sweep, free barrier");
       if (HasFailure()) return;
     }
-    expect_non_decreasing(pe, hs, "empirical peak force vs thickness (v " + std::to_string(v) + ")");
-    expect_non_decreasing(pa, hs, "analytical peak force vs thickness (v " + std::to_string(v) + ")");
+    expect_non_decreasing(pe, hs,
+                          "empirical peak force vs thickness (v " + std::to_string(v) + ")");
+    expect_non_decreasing(pa, hs,
+                          "analytical peak force vs thickness (v " + std::to_string(v) + ")");
   }
 }
 
@@ -262,7 +268,8 @@ TEST(ClosedFormStability, FaceAngleFromLowTo90Degrees) {
         da.push_back(b.analytical.final_displacement);
         pe.push_back(b.empirical.peak_force);
       }
-      const std::string tag = " (mu_b " + std::to_string(mu_b) + ", m2/m1 " + std::to_string(q) + ")";
+      const std::string tag =
+          " (mu_b " + std::to_string(mu_b) + ", m2/m1 " + std::to_string(q) + ")";
       expect_non_decreasing(da, betas, "analytical final displacement vs face angle" + tag);
       expect_non_decreasing(pe, betas, "empirical peak force vs face angle" + tag);
     }
@@ -288,7 +295,8 @@ TEST(ClosedFormStability, LambdaNearItsBounds) {
         const double mu = fixed ? m1 : m1 * q * m1 / (m1 + q * m1);
         const MethodResult& a = b.analytical;
         pa.push_back(a.peak_force);
-        EXPECT_NEAR(a.peak_force * lambda, 0.75 * mu * v0 * v0 / L, kRound * 0.75 * mu * v0 * v0 / L);
+        EXPECT_NEAR(a.peak_force * lambda, 0.75 * mu * v0 * v0 / L,
+                    kRound * 0.75 * mu * v0 * v0 / L);
         EXPECT_NEAR(a.impact_duration, 8.0 / 3.0 * lambda * L / v0, kRound * lambda * L / v0);
         EXPECT_NEAR(a.scalars.impulse.value(), mu * v0, kRound * mu * v0);
       }
@@ -327,7 +335,8 @@ TEST(ClosedFormStability, TauNearItsBounds) {
           const double m1 = m1_of(j), vn = 6.0 * std::sin(80.0 * kPi / 180.0);
           // Impulse over [0, T2] of the empirical pulse: rise and decay (the static residual
           // F_stat only starts at T2).
-          EXPECT_NEAR(b.empirical.scalars.impulse.value(), m1 * vn, kRound * m1 * vn) << "tau " << tau;
+          EXPECT_NEAR(b.empirical.scalars.impulse.value(), m1 * vn, kRound * m1 * vn)
+              << "tau " << tau;
           const double mu = m1 * q * m1 / (m1 + q * m1);
           EXPECT_NEAR(b.analytical.scalars.impulse.value(), mu * 6.0, kRound * mu * 6.0);
         }
@@ -372,7 +381,8 @@ TEST(ClosedFormStability, AllExtremesTogetherStayFinite) {
     for (const MethodResult* r : {&b.empirical, &b.analytical}) {
       const double F = r->peak_force;
       const double F_res = r->method == "empirical" ? r->scalars.peak_force_static.value() : 0.0;
-      if (std::abs(c * F - friction) <= 1e-9 * (std::abs(c * F) + friction)) continue;   // on the edge
+      if (std::abs(c * F - friction) <= 1e-9 * (std::abs(c * F) + friction))
+        continue;  // on the edge
       const bool moves = c > 0 && c * F > friction;
       if (!moves) {
         EXPECT_EQ(r->final_displacement, 0.0) << where << " " << r->method;
@@ -401,7 +411,8 @@ TEST(ClosedFormStability, MaterialExtremesDoNotChangeTheClosedForms) {
         R"({"landslide": {"material": {"liquid_bulk_modulus_mpa": 2200}}})",
         R"({"landslide": {"material": {"hydraulic_conductivity_m_s": 1e-8}}})"}) {
     const Both b = run_checked(patched(kBase, patch), patch);
-    for (auto [x, y] : {std::pair{&ref.empirical, &b.empirical}, std::pair{&ref.analytical, &b.analytical}}) {
+    for (auto [x, y] :
+         {std::pair{&ref.empirical, &b.empirical}, std::pair{&ref.analytical, &b.analytical}}) {
       EXPECT_EQ(x->peak_force, y->peak_force) << patch;
       EXPECT_EQ(x->final_displacement, y->final_displacement) << patch;
       EXPECT_EQ(x->force, y->force) << patch;

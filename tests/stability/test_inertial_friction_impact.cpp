@@ -38,8 +38,10 @@ json l1_b1_dry(double friction_angle_deg) {
 json with_inertial_friction(double reference_inertial_number) {
   json j = l1_b1_dry(20);
   j["landslide"]["material"]["inertial_friction"] = {
-      {"limit_friction_angle_deg", 35}, {"reference_inertial_number", reference_inertial_number},
-      {"grain_diameter_mm", 10}, {"grain_density_kg_m3", 2650}};
+      {"limit_friction_angle_deg", 35},
+      {"reference_inertial_number", reference_inertial_number},
+      {"grain_diameter_mm", 10},
+      {"grain_density_kg_m3", 2650}};
   return j;
 }
 

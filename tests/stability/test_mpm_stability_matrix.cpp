@@ -38,8 +38,8 @@
 namespace {
 using namespace lsi::stability;
 
-constexpr double kG = 9.81;             // m/s^2, gravity and the g of the conductivity k
-constexpr double kRhoWater = 1000.0;    // kg/m^3, the impact scenes' pore liquid
+constexpr double kG = 9.81;           // m/s^2, gravity and the g of the conductivity k
+constexpr double kRhoWater = 1000.0;  // kg/m^3, the impact scenes' pore liquid
 
 // Energy residual bounds (relative: (total - initial) / (largest kinetic + stored energy +
 // dissipated work + |potential change|), Solver::energy_residual). A stable explicit run does not
@@ -55,10 +55,10 @@ constexpr double kResidualLow = -0.30;
 
 // What the barrier must do, from the physics of each case.
 enum class BarrierExpect {
-  Fixed,        // "fixed": true: displacement identically 0
-  Sticks,       // free, but base friction holds it: displacement exactly 0
-  NeverStops,   // free, still sliding at the end of the run (no final displacement)
-  Stops         // free, slides and comes to rest: finite displacement > 0
+  Fixed,       // "fixed": true: displacement identically 0
+  Sticks,      // free, but base friction holds it: displacement exactly 0
+  NeverStops,  // free, still sliding at the end of the run (no final displacement)
+  Stops        // free, slides and comes to rest: finite displacement > 0
 };
 
 // Which limit sets the time step.
@@ -66,10 +66,10 @@ enum class StepLimit { Courant, Permeability };
 
 struct MatrixCase {
   const char* name;
-  const char* patch;   // merge patch on the base scene (kBase)
+  const char* patch;  // merge patch on the base scene (kBase)
   BarrierExpect barrier;
   StepLimit limit;
-  const char* expectation;   // why, printed with the table line
+  const char* expectation;  // why, printed with the table line
   bool may_reach_domain_end = false;
 };
 
@@ -133,7 +133,8 @@ const MatrixCase kCases[] = {
     {"fast_dry", R"({"landslide": {"velocity_m_s": 30}, "methods": {"mpm": {"phases": "dry",
                      "end_time_s": 0.3}}})",
      BarrierExpect::Fixed, StepLimit::Courant, "v0 = 30 m/s, v0 / c = 0.8: overtops"},
-    {"fast_saturated", R"({"landslide": {"velocity_m_s": 30}, "methods": {"mpm": {"end_time_s": 0.06}}})",
+    {"fast_saturated",
+     R"({"landslide": {"velocity_m_s": 30}, "methods": {"mpm": {"end_time_s": 0.06}}})",
      BarrierExpect::Fixed, StepLimit::Courant, "v0 = 30 m/s saturated: start of impact"},
     {"thin_dry", R"({"landslide": {"thickness_m": 0.2, "shape": {"body_squares": 10}},
                     "methods": {"mpm": {"phases": "dry", "cell_size_m": 0.05}}})",
@@ -151,7 +152,8 @@ const MatrixCase kCases[] = {
          "barrier": {"fixed": false, "density_kg_m3": null, "mass_kg_per_m": 8.64},
          "methods": {"mpm": {"phases": "dry", "cell_size_m": 0.05, "end_time_s": 0.15}}})",
      BarrierExpect::NeverStops, StepLimit::Courant, "m2/m1 = 1e-2 at 30 m/s: carried away", true},
-    {"light_barrier_dry", R"({"barrier": {"fixed": false, "density_kg_m3": null, "mass_kg_per_m": 72},
+    {"light_barrier_dry",
+     R"({"barrier": {"fixed": false, "density_kg_m3": null, "mass_kg_per_m": 72},
                              "methods": {"mpm": {"phases": "dry"}}})",
      BarrierExpect::NeverStops, StepLimit::Courant, "m2/m1 = 1e-2: pushed along", true},
     {"light_barrier_saturated", R"({"barrier": {"fixed": false, "density_kg_m3": null,
@@ -190,10 +192,11 @@ const MatrixCase kCases[] = {
                                                "mass_kg_per_m": 7200},
                                   "methods": {"mpm": {"end_time_s": 1.2}}})",
      BarrierExpect::Stops, StepLimit::Courant, "m2 = m1, tan(delta_b) = 0.5: slides, stops"},
-    {"rough_flow_base_dry", R"({"landslide": {"base_friction": 1.0}, "methods": {"mpm": {"phases": "dry"}}})",
+    {"rough_flow_base_dry",
+     R"({"landslide": {"base_friction": 1.0}, "methods": {"mpm": {"phases": "dry"}}})",
      BarrierExpect::Fixed, StepLimit::Courant, "flow-base Coulomb 1.0"},
-    {"rough_flow_base_saturated", R"({"landslide": {"base_friction": 1.0}})",
-     BarrierExpect::Fixed, StepLimit::Courant, "flow-base Coulomb 1.0"},
+    {"rough_flow_base_saturated", R"({"landslide": {"base_friction": 1.0}})", BarrierExpect::Fixed,
+     StepLimit::Courant, "flow-base Coulomb 1.0"},
     {"face_30deg_dry", R"({"barrier": {"face_angle_deg": 30, "base_width_m": 4.5},
                           "methods": {"mpm": {"phases": "dry"}}})",
      BarrierExpect::Fixed, StepLimit::Courant, "beta = 30 deg: runs up a ramp"},
@@ -211,7 +214,7 @@ const MatrixCase kCases[] = {
 // Wave speeds of the landslide's material, derived here from the scene (not from the solver):
 // the range over a porosity band, since a point's porosity follows its volume during the run.
 struct WaveSpeeds {
-  double low = 0.0, high = 0.0;   // m/s
+  double low = 0.0, high = 0.0;  // m/s
 };
 
 // Constrained (P-wave) modulus of the skeleton in plane strain, Pa.
@@ -247,7 +250,7 @@ WaveSpeeds wave_speeds(const lsi::Scene& s, bool saturated) {
     return {c, c};
   }
   const double n0 = m.porosity, K_l = 1e6 * m.liquid_bulk_modulus_mpa;
-  const double rho_s = (rho_m - n0 * kRhoWater) / (1 - n0);   // grain density, constant
+  const double rho_s = (rho_m - n0 * kRhoWater) / (1 - n0);  // grain density, constant
   WaveSpeeds w{std::numeric_limits<double>::infinity(), 0.0};
   for (int i = 0; i <= 20; ++i) {
     const double n = std::clamp(n0 - kPorosityBand + 2 * kPorosityBand * i / 20, 0.01, 0.99);
@@ -303,16 +306,17 @@ TEST_P(MpmStabilityMatrix, RunsCleanly) {
   for (double v : residual) res_min = std::min(res_min, v);
   const auto& ke = r.landslide_kinetic_energy;
   const double ke_lost = ke.empty() ? 0.0 : 1.0 - ke.back() / ke.front();
-  double J = 1.0;   // largest expansion V / V0 (dry; kernels/mpm/time_step.hpp)
+  double J = 1.0;  // largest expansion V / V0 (dry; kernels/mpm/time_step.hpp)
   if (!saturated)
     for (double j : r.series.at("largest_expansion").values) J = std::max(J, j);
   char line[512];
-  std::snprintf(line, sizeof line,
-                "| %s | %s | %ld | %.3g | %.3g | %.3g | %s | %+.4f | %+.4f | %.4g | %.3g | %.2f | %.1f |",
-                k.name, saturated ? "sat" : "dry", out.run().steps, r.run->end_time, dt_min,
-                dt_max, saturated ? "-" : std::to_string(J).substr(0, 5).c_str(), res_min,
-                residual.empty() ? 0.0 : residual.back(), r.peak_force, r.final_displacement,
-                ke_lost * 100, wall);
+  std::snprintf(
+      line, sizeof line,
+      "| %s | %s | %ld | %.3g | %.3g | %.3g | %s | %+.4f | %+.4f | %.4g | %.3g | %.2f | %.1f |",
+      k.name, saturated ? "sat" : "dry", out.run().steps, r.run->end_time, dt_min, dt_max,
+      saturated ? "-" : std::to_string(J).substr(0, 5).c_str(), res_min,
+      residual.empty() ? 0.0 : residual.back(), r.peak_force, r.final_displacement, ke_lost * 100,
+      wall);
   std::cout << "[ matrix ] " << line << "\n[ matrix ]   status: " << out.status()
             << "; expected: " << k.expectation << std::endl;
 
@@ -419,8 +423,7 @@ TEST_P(MpmStabilityMatrix, RunsCleanly) {
     // forces). 1e-9: round-off.
     if (r.scalars.displacement_at_end.value() == 0.0) {
       for (size_t i = 1; i < x.size(); ++i)
-        ASSERT_LE(r.force_horizontal[i],
-                  mu_b * (m2 * kG + r.force_vertical[i]) * (1 + 1e-9) + 1e-9)
+        ASSERT_LE(r.force_horizontal[i], mu_b * (m2 * kG + r.force_vertical[i]) * (1 + 1e-9) + 1e-9)
             << "a stuck barrier under more than its friction at t = " << r.time[i];
     }
     // Without base friction the barrier's momentum is the impulse it received: m2 V(t) =

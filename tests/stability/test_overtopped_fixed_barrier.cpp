@@ -52,13 +52,13 @@ TEST(OvertoppedFixedBarrier, RunsToItsEndCleanly) {
   // P-wave speed of the flow at its initial density: M = E (1 - nu) / ((1 + nu)(1 - 2 nu)).
   const double E = 2e6, nu = 0.25, rho = 1800.0, dx = 0.3125, courant = 0.5;
   const double c0 = std::sqrt(E * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) / rho);
-  const double dt_c0 = courant * dx / c0;   // the step of c0 alone (no flow speed)
+  const double dt_c0 = courant * dx / c0;  // the step of c0 alone (no flow speed)
   const double overtopped = r.series.at("overtopped_volume").values.back();
   const double retained = r.series.at("retained_volume").values.back();
   std::cout << "[ overtopping ] " << out.status() << " at t = " << r.time.back() << " s, "
             << out.run().steps << " steps; smallest step " << dt_min << " s = " << dt_min / dt_c0
-            << " of C dx / c0; energy residual " << res_min << " .. " << res_max
-            << "; overtopped " << overtopped << " m^2, retained " << retained << " m^2\n";
+            << " of C dx / c0; energy residual " << res_min << " .. " << res_max << "; overtopped "
+            << overtopped << " m^2, retained " << retained << " m^2\n";
 
   EXPECT_EQ(out.status(), "finished");
   ASSERT_TRUE(out.finished());
@@ -107,7 +107,7 @@ TEST(OvertoppedFixedBarrier, RunsToItsEndCleanly) {
     EXPECT_LE(leaked[i], interior[i]);
     EXPECT_LE(leaked[i], over[i]);
   }
-  EXPECT_GT(*std::max_element(leaked.begin(), leaked.end()), 0.0);   // points do leak past it
+  EXPECT_GT(*std::max_element(leaked.begin(), leaked.end()), 0.0);  // points do leak past it
   EXPECT_EQ(r.scalars.overtopped_inside_barrier_m2.value(), leaked.back());
 }
 

@@ -17,9 +17,9 @@ namespace {
 using namespace lsi::stability;
 
 json scene(const std::string& phases) {
-  return patched(fast_flow_on_earth_barrier_h4(),
-                 R"({"methods": {"mpm": {"transfer_dissipation": true, "phases": ")" + phases +
-                     R"("}}})");
+  return patched(
+      fast_flow_on_earth_barrier_h4(),
+      R"({"methods": {"mpm": {"transfer_dissipation": true, "phases": ")" + phases + R"("}}})");
 }
 
 class TransferDissipationImpact : public ::testing::TestWithParam<const char*> {};
@@ -35,8 +35,8 @@ TEST_P(TransferDissipationImpact, ExplainsTheEnergyResidual) {
   const double un_max = *std::max_element(unexplained.begin(), unexplained.end());
   const double lost = r.series.at("transfer_dissipation").values.back();
   std::cout << "[ L3-B3 h/4 " << GetParam() << " ] energy residual down to " << res_min
-            << "; transfer dissipation " << lost / 1e6 << " MJ/m; unexplained " << un_min
-            << " .. " << un_max << "\n";
+            << "; transfer dissipation " << lost / 1e6 << " MJ/m; unexplained " << un_min << " .. "
+            << un_max << "\n";
   // The residual is large (measured -4.2 % dry, -16.8 % saturated)...
   EXPECT_LT(res_min, -0.02);
   // ...the transfers lose energy (measured 0.60 and 2.18 MJ/m, against 7.6 MJ/m of initial

@@ -17,7 +17,8 @@ using Backends = ::testing::Types<
     Kokkos::OpenMP
 #endif
 #if defined(KOKKOS_ENABLE_CUDA)
-    , Kokkos::Cuda
+    ,
+    Kokkos::Cuda
 #endif
     >;
 }  // namespace lsi::test

@@ -14,50 +14,53 @@
 namespace lsi::test {
 using namespace lsi::mpm;
 
-
 inline constexpr double kColumnG = 9.81;
 inline constexpr double kColumnPi = 3.14159265358979323846;
 
 // Lube et al. (2005): L_f / L0 (outside the transition 1.8 < a < 2.8).
 inline double lube_runout(double a) { return 1.0 + (a < 2.3 ? 1.2 * a : 1.9 * std::cbrt(a * a)); }
 // Lajeunesse et al. (2005), for the scatter: L_f / L0.
-inline double lajeunesse_runout(double a) { return 1.0 + (a < 2.3 ? 1.8 * a : 2.3 * std::cbrt(a * a)); }
+inline double lajeunesse_runout(double a) {
+  return 1.0 + (a < 2.3 ? 1.8 * a : 2.3 * std::cbrt(a * a));
+}
 
 // Thickness that bounds the resolved deposit body: L0/16, one cell (two points) of the a = 3 grid,
 // fixed in units of L0 so that every resolution measures the same thing (docs/vv/verification.md).
 inline constexpr double kBodyThickness = 1.0 / 16;
 
 struct Collapse {
-  double a = 0, Lf = 0, Hf = 0;   // L_f / L0, H_f / L0
-  double Lbody = 0;               // end of the deposit thicker than kBodyThickness L0, / L0
-  double Lthin = 0;               // the same at a quarter of it (L0/64; resolved from 64 cells)
+  double a = 0, Lf = 0, Hf = 0;  // L_f / L0, H_f / L0
+  double Lbody = 0;              // end of the deposit thicker than kBodyThickness L0, / L0
+  double Lthin = 0;              // the same at a quarter of it (L0/64; resolved from 64 cells)
   // Mass measures of the front (all points carry the same mass): the fraction of the column
   // beyond Lube's run-out and beyond 1.2 times it, and x99 / L0, the point with 1 % beyond it.
   double beyond_law = 0, beyond_law_120 = 0, x99 = 0;
   double residual = 0, t_over_T = 0, right_room = 0;
-  double kinetic_ratio = 0;       // kinetic / released potential energy at the end
-  double plastic_share = 0, boundary_share = 0;   // of the released potential energy
+  double kinetic_ratio = 0;                      // kinetic / released potential energy at the end
+  double plastic_share = 0, boundary_share = 0;  // of the released potential energy
   bool at_rest = false;
   long steps = 0;
   int points = 0;
   double seconds = 0;
   Status status = Status::Running;
-  std::vector<double> deposit;    // final (x - x0, y - y0) / L0 of every point, interleaved
+  std::vector<double> deposit;  // final (x - x0, y - y0) / L0 of every point, interleaved
 };
 
 // The column and its model; the defaults are the test's (see its header).
 struct ColumnSpec {
-  double a = 0.5;              // aspect ratio H0 / L0
+  double a = 0.5;  // aspect ratio H0 / L0
   int cells_per_L0 = 32;
-  double L0 = 1.0;             // m
+  double L0 = 1.0;  // m
   double friction_angle_deg = 30.0;
   double poisson_ratio = 0.3;
-  double base_friction = -2.0; // Coulomb mu of the base; -2: tan(friction angle); -1: no slip
+  // The base: Coulomb friction tan(friction angle) by default, a given Coulomb mu, or no slip.
+  enum class Base { MaterialFriction, Coulomb, NoSlip } base = Base::MaterialFriction;
+  double base_friction = 0.0;  // Coulomb mu with Base::Coulomb
   double room = 1.6;           // the right wall at x0 + room * Lube's run-out (+ 3 cells)
   // mu(I) (kernels/mpm/constitutive/inertial_friction.hpp) when reference_inertial_number > 0:
   // friction_angle_deg is then the static angle.
   double limit_friction_angle_deg = 0.0, reference_inertial_number = 0.0;
-  double grain_diameter = 0.0, grain_density = 0.0;   // m, kg/m^3
+  double grain_diameter = 0.0, grain_density = 0.0;  // m, kg/m^3
   // Print the energy shares every T/16 (the run then stops at T/16 intervals, not T/4: the
   // output times clip the time step, so the deposit differs from the test's by up to 1 %).
   bool trace = false;
@@ -102,11 +105,12 @@ Collapse collapse(const ColumnSpec& spec) {
   R.points = particles.count;
   Boundaries walls;
   walls.left = {true, x0, 0.0};
+  using Base = ColumnSpec::Base;
   walls.bottom = {true, y0,
-                  spec.base_friction == -2.0   ? std::tan(m.friction_angle)
-                  : spec.base_friction == -1.0 ? 0.0
-                                               : spec.base_friction,
-                  false, /*no_slip=*/spec.base_friction == -1.0};
+                  spec.base == Base::MaterialFriction ? std::tan(m.friction_angle)
+                  : spec.base == Base::Coulomb        ? spec.base_friction
+                                                      : 0.0,
+                  false, /*no_slip=*/spec.base == Base::NoSlip};
   const double x_right = grid.upper(0) - 2 * dx;
   walls.right = {true, x_right, 0.0};
   Settings s;
@@ -129,10 +133,11 @@ Collapse collapse(const ColumnSpec& spec) {
     e = solver.energy();
     const double released = e0.potential - e.potential;
     if (spec.trace)
-      std::printf("[energy] t/T %.4f  released/initial potential %.4f  of the released: "
-                  "kinetic %.4f elastic %.4f plastic %.4f wall work %.4f\n",
-                  t / T, released / e0.potential, e.kinetic / released, e.elastic / released,
-                  e.plastic / released, e.boundary / released);
+      std::printf(
+          "[energy] t/T %.4f  released/initial potential %.4f  of the released: "
+          "kinetic %.4f elastic %.4f plastic %.4f wall work %.4f\n",
+          t / T, released / e0.potential, e.kinetic / released, e.elastic / released,
+          e.plastic / released, e.boundary / released);
     if (i % per_check != 0) continue;
     R.kinetic_ratio = e.kinetic / released;
     if (t >= 2 * T && R.kinetic_ratio < 1e-3) {
@@ -195,23 +200,22 @@ Collapse collapse(const ColumnSpec& spec) {
 inline void print(const Collapse& R, const char* backend) {
   const double lube = lube_runout(R.a), laj = lajeunesse_runout(R.a);
   const double h_small = R.a, h_04 = std::pow(R.a, 0.4), h_13 = std::cbrt(R.a);
-  std::printf("[measured] %s a = %.1f (%d points, %ld steps, t = %.2f T, %.2f s, %s): "
-              "L_f/L0 = %.3f vs Lube %.3f (%+.1f %%), Lajeunesse %.3f (%+.1f %%); "
-              "body (>= L0/16 thick) ends at %.3f L0 (%+.1f %% Lube, %+.1f %% Lajeunesse), "
-              "L0/64 thick at %.3f L0; "
-              "H_f/L0 = %.3f vs a %.3f (%+.1f %%), a^0.4 %.3f (%+.1f %%), a^(1/3) %.3f (%+.1f %%); "
-              "mass beyond Lube's run-out %.2f %%, beyond 1.2 times it %.2f %%, 1 %% beyond "
-              "%.3f L0 (%+.1f %% Lube); "
-              "energy residual %+.4f; plastic work %.3f, wall work %.3f of the released potential "
-              "energy; kinetic/released %.1e\n",
-              backend, R.a, R.points, R.steps, R.t_over_T, R.seconds, describe(R.status), R.Lf,
-              lube,
-              100 * (R.Lf / lube - 1), laj, 100 * (R.Lf / laj - 1), R.Lbody,
-              100 * (R.Lbody / lube - 1), 100 * (R.Lbody / laj - 1), R.Lthin, R.Hf, h_small,
-              100 * (R.Hf / h_small - 1), h_04, 100 * (R.Hf / h_04 - 1), h_13,
-              100 * (R.Hf / h_13 - 1), 100 * R.beyond_law, 100 * R.beyond_law_120, R.x99,
-              100 * (R.x99 / lube - 1), R.residual, R.plastic_share, R.boundary_share,
-              R.kinetic_ratio);
+  std::printf(
+      "[measured] %s a = %.1f (%d points, %ld steps, t = %.2f T, %.2f s, %s): "
+      "L_f/L0 = %.3f vs Lube %.3f (%+.1f %%), Lajeunesse %.3f (%+.1f %%); "
+      "body (>= L0/16 thick) ends at %.3f L0 (%+.1f %% Lube, %+.1f %% Lajeunesse), "
+      "L0/64 thick at %.3f L0; "
+      "H_f/L0 = %.3f vs a %.3f (%+.1f %%), a^0.4 %.3f (%+.1f %%), a^(1/3) %.3f (%+.1f %%); "
+      "mass beyond Lube's run-out %.2f %%, beyond 1.2 times it %.2f %%, 1 %% beyond "
+      "%.3f L0 (%+.1f %% Lube); "
+      "energy residual %+.4f; plastic work %.3f, wall work %.3f of the released potential "
+      "energy; kinetic/released %.1e\n",
+      backend, R.a, R.points, R.steps, R.t_over_T, R.seconds, describe(R.status), R.Lf, lube,
+      100 * (R.Lf / lube - 1), laj, 100 * (R.Lf / laj - 1), R.Lbody, 100 * (R.Lbody / lube - 1),
+      100 * (R.Lbody / laj - 1), R.Lthin, R.Hf, h_small, 100 * (R.Hf / h_small - 1), h_04,
+      100 * (R.Hf / h_04 - 1), h_13, 100 * (R.Hf / h_13 - 1), 100 * R.beyond_law,
+      100 * R.beyond_law_120, R.x99, 100 * (R.x99 / lube - 1), R.residual, R.plastic_share,
+      R.boundary_share, R.kinetic_ratio);
 }
 
 }  // namespace lsi::test

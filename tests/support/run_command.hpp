@@ -13,8 +13,8 @@
 namespace lsi::testing {
 
 struct CommandOutcome {
-  int code;          // exit code, -1 if the command did not exit normally
-  std::string out;   // what it wrote on standard output
+  int code;         // exit code, -1 if the command did not exit normally
+  std::string out;  // what it wrote on standard output
 };
 
 inline CommandOutcome run_command(const std::string& command) {

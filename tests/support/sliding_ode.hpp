@@ -52,9 +52,15 @@ struct SlidingOde {
         double ta = t_seg + k * h, tn = (k + 1 == n) ? tb : t_seg + (k + 1) * h;
         while (ta < tn) {
           if (!sliding) {
-            if (accel(ta) > 0.0) { sliding = true; continue; }
-            if (accel(tn) <= 0.0) { ta = tn; break; }
-            double lo = ta, hi = tn;   // bisection for the start of sliding
+            if (accel(ta) > 0.0) {
+              sliding = true;
+              continue;
+            }
+            if (accel(tn) <= 0.0) {
+              ta = tn;
+              break;
+            }
+            double lo = ta, hi = tn;  // bisection for the start of sliding
             for (int it = 0; it < 200 && hi - lo > 1e-16 * (1 + hi); ++it) {
               const double mid = 0.5 * (lo + hi);
               (accel(mid) > 0.0 ? hi : lo) = mid;
@@ -64,8 +70,12 @@ struct SlidingOde {
             continue;
           }
           OdeState next = rk4(s, ta, tn - ta);
-          if (next.v >= 0.0) { s = next; ta = tn; break; }
-          double lo = 0.0, hi = tn - ta;   // bisection for the stop
+          if (next.v >= 0.0) {
+            s = next;
+            ta = tn;
+            break;
+          }
+          double lo = 0.0, hi = tn - ta;  // bisection for the stop
           for (int it = 0; it < 200 && hi - lo > 1e-16 * (1 + hi); ++it) {
             const double mid = 0.5 * (lo + hi);
             (rk4(s, ta, mid).v > 0.0 ? lo : hi) = mid;

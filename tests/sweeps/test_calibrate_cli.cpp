@@ -26,7 +26,7 @@ const std::string lsi_exe = LSI_EXE;
 
 struct Outcome {
   int code;
-  std::string out;   // stdout only (stderr goes to err)
+  std::string out;  // stdout only (stderr goes to err)
   std::string err;
 };
 
@@ -69,12 +69,13 @@ TEST(CalibrateCli, FitsCoarseReferenceScenesAndWritesTheMaps) {
   // c-free-a's history comes from a results directory (as `lsi run --out` writes it); the other
   // two have none there and their MPM runs inside `lsi calibrate`.
   fs::create_directories(dir / "res");
-  const Outcome pre = run("run " + a.string() + " --methods mpm --out " + (dir / "res/c-free-a.h5").string());
+  const Outcome pre =
+      run("run " + a.string() + " --methods mpm --out " + (dir / "res/c-free-a.h5").string());
   ASSERT_EQ(pre.code, 0) << pre.out << pre.err;
   const fs::path h5 = dir / "cal.h5";
-  const Outcome r = run("calibrate " + a.string() + " " + b.string() + " " + f.string() +
-                        " --results-dir " + (dir / "res").string() +
-                        " --grid 21x11 --format json --out " + h5.string());
+  const Outcome r =
+      run("calibrate " + a.string() + " " + b.string() + " " + f.string() + " --results-dir " +
+          (dir / "res").string() + " --grid 21x11 --format json --out " + h5.string());
   ASSERT_EQ(r.code, 0) << r.out << r.err;
   const json j = json::parse(r.out);
   EXPECT_EQ(j["objective"], "nrms");
@@ -150,8 +151,8 @@ TEST(CalibrateCli, FitsCoarseReferenceScenesAndWritesTheMaps) {
     hsize_t dims[2] = {0, 0};
     EXPECT_EQ(H5Sget_simple_extent_ndims(s), 2);
     H5Sget_simple_extent_dims(s, dims, nullptr);
-    EXPECT_EQ(dims[0], 21u);   // lambda cells
-    EXPECT_EQ(dims[1], 11u);   // tau cells
+    EXPECT_EQ(dims[0], 21u);  // lambda cells
+    EXPECT_EQ(dims[1], 11u);  // tau cells
     std::vector<double> map(dims[0] * dims[1]);
     H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, map.data());
     for (double m : map) EXPECT_TRUE(std::isfinite(m) && m >= 0.0);

@@ -12,9 +12,17 @@
 #include "sweeps/calibration.hpp"
 #include "sweeps/statistics.hpp"
 #include "sweeps/levenberg_marquardt.hpp"
+#include "support/tolerances.hpp"
 
 namespace {
 using namespace lsi::sweeps;
+using lsi::test::kFewOpsAbs;
+using lsi::test::kRoundOffAbs;
+using lsi::test::kUnitArithmeticAbs;
+
+// The cost of a zero-residual problem after Levenberg-Marquardt: it stops on a relative decrease
+// of 1e-12 or a step of 1e-10, so the cost left is below 1e-12.
+constexpr double kLmZeroCost = 1e-12;
 
 // A landslide like L1 of the reference study against a barrier like B1 (m2 = 14.4 t/m).
 ImpactInputs inputs(bool fixed) {
@@ -76,7 +84,7 @@ TEST(Calibration, NrmsIgnoresTheStaticLoadAfterTheImpact) {
   const CalibrationCase c = synthetic(inputs(true), lambda, tau, 400);
   CalibrationCase tail = c;
   const double dt = tail.time[1] - tail.time[0];
-  for (int i = 1; i <= 2000; ++i) {   // four times the impact's length of a 15 % static load
+  for (int i = 1; i <= 2000; ++i) {  // four times the impact's length of a 15 % static load
     tail.time.push_back(c.time.back() + i * dt);
     tail.force.push_back(0.15 * c.peak_force);
   }
@@ -108,7 +116,7 @@ TEST(Calibration, NoisyCoarseHistoryIsRecoveredWithinItsStandardError) {
   // error of the estimate is within 4 of its standard errors (a 4-sigma band, > 99.99 %).
   const double lambda = 0.47, tau = 0.31, noise = 0.02;
   const int n = 60;
-  const int m = 40;   // the samples of the impact, t <= T2 (i <= 59 / 1.5)
+  const int m = 40;  // the samples of the impact, t <= T2 (i <= 59 / 1.5)
   for (unsigned seed : {1u, 2u, 3u}) {
     const TwoBodyFit f = fit_two_body(synthetic(inputs(false), lambda, tau, n, noise, seed), {});
     EXPECT_NEAR(f.lambda, lambda, 4.0 * f.sigma_lambda) << "seed " << seed;
@@ -162,8 +170,8 @@ TEST(Calibration, MisfitMapMinimumCellContainsTheTruthAndLmImprovesOnIt) {
   EXPECT_DOUBLE_EQ(f.map.tau.front(), 1.0 / 42);
   EXPECT_DOUBLE_EQ(f.map.tau.back(), 41.0 / 42);
   // The truth lies in a grid cell that has the minimum node as a corner: within one spacing.
-  EXPECT_LE(std::fabs(f.grid_lambda - lambda), 1.0 / 41 + 1e-12);
-  EXPECT_LE(std::fabs(f.grid_tau - tau), 1.0 / 42 + 1e-12);
+  EXPECT_LE(std::fabs(f.grid_lambda - lambda), 1.0 / 41 + kRoundOffAbs);
+  EXPECT_LE(std::fabs(f.grid_tau - tau), 1.0 / 42 + kRoundOffAbs);
   // The map's value at the best node is what grid_misfit reports.
   double min_cell = f.map.misfit[0];
   for (double m : f.map.misfit) min_cell = std::min(min_cell, m);
@@ -180,8 +188,8 @@ TEST(Calibration, TruthOnAGridNodeIsTheMapMinimum) {
   const TwoBodyFit f = fit_two_body(synthetic(inputs(true), lambda, tau, 300), {});
   EXPECT_DOUBLE_EQ(f.grid_lambda, lambda);
   EXPECT_DOUBLE_EQ(f.grid_tau, tau);
-  EXPECT_LT(f.grid_misfit, 1e-12);
-  EXPECT_LE(f.misfit, f.grid_misfit);   // LM never accepts an increase
+  EXPECT_LT(f.grid_misfit, kRoundOffAbs);
+  EXPECT_LE(f.misfit, f.grid_misfit);  // LM never accepts an increase
 }
 
 TEST(Calibration, LevenbergMarquardtSolvesRosenbrock) {
@@ -195,9 +203,9 @@ TEST(Calibration, LevenbergMarquardtSolvesRosenbrock) {
   x0 << -1.2, 1.0;
   const LmResult res = levenberg_marquardt(r, x0);
   EXPECT_TRUE(res.converged) << res.reason;
-  EXPECT_NEAR(res.x[0], 1.0, 1e-6);   // the zero residual is reached to LM's tolerance
+  EXPECT_NEAR(res.x[0], 1.0, 1e-6);  // the zero residual is reached to LM's tolerance
   EXPECT_NEAR(res.x[1], 1.0, 1e-6);
-  EXPECT_LT(res.cost, 1e-12);
+  EXPECT_LT(res.cost, kLmZeroCost);
   EXPECT_LT(res.iterations, 100);
 }
 
@@ -221,8 +229,8 @@ TEST(Calibration, EmpiricalTauAndAlphaRecoveredFromTheEmpiricalPulse) {
     opt.objective = o;
     const EmpiricalFit f = fit_empirical(c, opt);
     // alpha_MPM is eqs. 3-4 solved for alpha: exact to rounding.
-    EXPECT_NEAR(f.alpha, alpha, 1e-12);
-    EXPECT_NEAR(f.froude, 6.0 * std::sin(in.face_angle) / std::sqrt(9.81 * 2.0), 1e-12);
+    EXPECT_NEAR(f.alpha, alpha, kRoundOffAbs);
+    EXPECT_NEAR(f.froude, 6.0 * std::sin(in.face_angle) / std::sqrt(9.81 * 2.0), kRoundOffAbs);
     EXPECT_NEAR(f.tau, tau, 1e-6) << objective_name(o);
     EXPECT_LT(f.misfit, 1e-7);
     EXPECT_TRUE(f.converged);
@@ -236,9 +244,9 @@ TEST(Calibration, StudentTQuantilesMatchTables) {
   EXPECT_NEAR(stats::student_t_quantile(0.975, 4), 2.77645, 1e-5);
   EXPECT_NEAR(stats::student_t_quantile(0.975, 8), 2.30600, 1e-5);
   EXPECT_NEAR(stats::student_t_quantile(0.975, 30), 2.04227, 1e-5);
-  EXPECT_NEAR(stats::student_t_quantile(0.975, 1e7), 1.95996, 1e-5);   // the normal limit
-  EXPECT_NEAR(stats::student_t_quantile(0.025, 8), -2.30600, 1e-5);     // symmetry
-  EXPECT_NEAR(stats::student_t_cdf(0.0, 3), 0.5, 1e-15);
+  EXPECT_NEAR(stats::student_t_quantile(0.975, 1e7), 1.95996, 1e-5);  // the normal limit
+  EXPECT_NEAR(stats::student_t_quantile(0.025, 8), -2.30600, 1e-5);   // symmetry
+  EXPECT_NEAR(stats::student_t_cdf(0.0, 3), 0.5, kFewOpsAbs);
 }
 
 TEST(Calibration, PooledMeanHasTheStudentTInterval) {
@@ -246,8 +254,8 @@ TEST(Calibration, PooledMeanHasTheStudentTInterval) {
   const GroupStatistic g = pooled_mean({1, 2, 3, 4, 5});
   EXPECT_EQ(g.n, 5);
   EXPECT_DOUBLE_EQ(g.mean, 3.0);
-  EXPECT_NEAR(g.stddev, std::sqrt(2.5), 1e-14);
-  EXPECT_NEAR(g.ci.low, 3.0 - 2.776445 * std::sqrt(0.5), 1e-5);   // 6-digit table value
+  EXPECT_NEAR(g.stddev, std::sqrt(2.5), kUnitArithmeticAbs);
+  EXPECT_NEAR(g.ci.low, 3.0 - 2.776445 * std::sqrt(0.5), 1e-5);  // 6-digit table value
   EXPECT_NEAR(g.ci.high, 3.0 + 2.776445 * std::sqrt(0.5), 1e-5);
   // One value: a mean but no interval.
   const GroupStatistic one = pooled_mean({0.4});
@@ -264,9 +272,9 @@ TEST(Calibration, PowerLawA1A2RecoveredFromSyntheticAlpha) {
   }
   const PowerLawFit exact = fit_power_law(fr, al);
   // Exact power law: least squares in log-log space is exact up to rounding.
-  EXPECT_NEAR(exact.a1, 1.781, 1e-12);
-  EXPECT_NEAR(exact.a2, -0.515, 1e-12);
-  EXPECT_LT(exact.rms_log_residual, 1e-12);
+  EXPECT_NEAR(exact.a1, 1.781, kRoundOffAbs);
+  EXPECT_NEAR(exact.a2, -0.515, kRoundOffAbs);
+  EXPECT_LT(exact.rms_log_residual, kRoundOffAbs);
   // Multiplicative noise of +-5 % (log residuals up to 0.05): the 95 % intervals contain the
   // truth, and a2 is within a few of its standard errors (the CI half-width is t_7 ~ 2.36 of them).
   std::vector<double> noisy = al;
@@ -278,7 +286,7 @@ TEST(Calibration, PowerLawA1A2RecoveredFromSyntheticAlpha) {
   EXPECT_GE(f.a2_ci.high, -0.515);
   EXPECT_LE(f.a1_ci.low, 1.781);
   EXPECT_GE(f.a1_ci.high, 1.781);
-  EXPECT_NEAR(f.a2, -0.515, 0.1);   // log-noise 0.05 over a log(Fr) span of 1.6: a2 to ~0.03
+  EXPECT_NEAR(f.a2, -0.515, 0.1);  // log-noise 0.05 over a log(Fr) span of 1.6: a2 to ~0.03
 }
 
 TEST(Calibration, GroupSummaryPoolsTheFits) {
@@ -294,14 +302,14 @@ TEST(Calibration, GroupSummaryPoolsTheFits) {
   }
   const GroupSummary g = summarize_group(false, {"a", "b", "c"}, tb, em);
   EXPECT_EQ(g.lambda.n, 3);
-  EXPECT_NEAR(g.lambda.mean, 0.45, 1e-15);
+  EXPECT_NEAR(g.lambda.mean, 0.45, kFewOpsAbs);
   // s = 0.05, t_{0.975,2} = 4.302653: half-width 4.302653 * 0.05 / sqrt(3).
   EXPECT_NEAR(g.lambda.ci.high - g.lambda.mean, 4.302653 * 0.05 / std::sqrt(3.0), 1e-6);
-  EXPECT_NEAR(g.tau.mean, 0.25, 1e-15);
-  EXPECT_NEAR(g.empirical_tau.mean, 0.12, 1e-15);
-  EXPECT_NEAR(g.power_law.a1, 2.0, 1e-12);
-  EXPECT_NEAR(g.power_law.a2, -0.5, 1e-12);
-  EXPECT_DOUBLE_EQ(g.paper.lambda, 0.41);   // free barriers
+  EXPECT_NEAR(g.tau.mean, 0.25, kFewOpsAbs);
+  EXPECT_NEAR(g.empirical_tau.mean, 0.12, kFewOpsAbs);
+  EXPECT_NEAR(g.power_law.a1, 2.0, kRoundOffAbs);
+  EXPECT_NEAR(g.power_law.a2, -0.5, kRoundOffAbs);
+  EXPECT_DOUBLE_EQ(g.paper.lambda, 0.41);  // free barriers
   EXPECT_DOUBLE_EQ(g.paper.tau, 0.25);
   EXPECT_DOUBLE_EQ(paper_values(true).lambda, 0.72);
   EXPECT_DOUBLE_EQ(paper_values(true).tau, 0.17);
@@ -338,7 +346,7 @@ TEST(Calibration, ImpactSummaryUsesTheMpmRunnersDefinitions) {
   const ImpactSummary s = impact_summary(t, f);
   EXPECT_DOUBLE_EQ(s.peak_force, 10.0);
   EXPECT_DOUBLE_EQ(s.rise_time, 1.0);
-  EXPECT_NEAR(s.impact_duration, 2.79, 1e-9);   // the last sample with F > 1
+  EXPECT_NEAR(s.impact_duration, 2.79, 1e-9);  // the last sample with F > 1
 }
 
 }  // namespace

@@ -15,9 +15,9 @@ using lsi::sweeps::grid_convergence;
 // The paper prints p = 1.53, phi_ext = 6.1685, e_a = 1.5 %, e_ext = 1.7 %, GCI_fine = 2.2 %:
 // tolerances are half a unit of the last printed digit.
 TEST(GridConvergence, ReproducesCelikExample) {
-  const auto g = grid_convergence({1.0 / std::sqrt(18000.0), 1.0 / std::sqrt(8000.0),
-                                   1.0 / std::sqrt(4500.0)},
-                                  {6.063, 5.972, 5.863});
+  const auto g =
+      grid_convergence({1.0 / std::sqrt(18000.0), 1.0 / std::sqrt(8000.0), 1.0 / std::sqrt(4500.0)},
+                       {6.063, 5.972, 5.863});
   EXPECT_EQ(g.kind, Convergence::Monotonic);
   EXPECT_NEAR(g.order, 1.53, 0.005);
   EXPECT_NEAR(g.extrapolated, 6.1685, 0.00005);
@@ -51,7 +51,7 @@ TEST(GridConvergence, ExactForPowerLawWithUnequalRatios) {
 TEST(GridConvergence, FlagsOscillationAndDivergence) {
   const auto osc = grid_convergence({1, 2, 4}, {1.0, 1.1, 0.9});
   EXPECT_EQ(osc.kind, Convergence::Oscillatory);
-  const auto div = grid_convergence({1, 2, 4}, {1.0, 1.2, 1.3});   // |e32| < |e21|
+  const auto div = grid_convergence({1, 2, 4}, {1.0, 1.2, 1.3});  // |e32| < |e21|
   EXPECT_EQ(div.kind, Convergence::Diverging);
   EXPECT_TRUE(std::isnan(div.extrapolated));
   EXPECT_TRUE(std::isnan(div.gci_fine));

@@ -77,8 +77,9 @@ DistributionSpec constant(double v) {
 // All samples [0, n) of a sampler, drawn on the execution space of its memory (the host's
 // threads for a HostSampler, also in a CUDA build), as a host matrix.
 template <class Mem>
-Kokkos::View<double**, Kokkos::LayoutLeft, Kokkos::HostSpace> draw(const Sampler<Mem>& s, std::uint64_t n,
-                                                                    std::uint64_t first = 0) {
+Kokkos::View<double**, Kokkos::LayoutLeft, Kokkos::HostSpace> draw(const Sampler<Mem>& s,
+                                                                   std::uint64_t n,
+                                                                   std::uint64_t first = 0) {
   Kokkos::View<double**, Kokkos::LayoutLeft, Mem> out("samples", n, s.dimensions());
   sample_batch(typename Mem::execution_space(), s, first, out);
   Kokkos::fence();
@@ -115,8 +116,7 @@ double ks_uniform(std::vector<double> x) {
   std::sort(x.begin(), x.end());
   const double n = x.size();
   double d = 0;
-  for (std::size_t i = 0; i < x.size(); ++i)
-    d = std::max({d, (i + 1) / n - x[i], x[i] - i / n});
+  for (std::size_t i = 0; i < x.size(); ++i) d = std::max({d, (i + 1) / n - x[i], x[i] - i / n});
   return d;
 }
 
@@ -132,20 +132,29 @@ TEST(CounterRng, PhiloxKnownAnswerVectors) {
   };
   const Kat kats[] = {
       {7, {0, 0, 0, 0}, {0, 0}, {0x5f6fb709, 0x0d893f64, 0x4f121f81, 0x4f730a48}},
-      {7, {0xffffffff, 0xffffffff, 0xffffffff, 0xffffffff}, {0xffffffff, 0xffffffff},
+      {7,
+       {0xffffffff, 0xffffffff, 0xffffffff, 0xffffffff},
+       {0xffffffff, 0xffffffff},
        {0x5207ddc2, 0x45165e59, 0x4d8ee751, 0x8c52f662}},
-      {7, {0x243f6a88, 0x85a308d3, 0x13198a2e, 0x03707344}, {0xa4093822, 0x299f31d0},
+      {7,
+       {0x243f6a88, 0x85a308d3, 0x13198a2e, 0x03707344},
+       {0xa4093822, 0x299f31d0},
        {0x4dfccaba, 0x190a87f0, 0xc47362ba, 0xb6b5242a}},
       {10, {0, 0, 0, 0}, {0, 0}, {0x6627e8d5, 0xe169c58d, 0xbc57ac4c, 0x9b00dbd8}},
-      {10, {0xffffffff, 0xffffffff, 0xffffffff, 0xffffffff}, {0xffffffff, 0xffffffff},
+      {10,
+       {0xffffffff, 0xffffffff, 0xffffffff, 0xffffffff},
+       {0xffffffff, 0xffffffff},
        {0x408f276d, 0x41c83b0e, 0xa20bc7c6, 0x6d5451fd}},
-      {10, {0x243f6a88, 0x85a308d3, 0x13198a2e, 0x03707344}, {0xa4093822, 0x299f31d0},
+      {10,
+       {0x243f6a88, 0x85a308d3, 0x13198a2e, 0x03707344},
+       {0xa4093822, 0x299f31d0},
        {0xd16cfe09, 0x94fdcceb, 0x5001e420, 0x24126ea1}},
   };
   for (const Kat& k : kats) {
     const Philox4x32Block out =
         philox4x32({{k.ctr[0], k.ctr[1], k.ctr[2], k.ctr[3]}}, k.key[0], k.key[1], k.rounds);
-    for (int w = 0; w < 4; ++w) EXPECT_EQ(out.v[w], k.out[w]) << "rounds " << k.rounds << " word " << w;
+    for (int w = 0; w < 4; ++w)
+      EXPECT_EQ(out.v[w], k.out[w]) << "rounds " << k.rounds << " word " << w;
   }
 }
 
@@ -168,8 +177,10 @@ TEST(CounterRng, UniformIsOpenAndPure) {
   EXPECT_NE(uniform_open01(7, 99, 4), uniform_open01(8, 99, 4));
   EXPECT_NE(uniform_open01(7, 99, 4), uniform_open01(7, 100, 4));
   EXPECT_NE(uniform_open01(7, 99, 4), uniform_open01(7, 99, 5));
-  EXPECT_NE(uniform_open01(7, std::uint64_t{1} << 32, 0), uniform_open01(7, 0, 0));  // high counter word used
-  EXPECT_NE(uniform_open01(std::uint64_t{1} << 32, 0, 0), uniform_open01(0, 0, 0));  // high key word used
+  EXPECT_NE(uniform_open01(7, std::uint64_t{1} << 32, 0),
+            uniform_open01(7, 0, 0));  // high counter word used
+  EXPECT_NE(uniform_open01(std::uint64_t{1} << 32, 0, 0),
+            uniform_open01(0, 0, 0));  // high key word used
 }
 
 TEST(CounterRng, KolmogorovSmirnovUniformity) {
@@ -179,7 +190,8 @@ TEST(CounterRng, KolmogorovSmirnovUniformity) {
     for (std::uint32_t stream : {0u, 1u, 31u}) {
       std::vector<double> x(n);
       for (int i = 0; i < n; ++i) x[i] = uniform_open01(seed, i, stream);
-      EXPECT_LT(ks_uniform(x), 1.949 / std::sqrt(double(n))) << "seed " << seed << " stream " << stream;
+      EXPECT_LT(ks_uniform(x), 1.949 / std::sqrt(double(n)))
+          << "seed " << seed << " stream " << stream;
     }
 }
 
@@ -189,15 +201,16 @@ TEST(CounterRng, StreamsSeedsAndNeighboursAreUncorrelated) {
   std::vector<double> a(n), b(n), c(n), lag(n);
   for (int i = 0; i < n; ++i) {
     a[i] = uniform_open01(42, i, 0);
-    b[i] = uniform_open01(42, i, 1);   // the next stream of the same sample
-    c[i] = uniform_open01(43, i, 0);   // the next seed
+    b[i] = uniform_open01(42, i, 1);        // the next stream of the same sample
+    c[i] = uniform_open01(43, i, 0);        // the next seed
     lag[i] = uniform_open01(42, i + 1, 0);  // the next sample
   }
   const double tol = 5.0 / std::sqrt(double(n));
   EXPECT_LT(std::fabs(pearson(a, b)), tol);
   EXPECT_LT(std::fabs(pearson(a, c)), tol);
   EXPECT_LT(std::fabs(pearson(a, lag)), tol);
-  const Moments m = moments(a);  // mean 1/2 (SE 0.2887/1000), sd 1/sqrt(12) (SE 0.2887*sqrt(0.8/4)/1000)
+  const Moments m =
+      moments(a);  // mean 1/2 (SE 0.2887/1000), sd 1/sqrt(12) (SE 0.2887*sqrt(0.8/4)/1000)
   EXPECT_NEAR(m.mean, 0.5, 5 * 0.28868 / 1000);
   EXPECT_NEAR(m.sd, 1 / std::sqrt(12.0), 5 * 0.28868 * std::sqrt(0.2) / 1000);
 }
@@ -212,12 +225,17 @@ TEST(NormalDistribution, QuantileKnownValues) {
     double p, z;
   };
   const Case cases[] = {
-      {0.975, 1.9599639845400542355},       {0.3, -0.52440051270804078404},
-      {0.02425, -1.9729610513118848503},    {1e-10, -6.3613409024040562047},
-      {1e-300, -37.047096299361199237},     {std::ldexp(1.0, -53), -8.2095361516013868556},
-      {1.0 - std::ldexp(1.0, -53), 8.2095361516013868556},  // the largest double below 1 ("1 - 1e-16")
+      {0.975, 1.9599639845400542355},
+      {0.3, -0.52440051270804078404},
+      {0.02425, -1.9729610513118848503},
+      {1e-10, -6.3613409024040562047},
+      {1e-300, -37.047096299361199237},
+      {std::ldexp(1.0, -53), -8.2095361516013868556},
+      {1.0 - std::ldexp(1.0, -53),
+       8.2095361516013868556},  // the largest double below 1 ("1 - 1e-16")
   };
-  for (const Case& c : cases) EXPECT_NEAR(normal_quantile(c.p), c.z, 1e-15 * std::fabs(c.z)) << "p = " << c.p;
+  for (const Case& c : cases)
+    EXPECT_NEAR(normal_quantile(c.p), c.z, 1e-15 * std::fabs(c.z)) << "p = " << c.p;
   EXPECT_EQ(normal_quantile(0.5), 0.0);  // exact: q = 0
   EXPECT_EQ(normal_quantile(0.0), -std::numeric_limits<double>::infinity());
   EXPECT_EQ(normal_quantile(1.0), std::numeric_limits<double>::infinity());
@@ -251,7 +269,8 @@ TEST(NormalDistribution, QuantileRoundTrip) {
     EXPECT_NEAR(normal_cdf(z) / p, 1.0, tol) << "p = " << p;
     const double q = 1.0 - p;  // upper half: compare the complements
     if (q < 1.0) {
-      EXPECT_NEAR(normal_ccdf(normal_quantile(q)) / (1.0 - q), 1.0, tol + 1.1e-16 / (1.0 - q)) << "q = " << q;
+      EXPECT_NEAR(normal_ccdf(normal_quantile(q)) / (1.0 - q), 1.0, tol + 1.1e-16 / (1.0 - q))
+          << "q = " << q;
     }
   }
 }
@@ -263,14 +282,19 @@ TEST(Distribution, ValidationMessagesNameTheParameter) {
   expect_invalid([] { validate(normal(0, -1)); }, "sd = -1: must be > 0");
   expect_invalid([] { validate(uniform(3, 2)); }, "min = 3 >= max = 2");
   expect_invalid([] { validate(discrete({1, 2, 3}, {1, 2})); }, "weights: 2 given for 3 values");
-  expect_invalid([] { validate(discrete({1, 2}, {1, -0.5})); }, "weights[1] = -0.5: must be finite and >= 0");
+  expect_invalid(
+      [] {
+        validate(discrete({1, 2}, {1, -0.5}));
+      },
+      "weights[1] = -0.5: must be finite and >= 0");
   expect_invalid([] { validate(discrete({1, 2}, {0, 0})); }, "weights: all zero");
   expect_invalid([] { validate(discrete({}, {})); }, "values: none given");
   expect_invalid([] { validate(lognormal(-2, 1)); }, "mean = -2: must be > 0");
   expect_invalid([] { validate(constant(std::nan(""))); }, "value = nan: must be finite");
   expect_invalid([] { validate(truncated(0, 1, 40, 41)); }, "no probability");
   expect_invalid([] { validate(truncated(0, 1, 2, 1)); }, "min = 2 >= max = 1");
-  expect_invalid([] { validate(uniform(0, std::numeric_limits<double>::infinity())); }, "max = inf: must be finite");
+  expect_invalid([] { validate(uniform(0, std::numeric_limits<double>::infinity())); },
+                 "max = inf: must be finite");
   DistributionSpec grid_points = normal(0, 1);
   grid_points.values = {1, std::nan("")};
   expect_invalid([&] { validate(grid_points); }, "values[1] = nan: must be finite");
@@ -288,13 +312,14 @@ TEST(Distribution, MarginalMomentsFromAMillionSamples) {
   // One Monte Carlo sampler with every kind; N = 1e6. Means within 5 SE = 5 sd / sqrt(N); standard
   // deviations within 5 SE = 5 sd sqrt((kurtosis - 1) / (4 N)) (the delta-method SE of a sample sd).
   const std::uint64_t N = 1000000;
-  const std::vector<DistributionSpec> in = {uniform(2, 5),
-                                            normal(10, 2),
-                                            lognormal(3, 1.5),
-                                            truncated(1, 2, 0, 3),
-                                            truncated(0, 1, 10, 12),   // upper tail: Phi(10) = 1 - 7.6e-24
-                                            truncated(0, 1, -12, -10),  // lower tail
-                                            constant(4.25)};
+  const std::vector<DistributionSpec> in = {
+      uniform(2, 5),
+      normal(10, 2),
+      lognormal(3, 1.5),
+      truncated(1, 2, 0, 3),
+      truncated(0, 1, 10, 12),    // upper tail: Phi(10) = 1 - 7.6e-24
+      truncated(0, 1, -12, -10),  // lower tail
+      constant(4.25)};
   const HostSampler s(in, {}, Design::MonteCarlo, 2024, N);
   const auto x = draw(s, N);
   const double rootN = std::sqrt(double(N));
@@ -330,7 +355,8 @@ TEST(Distribution, MarginalMomentsFromAMillionSamples) {
     const auto c = column(x, 3 + k);
     for (double v : c) ASSERT_TRUE(v >= bounds[k][2] && v <= bounds[k][3]) << v;
     const Moments m = moments(c);
-    EXPECT_NEAR(m.mean, truncated_mean(bounds[k][0], bounds[k][1], bounds[k][2], bounds[k][3]), 5 * m.sd / rootN)
+    EXPECT_NEAR(m.mean, truncated_mean(bounds[k][0], bounds[k][1], bounds[k][2], bounds[k][3]),
+                5 * m.sd / rootN)
         << "truncated normal " << k;
   }
   EXPECT_NEAR(truncated_mean(0, 1, 10, 12), 10.098, 1e-3);  // sanity of the reference (~ a + 1/a)
@@ -373,7 +399,8 @@ TEST(Distribution, QuantileEdges) {
   ASSERT_EQ(cdf.size(), 3u);
   EXPECT_EQ(cdf[2], 1.0);
   EXPECT_EQ(marginal_quantile(d, 1e-300, 0, false, values.data(), cdf.data()), 10);
-  EXPECT_EQ(marginal_quantile(d, 0.25, 0, false, values.data(), cdf.data()), 10);  // cdf = 0.25 exactly
+  EXPECT_EQ(marginal_quantile(d, 0.25, 0, false, values.data(), cdf.data()),
+            10);  // cdf = 0.25 exactly
   EXPECT_EQ(marginal_quantile(d, 0.2500001, 0, false, values.data(), cdf.data()), 20);
   EXPECT_EQ(marginal_quantile(d, 1.0, 0, false, values.data(), cdf.data()), 30);
   const Marginal t = prepare_marginal(truncated(0, 1, 10, 12), values, cdf);
@@ -383,7 +410,8 @@ TEST(Distribution, QuantileEdges) {
   }
   const Marginal ln = prepare_marginal(lognormal(3, 1.5), values, cdf);
   // The median of the lognormal is exp(mu) = mean / sqrt(1 + cv^2): 3 / sqrt(1.25), to rounding.
-  EXPECT_NEAR(marginal_quantile(ln, 0.5, 0, false, values.data(), cdf.data()), 3 / std::sqrt(1.25), 1e-14);
+  EXPECT_NEAR(marginal_quantile(ln, 0.5, 0, false, values.data(), cdf.data()), 3 / std::sqrt(1.25),
+              1e-14);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -400,7 +428,8 @@ TEST(LatinHypercube, PermutationIsABijection) {
         ASSERT_LT(j, n);
         ++hit[j];
       }
-      for (std::uint64_t j = 0; j < n; ++j) ASSERT_EQ(hit[j], 1) << "n " << n << " key " << key << " j " << j;
+      for (std::uint64_t j = 0; j < n; ++j)
+        ASSERT_EQ(hit[j], 1) << "n " << n << " key " << key << " j " << j;
     }
   }
 }
@@ -421,11 +450,13 @@ TEST(LatinHypercube, EveryStratumHitOncePerDimension) {
         ASSERT_LT(k, N);
         ++hit[k];
       }
-      for (std::uint64_t k = 0; k < N; ++k) ASSERT_EQ(hit[k], 1) << "N " << N << " dim " << d << " stratum " << k;
+      for (std::uint64_t k = 0; k < N; ++k)
+        ASSERT_EQ(hit[k], 1) << "N " << N << " dim " << d << " stratum " << k;
     }
     if (N >= 1000) {  // the dimensions use different permutations (identical ones would be a bug)
       int same = 0;
-      for (std::uint64_t i = 0; i < N; ++i) same += std::floor(x(i, 0) * N) == std::floor(x(i, 1) * N);
+      for (std::uint64_t i = 0; i < N; ++i)
+        same += std::floor(x(i, 0) * N) == std::floor(x(i, 1) * N);
       EXPECT_LT(same, 20);  // ~1 expected for independent permutations
     }
   }
@@ -435,7 +466,8 @@ TEST(LatinHypercube, DimensionsAreUncorrelatedAndMarginalsExact) {
   // N = 1e5: Pearson's r between dimensions within 5/sqrt(N); the mean of an LHS-sampled normal is
   // far more precise than Monte Carlo's (stratification): within 0.2 MC standard errors.
   const std::uint64_t N = 100000;
-  const HostSampler s({uniform(0, 1), uniform(0, 1), normal(5, 2)}, {}, Design::LatinHypercube, 3, N);
+  const HostSampler s({uniform(0, 1), uniform(0, 1), normal(5, 2)}, {}, Design::LatinHypercube, 3,
+                      N);
   const auto x = draw(s, N);
   EXPECT_LT(std::fabs(pearson(column(x, 0), column(x, 1))), 5 / std::sqrt(double(N)));
   EXPECT_LT(std::fabs(pearson(column(x, 0), column(x, 2))), 5 / std::sqrt(double(N)));
@@ -448,11 +480,17 @@ TEST(LatinHypercube, DimensionsAreUncorrelatedAndMarginalsExact) {
 TEST(Sobol, UnscrambledFirstPointsMatchTheKnownSequence) {
   // The Sobol sequence in Gray-code order (Joe & Kuo's generator, and scipy's Sobol with
   // scramble=False): exact dyadic values.
-  const double expected[8][3] = {{0, 0, 0},         {0.5, 0.5, 0.5},       {0.75, 0.25, 0.25},
-                                 {0.25, 0.75, 0.75}, {0.375, 0.375, 0.625}, {0.875, 0.875, 0.125},
-                                 {0.625, 0.125, 0.875}, {0.125, 0.625, 0.375}};
+  const double expected[8][3] = {{0, 0, 0},
+                                 {0.5, 0.5, 0.5},
+                                 {0.75, 0.25, 0.25},
+                                 {0.25, 0.75, 0.75},
+                                 {0.375, 0.375, 0.625},
+                                 {0.875, 0.875, 0.125},
+                                 {0.625, 0.125, 0.875},
+                                 {0.125, 0.625, 0.375}};
   for (int i = 0; i < 8; ++i)
-    for (int d = 0; d < 3; ++d) EXPECT_EQ(sobol_unscrambled(i, d), expected[i][d]) << "point " << i << " dim " << d;
+    for (int d = 0; d < 3; ++d)
+      EXPECT_EQ(sobol_unscrambled(i, d), expected[i][d]) << "point " << i << " dim " << d;
 }
 
 TEST(Sobol, EveryDimensionIsStratifiedAndTheTableIsWellFormed) {
@@ -467,7 +505,8 @@ TEST(Sobol, EveryDimensionIsStratifiedAndTheTableIsWellFormed) {
   const int m = 12;
   for (int d = 0; d < sobol_max_dimensions; ++d) {
     std::vector<int> hit(1 << m, 0);
-    for (std::uint64_t i = 0; i < (1u << m); ++i) ++hit[sobol_word(V.data() + d * sobol_bits, i) >> (64 - m)];
+    for (std::uint64_t i = 0; i < (1u << m); ++i)
+      ++hit[sobol_word(V.data() + d * sobol_bits, i) >> (64 - m)];
     for (int k = 0; k < (1 << m); ++k) ASSERT_EQ(hit[k], 1) << "dim " << d;
   }
 }
@@ -563,9 +602,21 @@ TEST(Grid, FullFactorialFirstInputFastest) {
   std::set<std::pair<double, double>> seen;
   for (int i = 0; i < 6; ++i) seen.insert({x(i, 0), x(i, 1)});
   EXPECT_EQ(seen.size(), 6u);
-  expect_invalid([&] { HostSampler({a, b}, {}, Design::Grid, 0, 5); }, "full factorial has 6 points (2 x 3)");
-  expect_invalid([&] { HostSampler({a, normal(0, 1)}, {}, Design::Grid, 0, 2); }, "input 1 (normal): no grid points");
-  expect_invalid([&] { HostSampler({a, b}, {{1, 0}, {0, 1}}, Design::Grid, 0, 6); }, "not allowed with the Grid design");
+  expect_invalid(
+      [&] {
+        HostSampler({a, b}, {}, Design::Grid, 0, 5);
+      },
+      "full factorial has 6 points (2 x 3)");
+  expect_invalid(
+      [&] {
+        HostSampler({a, normal(0, 1)}, {}, Design::Grid, 0, 2);
+      },
+      "input 1 (normal): no grid points");
+  expect_invalid(
+      [&] {
+        HostSampler({a, b}, {{1, 0}, {0, 1}}, Design::Grid, 0, 6);
+      },
+      "not allowed with the Grid design");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -578,7 +629,8 @@ TEST(Copula, NormalScoreCorrelationMatchesRho) {
   // each within 5 SE.
   const std::uint64_t N = 1000000;
   const std::vector<std::vector<double>> R = {{1, 0.5, -0.3}, {0.5, 1, 0.2}, {-0.3, 0.2, 1}};
-  const HostSampler s({normal(1, 2), lognormal(3, 1.5), uniform(-1, 1)}, R, Design::MonteCarlo, 11, N);
+  const HostSampler s({normal(1, 2), lognormal(3, 1.5), uniform(-1, 1)}, R, Design::MonteCarlo, 11,
+                      N);
   EXPECT_TRUE(s.correlated());
   const auto x = draw(s, N);
   const double s2 = std::log(1.25), mu = std::log(3.0) - 0.5 * s2;
@@ -592,11 +644,13 @@ TEST(Copula, NormalScoreCorrelationMatchesRho) {
   for (int a = 0; a < 3; ++a)
     for (int b = a + 1; b < 3; ++b) {
       const double rho = R[a][b];
-      EXPECT_NEAR(pearson(z[a], z[b]), rho, 5 * (1 - rho * rho) / std::sqrt(double(N))) << a << "," << b;
+      EXPECT_NEAR(pearson(z[a], z[b]), rho, 5 * (1 - rho * rho) / std::sqrt(double(N)))
+          << a << "," << b;
     }
   // The first input's row of L is the identity's: its values are bitwise those of the independent
   // sampler with the same seed.
-  const HostSampler independent({normal(1, 2), lognormal(3, 1.5), uniform(-1, 1)}, {}, Design::MonteCarlo, 11, N);
+  const HostSampler independent({normal(1, 2), lognormal(3, 1.5), uniform(-1, 1)}, {},
+                                Design::MonteCarlo, 11, N);
   double p[3], q[3];
   for (std::uint64_t i = 0; i < 1000; ++i) {
     s.sample(i, p);
@@ -625,35 +679,63 @@ TEST(Copula, WorksWithDiscreteAndQmcDesigns) {
     // The discrete value is 2 exactly when the correlated score is above Phi^-1(0.3): positive
     // dependence, Pearson's r well above 0 (for rho = 0.8 it is about 0.8 * phi(z_0.3) / sqrt(0.21)
     // = 0.8 * 0.3477 / 0.4583 = 0.607).
-    EXPECT_NEAR(pearson(z0, d), 0.8 * normal_pdf(normal_quantile(0.3)) / std::sqrt(0.21), 0.01) << to_string(design);
+    EXPECT_NEAR(pearson(z0, d), 0.8 * normal_pdf(normal_quantile(0.3)) / std::sqrt(0.21), 0.01)
+        << to_string(design);
   }
 }
 
 TEST(Copula, InvalidMatricesThrowWithTheProblem) {
   const std::vector<DistributionSpec> in = {normal(0, 1), normal(0, 1), normal(0, 1)};
-  auto make = [&](std::vector<std::vector<double>> R) { HostSampler(in, R, Design::MonteCarlo, 1, 10); };
+  auto make = [&](std::vector<std::vector<double>> R) {
+    HostSampler(in, R, Design::MonteCarlo, 1, 10);
+  };
   expect_invalid([&] { make({{1, 0}, {0, 1}}); }, "2 rows given for 3 inputs");
-  expect_invalid([&] { make({{1, 0, 0}, {0, 1}, {0, 0, 1}}); }, "correlation[1]: 2 entries given for 3 inputs");
+  expect_invalid(
+      [&] {
+        make({{1, 0, 0}, {0, 1}, {0, 0, 1}});
+      },
+      "correlation[1]: 2 entries given for 3 inputs");
   expect_invalid([&] { make({{1, 0.5, 0}, {0.4, 1, 0}, {0, 0, 1}}); }, "must be symmetric");
-  expect_invalid([&] { make({{1, 1.2, 0}, {1.2, 1, 0}, {0, 0, 1}}); }, "correlation[0][1] = 1.2: must be in [-1, 1]");
-  expect_invalid([&] { make({{1, 0, 0}, {0, 0.9, 0}, {0, 0, 1}}); }, "correlation[1][1] = 0.9: the diagonal");
-  expect_invalid([&] { make({{1, 0.9, -0.9}, {0.9, 1, 0.9}, {-0.9, 0.9, 1}}); }, "not positive definite");
+  expect_invalid(
+      [&] {
+        make({{1, 1.2, 0}, {1.2, 1, 0}, {0, 0, 1}});
+      },
+      "correlation[0][1] = 1.2: must be in [-1, 1]");
+  expect_invalid(
+      [&] {
+        make({{1, 0, 0}, {0, 0.9, 0}, {0, 0, 1}});
+      },
+      "correlation[1][1] = 0.9: the diagonal");
+  expect_invalid(
+      [&] {
+        make({{1, 0.9, -0.9}, {0.9, 1, 0.9}, {-0.9, 0.9, 1}});
+      },
+      "not positive definite");
   expect_invalid([&] { make({{1, 1, 0}, {1, 1, 0}, {0, 0, 1}}); }, "not positive definite");
-  expect_invalid([&] { make({{1, std::nan(""), 0}, {0, 1, 0}, {0, 0, 1}}); }, "correlation[0][1] = nan: must be finite");
+  expect_invalid(
+      [&] {
+        make({{1, std::nan(""), 0}, {0, 1, 0}, {0, 0, 1}});
+      },
+      "correlation[0][1] = nan: must be finite");
   EXPECT_NO_THROW(make({{1, 0.9, 0.8}, {0.9, 1, 0.85}, {0.8, 0.85, 1}}));
 }
 
 TEST(Sampler, ConstructorErrors) {
-  expect_invalid([] { HostSampler({normal(0, 1), normal(0, -1)}, {}, Design::MonteCarlo, 1, 10); },
-                 "input 1 (normal): sd = -1: must be > 0");
-  expect_invalid([] { HostSampler({normal(0, 1)}, {}, Design::LatinHypercube, 1, 0); }, "sample_count = 0");
+  expect_invalid(
+      [] {
+        HostSampler({normal(0, 1), normal(0, -1)}, {}, Design::MonteCarlo, 1, 10);
+      },
+      "input 1 (normal): sd = -1: must be > 0");
+  expect_invalid([] { HostSampler({normal(0, 1)}, {}, Design::LatinHypercube, 1, 0); },
+                 "sample_count = 0");
   const std::vector<DistributionSpec> many(33, normal(0, 1));
   expect_invalid([&] { HostSampler(many, {}, Design::MonteCarlo, 1, 10); }, "at most 32");
   const HostSampler s({normal(0, 1), uniform(0, 1)}, {}, Design::MonteCarlo, 1, 10);
   EXPECT_EQ(s.dimensions(), 2);
   EXPECT_EQ(s.sample_count(), 10u);
   Kokkos::View<double**, Kokkos::LayoutLeft, Kokkos::HostSpace> wrong("wrong", 4, 3);
-  expect_invalid([&] { sample_batch(Kokkos::DefaultHostExecutionSpace(), s, 0, wrong); }, "3 columns for 2 inputs");
+  expect_invalid([&] { sample_batch(Kokkos::DefaultHostExecutionSpace(), s, 0, wrong); },
+                 "3 columns for 2 inputs");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -681,12 +763,13 @@ TYPED_TEST(SamplerReproducibility, SampleIIsTheSameInEveryBatch) {
   // whose math library (log, exp, erfc) and fused multiply-adds round differently.
   using Exec = TypeParam;
   using Mem = typename Exec::memory_space;
-  double worst = 0.0;   // largest relative difference from the host call
+  double worst = 0.0;  // largest relative difference from the host call
   const std::uint64_t N = 1000;
   const std::vector<std::vector<double>> R = {
       {1, 0.6, 0, 0, 0}, {0.6, 1, 0, 0, 0}, {0, 0, 1, 0, 0}, {0, 0, 0, 1, 0}, {0, 0, 0, 0, 1}};
   const std::vector<DistributionSpec> specs = {normal(10, 2), lognormal(3, 1), uniform(0, 5),
-                                               truncated(0, 1, 0.5, 3), discrete({1, 2, 3}, {1, 2, 1})};
+                                               truncated(0, 1, 0.5, 3),
+                                               discrete({1, 2, 3}, {1, 2, 1})};
   for (Design design : {Design::MonteCarlo, Design::LatinHypercube, Design::Sobol, Design::Grid}) {
     std::vector<DistributionSpec> in = specs;
     std::uint64_t n = N;
@@ -725,9 +808,9 @@ TYPED_TEST(SamplerReproducibility, SampleIIsTheSameInEveryBatch) {
         const auto part_h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), part);
         for (std::uint64_t i = 0; i < m; ++i)
           for (int d = 0; d < 5; ++d)
-            ASSERT_EQ(part_h(i, d), all_h(first + i, d)) << to_string(design) << " first " << first << " i " << i;
+            ASSERT_EQ(part_h(i, d), all_h(first + i, d))
+                << to_string(design) << " first " << first << " i " << i;
       }
-
   }
   if (!on_host<Mem>) std::cout << "largest relative difference from the host: " << worst << "\n";
 }
@@ -749,8 +832,10 @@ TYPED_TEST(SamplerReproducibility, MonteCarloAndSobolAcceptAnyIndex) {
     for (std::uint64_t i = 0; i < 64; ++i) {
       host.sample(first + i, ref);
       for (int d = 0; d < 2; ++d) {
-        if (on_host<Mem>) ASSERT_EQ(h(i, d), ref[d]) << i;
-        else ASSERT_LE(relative_difference(h(i, d), ref[d]), kDeviceTolerance) << i;
+        if (on_host<Mem>)
+          ASSERT_EQ(h(i, d), ref[d]) << i;
+        else
+          ASSERT_LE(relative_difference(h(i, d), ref[d]), kDeviceTolerance) << i;
       }
       ASSERT_TRUE(ref[0] > 0 && ref[0] < 1 && std::isfinite(ref[1]));
     }

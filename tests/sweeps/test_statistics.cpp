@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "support/expect_invalid.hpp"
+#include "support/tolerances.hpp"
 #include "sweeps/counter_rng.hpp"
 #include "sweeps/normal_distribution.hpp"
 #include "sweeps/statistics.hpp"
@@ -24,6 +25,22 @@ namespace {
 using namespace lsi::sweeps;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kReplicates = 2000;
+using lsi::test::kFewOpsAbs;
+using lsi::test::kUnitArithmeticAbs;
+
+// The binomial cdf against mpmath: the incomplete beta's prefactor carries the absolute rounding
+// of its lgamma terms (~1e-14 at n = 100; measured 8e-14 relative).
+constexpr double kIncompleteBetaRel = 2e-13;
+// A coverage from the binomial cdf (the same rounding, on a value near 1), absolute.
+constexpr double kBinomialCdfAbs = 1e-13;
+// The t quantile against mpmath: bisected to 1e-15 relative on that cdf, relative (absolute for
+// the values of a few units compared without a scale).
+constexpr double kTQuantileRel = 1e-12;
+// A mean's interval on values of a few units: a few ulp of the arithmetic and the t quantile's
+// 1e-15, absolute.
+constexpr double kMeanCiAbs = 1e-13;
+// 3 / 10: one correctly rounded division.
+constexpr double kOneDivisionAbs = 1e-16;
 const double kCoverageTolerance = 4 * std::sqrt(0.95 * 0.05 / kReplicates);
 
 using lsi::test::expect_invalid;
@@ -42,17 +59,22 @@ TEST(StatisticsFunctions, BinomialAndStudentAgainstReferences) {
   // References from mpmath (30 digits). The incomplete beta's prefactor exp(a ln x + b ln(1-x) -
   // ln B(a,b)) carries the absolute rounding of the lgamma terms (~1e-14 at n = 100), so we allow
   // 2e-13 relative (measured 8e-14 at n = 100); the t quantile is bisected to 1e-15 relative.
-  EXPECT_NEAR(stats::binomial_cdf(3, 20, 0.3), 0.107086804503730998, 2e-13 * 0.107086804503730998);
-  EXPECT_NEAR(stats::binomial_cdf(40, 100, 0.5), 0.0284439668204903958, 2e-13 * 0.0284439668204903958);
+  EXPECT_NEAR(stats::binomial_cdf(3, 20, 0.3), 0.107086804503730998,
+              kIncompleteBetaRel * 0.107086804503730998);
+  EXPECT_NEAR(stats::binomial_cdf(40, 100, 0.5), 0.0284439668204903958,
+              kIncompleteBetaRel * 0.0284439668204903958);
   EXPECT_EQ(stats::binomial_cdf(-1, 10, 0.5), 0.0);
   EXPECT_EQ(stats::binomial_cdf(10, 10, 0.5), 1.0);
   const double nu[] = {1, 2, 4, 5, 9, 30, 1000};
-  const double t975[] = {12.7062047361747046, 4.30265272974946385, 2.77644510519779436, 2.57058183563631551,
-                         2.26215716279820554, 2.04227245630123831, 1.96233908082640848};
+  const double t975[] = {12.7062047361747046, 4.30265272974946385, 2.77644510519779436,
+                         2.57058183563631551, 2.26215716279820554, 2.04227245630123831,
+                         1.96233908082640848};
   for (int i = 0; i < 7; ++i)
-    EXPECT_NEAR(stats::student_t_quantile(0.975, nu[i]), t975[i], 1e-12 * t975[i]) << "nu " << nu[i];
-  EXPECT_NEAR(stats::student_t_quantile(0.025, 4), -2.77644510519779436, 1e-12);
-  EXPECT_NEAR(stats::student_t_quantile(0.975, 1e8), 1.959963984540054, 1e-12);  // -> normal
+    EXPECT_NEAR(stats::student_t_quantile(0.975, nu[i]), t975[i], kTQuantileRel * t975[i])
+        << "nu " << nu[i];
+  EXPECT_NEAR(stats::student_t_quantile(0.025, 4), -2.77644510519779436, kTQuantileRel);
+  EXPECT_NEAR(stats::student_t_quantile(0.975, 1e8), 1.959963984540054,
+              kTQuantileRel);  // -> normal
 }
 
 TEST(StatisticsFunctions, OrderStatisticRanks) {
@@ -61,7 +83,7 @@ TEST(StatisticsFunctions, OrderStatisticRanks) {
   const auto med = order_statistic_ranks(20, 0.5, 0.95);
   EXPECT_EQ(med.lower, 6);
   EXPECT_EQ(med.upper, 15);
-  EXPECT_NEAR(med.coverage, 1 - 2 * 0.020694732666015625, 1e-13);
+  EXPECT_NEAR(med.coverage, 1 - 2 * 0.020694732666015625, kBinomialCdfAbs);
   // q95 of n = 20: P(B <= 16) = 0.0159 <= 0.025 < P(B <= 17) = 0.0755, so the lower rank is 17; no
   // upper rank reaches 0.975 (P(B <= 19) = 1 - 0.95^20 = 0.64), hence +inf (rank n + 1).
   const auto q95 = order_statistic_ranks(20, 0.95, 0.95);
@@ -94,14 +116,14 @@ TEST(Describe, ExactSmallCase) {
   EXPECT_EQ(s.count, 5u);
   EXPECT_EQ(s.infinite_count, 0u);
   EXPECT_EQ(s.mean, 3.0);
-  EXPECT_NEAR(s.standard_deviation, std::sqrt(2.5), 1e-15);
+  EXPECT_NEAR(s.standard_deviation, std::sqrt(2.5), kFewOpsAbs);
   EXPECT_EQ(s.min, 1.0);
   EXPECT_EQ(s.max, 5.0);
-  EXPECT_NEAR(s.mean_ci.low, 1.0367568385224423, 1e-13);
-  EXPECT_NEAR(s.mean_ci.high, 4.9632431614775577, 1e-13);
-  EXPECT_NEAR(s.q05, 1.2, 1e-15);
+  EXPECT_NEAR(s.mean_ci.low, 1.0367568385224423, kMeanCiAbs);
+  EXPECT_NEAR(s.mean_ci.high, 4.9632431614775577, kMeanCiAbs);
+  EXPECT_NEAR(s.q05, 1.2, kFewOpsAbs);
   EXPECT_EQ(s.q50, 3.0);
-  EXPECT_NEAR(s.q95, 4.8, 1e-15);
+  EXPECT_NEAR(s.q95, 4.8, kFewOpsAbs);
   // n = 5 is too small for a finite 95 % bound on any of the three quantiles, except the q05's upper
   // bound x_(2) (P(B <= 1) = 0.977 for B ~ Bin(5, 0.05)) and the q95's lower bound x_(4).
   EXPECT_EQ(s.q50_ci.low, -kInf);
@@ -136,7 +158,7 @@ TEST(Describe, InfiniteValues) {
   EXPECT_EQ(s.mean_ci.high, kInf);
   EXPECT_EQ(s.min, 1.0);
   EXPECT_EQ(s.max, kInf);
-  EXPECT_NEAR(s.q05, 1.1, 1e-15);
+  EXPECT_NEAR(s.q05, 1.1, kFewOpsAbs);
   EXPECT_EQ(s.q50, 2.0);
   EXPECT_EQ(s.q95, kInf);
   const OutputStatistics all_inf = describe({kInf, kInf});
@@ -175,16 +197,16 @@ TEST(Exceedance, WilsonExactCases) {
   EXPECT_EQ(e.exceed_count, 3u);
   EXPECT_EQ(e.count, 10u);
   EXPECT_EQ(e.threshold, 7.0);
-  EXPECT_NEAR(e.probability, 0.3, 1e-16);
-  EXPECT_NEAR(e.ci.low, 0.107791267406301034, 1e-14);
-  EXPECT_NEAR(e.ci.high, 0.603221852538854648, 1e-14);
+  EXPECT_NEAR(e.probability, 0.3, kOneDivisionAbs);
+  EXPECT_NEAR(e.ci.low, 0.107791267406301034, kUnitArithmeticAbs);
+  EXPECT_NEAR(e.ci.high, 0.603221852538854648, kUnitArithmeticAbs);
   const ExceedanceEstimate none = exceedance(v, 10);  // strictly greater: 10 does not exceed 10
   EXPECT_EQ(none.exceed_count, 0u);
   EXPECT_EQ(none.ci.low, 0.0);
-  EXPECT_NEAR(none.ci.high, 0.277532799862889205, 1e-14);
+  EXPECT_NEAR(none.ci.high, 0.277532799862889205, kUnitArithmeticAbs);
   const ExceedanceEstimate all = exceedance(v, 0);
   EXPECT_EQ(all.ci.high, 1.0);
-  EXPECT_NEAR(all.ci.low, 1 - 0.277532799862889205, 1e-14);
+  EXPECT_NEAR(all.ci.low, 1 - 0.277532799862889205, kUnitArithmeticAbs);
   // +inf exceeds every threshold.
   EXPECT_EQ(exceedance({1, kInf, kInf}, 1e300).exceed_count, 2u);
 }
@@ -252,7 +274,8 @@ TEST(Coverage, ExceedanceWilson) {
       const ExceedanceEstimate e = exceedance(x, 0.5);
       covered += e.ci.low <= c.p && c.p <= e.ci.high;
     }
-    EXPECT_NEAR(double(covered) / kReplicates, c.exact, 4 * std::sqrt(c.exact * (1 - c.exact) / kReplicates))
+    EXPECT_NEAR(double(covered) / kReplicates, c.exact,
+                4 * std::sqrt(c.exact * (1 - c.exact) / kReplicates))
         << "n " << c.n << " p " << c.p;
   }
 }

@@ -33,7 +33,7 @@ using nlohmann::json;
 const fs::path source_dir = LSI_SOURCE_DIR;
 const std::string lsi_exe = LSI_EXE;
 
-using Outcome = lsi::testing::CommandOutcome;   // out: stdout and stderr together
+using Outcome = lsi::testing::CommandOutcome;  // out: stdout and stderr together
 
 Outcome run(const std::string& args, const std::string& env = "") {
   return lsi::testing::run_command(env + " " + lsi_exe + " " + args + " 2>&1");
@@ -51,19 +51,31 @@ fs::path write_study(const std::string& name, json extra) {
   json s = {{"name", name},
             {"scene", (source_dir / "scenes/former-reference/L1-B1.json").string()},
             {"inputs",
-             {{{"path", "/landslide/thickness_m"}, {"distribution", "lognormal"}, {"mean", 2.0}, {"sd", 0.3}},
-              {{"path", "/landslide/velocity_m_s"}, {"distribution", "truncated-normal"}, {"mean", 6.0},
-               {"sd", 1.5}, {"min", 1.0}, {"max", 15.0}},
-              {{"path", "/landslide/shape/body_squares"}, {"distribution", "discrete"},
+             {{{"path", "/landslide/thickness_m"},
+               {"distribution", "lognormal"},
+               {"mean", 2.0},
+               {"sd", 0.3}},
+              {{"path", "/landslide/velocity_m_s"},
+               {"distribution", "truncated-normal"},
+               {"mean", 6.0},
+               {"sd", 1.5},
+               {"min", 1.0},
+               {"max", 15.0}},
+              {{"path", "/landslide/shape/body_squares"},
+               {"distribution", "discrete"},
                {"values", {4, 6, 8}}},
-              {{"path", "/barrier/base_friction"}, {"distribution", "uniform"}, {"min", 0.3}, {"max", 0.7}}}},
-            {"correlation", {{{"inputs", {"/landslide/thickness_m", "/landslide/velocity_m_s"}}, {"rho", 0.4}}}},
+              {{"path", "/barrier/base_friction"},
+               {"distribution", "uniform"},
+               {"min", 0.3},
+               {"max", 0.7}}}},
+            {"correlation",
+             {{{"inputs", {"/landslide/thickness_m", "/landslide/velocity_m_s"}}, {"rho", 0.4}}}},
             {"samples", 20000},
             {"seed", 11},
             {"chunk_samples", 4096},
             {"methods", {"empirical", "analytical"}},
             {"thresholds", {{{"output", "final_displacement"}, {"above", 0.5}}}}};
-  if (!extra.is_null()) s.merge_patch(extra);   // `{}` is a null json: nothing to merge
+  if (!extra.is_null()) s.merge_patch(extra);  // `{}` is a null json: nothing to merge
   const fs::path p = temp_dir() / (name + ".json");
   std::ofstream(p) << s.dump(2);
   return p;
@@ -94,20 +106,39 @@ TEST(SweepCli, StudyErrorsNameTheFieldAndExit2) {
       {{{"colour", 1}}, "colour: unknown key"},
       {{{"samples", -5}}, "samples = -5"},
       {{{"design", "quasi"}}, "design = \"quasi\""},
-      {{{"inputs", {{{"path", "/landslide/velocity_m_s"}, {"distribution", "normal"}, {"mean", 6}, {"sd", -1}}}}},
+      {{{"inputs",
+         {{{"path", "/landslide/velocity_m_s"},
+           {"distribution", "normal"},
+           {"mean", 6},
+           {"sd", -1}}}}},
        "inputs[0].sd = -1: must be > 0"},
-      {{{"inputs", {{{"path", "/landslide/speed"}, {"distribution", "uniform"}, {"min", 1}, {"max", 2}}}}},
+      {{{"inputs",
+         {{{"path", "/landslide/speed"}, {"distribution", "uniform"}, {"min", 1}, {"max", 2}}}}},
        "inputs[0].path = \"/landslide/speed\": not a numeric scene key"},
-      {{{"inputs", {{{"path", "/methods/empirical/tau"}, {"distribution", "uniform"}, {"min", 0.1}, {"max", 0.2}}}},
+      {{{"inputs",
+         {{{"path", "/methods/empirical/tau"},
+           {"distribution", "uniform"},
+           {"min", 0.1},
+           {"max", 0.2}}}},
         {"methods", {"analytical"}}},
        "only the empirical method reads it"},
-      {{{"inputs", {{{"path", "/landslide/shape/body_squares"}, {"distribution", "uniform"}, {"min", 2}, {"max", 5}}}}},
+      {{{"inputs",
+         {{{"path", "/landslide/shape/body_squares"},
+           {"distribution", "uniform"},
+           {"min", 2},
+           {"max", 5}}}}},
        "must be an integer"},
-      {{{"inputs", {{{"path", "/methods/analytical/tau"}, {"distribution", "uniform"}, {"min", 0.5}, {"max", 1.5}}}}},
+      {{{"inputs",
+         {{{"path", "/methods/analytical/tau"},
+           {"distribution", "uniform"},
+           {"min", 0.5},
+           {"max", 1.5}}}}},
        "the scene with its typical value 1 is invalid: methods.analytical.tau = 1"},
-      {{{"correlation", {{{"inputs", {"/landslide/thickness_m", "/barrier/height_m"}}, {"rho", 0.5}}}}},
+      {{{"correlation",
+         {{{"inputs", {"/landslide/thickness_m", "/barrier/height_m"}}, {"rho", 0.5}}}}},
        "not one of the study's inputs"},
-      {{{"correlation", {{{"inputs", {"/landslide/thickness_m", "/landslide/velocity_m_s"}}, {"rho", 1.5}}}}},
+      {{{"correlation",
+         {{{"inputs", {"/landslide/thickness_m", "/landslide/velocity_m_s"}}, {"rho", 1.5}}}}},
        "rho = 1.5"},
       {json::parse(R"({"stop": {"interval": {"method": "analytical", "output": "peak_force",
                                               "statistic": "mean"}}})"),
@@ -117,14 +148,18 @@ TEST(SweepCli, StudyErrorsNameTheFieldAndExit2) {
     const fs::path study = write_study("bad", extra);
     const Outcome r = run("sweep " + study.string() + " --out " + (temp_dir() / "bad.h5").string());
     EXPECT_EQ(r.code, 2) << extra.dump() << "\n" << r.out;
-    EXPECT_NE(r.out.find(expected), std::string::npos) << "expected '" << expected << "' in:\n" << r.out;
+    EXPECT_NE(r.out.find(expected), std::string::npos) << "expected '" << expected << "' in:\n"
+                                                       << r.out;
     EXPECT_EQ(r.out.find("\n", r.out.find("error")), r.out.size() - 1) << "one line:\n" << r.out;
   }
-  const Outcome missing = run("sweep " + (temp_dir() / "no-such-study.json").string() + " --out x.h5");
+  const Outcome missing =
+      run("sweep " + (temp_dir() / "no-such-study.json").string() + " --out x.h5");
   EXPECT_EQ(missing.code, 2);
-  EXPECT_NE(missing.out.find("no-such-study.json: study file not found"), std::string::npos) << missing.out;
+  EXPECT_NE(missing.out.find("no-such-study.json: study file not found"), std::string::npos)
+      << missing.out;
   const fs::path ok = write_study("shard", {});
-  const Outcome s = run("sweep " + ok.string() + " --out " + (temp_dir() / "s.h5").string() + " --shard 3/2");
+  const Outcome s =
+      run("sweep " + ok.string() + " --out " + (temp_dir() / "s.h5").string() + " --shard 3/2");
   EXPECT_EQ(s.code, 2);
   EXPECT_NE(s.out.find("--shard 3/2: must be i/N with 0 <= i < N"), std::string::npos) << s.out;
 }
@@ -149,13 +184,17 @@ TEST(SweepCli, SamplesAgreeWithLsiRunAndStatisticsCountThem) {
     const lsi::Scene scene = lsi::parse_scene(lsi::sample_scene_document(s, x));
     const lsi::MethodResult e = lsi::run_empirical(scene), a = lsi::run_analytical(scene);
     const std::pair<std::string, double> expect[] = {
-        {"empirical/peak_force", e.peak_force},           {"empirical/rise_time", e.rise_time},
-        {"empirical/impact_duration", e.impact_duration}, {"empirical/final_displacement", e.final_displacement},
-        {"analytical/peak_force", a.peak_force},          {"analytical/rise_time", a.rise_time},
+        {"empirical/peak_force", e.peak_force},
+        {"empirical/rise_time", e.rise_time},
+        {"empirical/impact_duration", e.impact_duration},
+        {"empirical/final_displacement", e.final_displacement},
+        {"analytical/peak_force", a.peak_force},
+        {"analytical/rise_time", a.rise_time},
         {"analytical/impact_duration", a.impact_duration},
         {"analytical/final_displacement", a.final_displacement}};
     for (const auto& [column, value] : expect) {
-      const auto it = std::find(f.table.output_columns.begin(), f.table.output_columns.end(), column);
+      const auto it =
+          std::find(f.table.output_columns.begin(), f.table.output_columns.end(), column);
       ASSERT_NE(it, f.table.output_columns.end()) << column;
       const double got = f.table.outputs[it - f.table.output_columns.begin()][i];
       EXPECT_NEAR(got, value, 1e-12 * std::fabs(value) + 1e-300) << column << " sample " << i;
@@ -163,21 +202,25 @@ TEST(SweepCli, SamplesAgreeWithLsiRunAndStatisticsCountThem) {
   }
   // Statistics: the 300 ok samples; the mean of the stored column.
   EXPECT_EQ(f.statistics["samples_ok"].get<int>(), 300);
-  const auto& col = f.table.outputs[1];   // empirical/rise_time... find by name instead
+  const auto& col = f.table.outputs[1];  // empirical/rise_time... find by name instead
   (void)col;
-  const auto it = std::find(f.table.output_columns.begin(), f.table.output_columns.end(), "analytical/peak_force");
+  const auto it = std::find(f.table.output_columns.begin(), f.table.output_columns.end(),
+                            "analytical/peak_force");
   double mean = 0;
   for (double v : f.table.outputs[it - f.table.output_columns.begin()]) mean += v / 300.0;
-  EXPECT_NEAR(f.statistics["outputs"]["analytical/peak_force"]["mean"].get<double>(), mean, 1e-9 * mean);
+  EXPECT_NEAR(f.statistics["outputs"]["analytical/peak_force"]["mean"].get<double>(), mean,
+              1e-9 * mean);
 }
 
 TEST(SweepCli, InvalidSamplesAreRecordedWithTheirReasonAndLeftOutOfStatistics) {
   // Velocity ~ N(1, 2): about 31 % of the samples are <= 0, which the scene forbids.
-  const fs::path study = write_study(
-      "invalid", {{"samples", 2000},
-                  {"correlation", nullptr},
-                  {"inputs", {{{"path", "/landslide/velocity_m_s"}, {"distribution", "normal"},
-                               {"mean", 1.0}, {"sd", 2.0}}}}});
+  const fs::path study = write_study("invalid", {{"samples", 2000},
+                                                 {"correlation", nullptr},
+                                                 {"inputs",
+                                                  {{{"path", "/landslide/velocity_m_s"},
+                                                    {"distribution", "normal"},
+                                                    {"mean", 1.0},
+                                                    {"sd", 2.0}}}}});
   const fs::path out = temp_dir() / "invalid.h5";
   const Outcome r = run("sweep " + study.string() + " --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.out;
@@ -199,7 +242,8 @@ TEST(SweepCli, InvalidSamplesAreRecordedWithTheirReasonAndLeftOutOfStatistics) {
   EXPECT_NE(f.table.failure_reason[0].find("must be > 0"), std::string::npos);
   EXPECT_EQ(f.statistics["samples_ok"].get<std::size_t>(), 2000 - bad);
   EXPECT_EQ(f.statistics["samples_failed"]["invalid input"].get<std::size_t>(), bad);
-  EXPECT_EQ(f.statistics["outputs"]["analytical/peak_force"]["count"].get<std::size_t>(), 2000 - bad);
+  EXPECT_EQ(f.statistics["outputs"]["analytical/peak_force"]["count"].get<std::size_t>(),
+            2000 - bad);
 }
 
 TEST(SweepCli, RangeCheckOfTheKernelAgreesWithTheSceneParser) {
@@ -226,9 +270,11 @@ TEST(SweepCli, RangeCheckOfTheKernelAgreesWithTheSceneParser) {
   wide("/methods/empirical/kappa", -0.2, 1);
   wide("/methods/analytical/lambda", -0.1, 1.1);
   wide("/methods/analytical/tau", -0.1, 1.1);
-  inputs.push_back({{"path", "/landslide/shape/body_squares"}, {"distribution", "discrete"},
+  inputs.push_back({{"path", "/landslide/shape/body_squares"},
+                    {"distribution", "discrete"},
                     {"values", {3, -1, 0, 7.5}}});
-  const fs::path study = write_study("mirror", {{"samples", 3000}, {"correlation", nullptr}, {"inputs", inputs}});
+  const fs::path study =
+      write_study("mirror", {{"samples", 3000}, {"correlation", nullptr}, {"inputs", inputs}});
   const fs::path out = temp_dir() / "mirror.h5";
   const Outcome r = run("sweep " + study.string() + " --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.out;
@@ -272,8 +318,7 @@ TEST(SweepCli, ResumesAfterSigkillWithIdenticalResults) {
     std::size_t n = 0;
     std::error_code ec;
     for (const auto& e : fs::directory_iterator(parts, ec))
-      n += e.path().filename().string().rfind("chunk-", 0) == 0 &&
-           e.path().extension() == ".h5";
+      n += e.path().filename().string().rfind("chunk-", 0) == 0 && e.path().extension() == ".h5";
     return n;
   };
   const auto t0 = std::chrono::steady_clock::now();
@@ -290,13 +335,16 @@ TEST(SweepCli, ResumesAfterSigkillWithIdenticalResults) {
   const Outcome again = run("sweep " + study.string() + " --out " + killed.string());
   EXPECT_EQ(again.code, 2) << again.out;
   EXPECT_NE(again.out.find("--resume"), std::string::npos) << again.out;
-  const Outcome resumed = run("sweep " + study.string() + " --out " + killed.string() + " --resume --format json");
+  const Outcome resumed =
+      run("sweep " + study.string() + " --out " + killed.string() + " --resume --format json");
   ASSERT_EQ(resumed.code, 0) << resumed.out;
   const json j = json::parse(resumed.out);
-  EXPECT_EQ(j["samples_run"].get<std::size_t>(), 400000 - 2000 * left) << "only the missing chunks run";
+  EXPECT_EQ(j["samples_run"].get<std::size_t>(), 400000 - 2000 * left)
+      << "only the missing chunks run";
   expect_same_table(lsi::read_sweep_file(full.string()), lsi::read_sweep_file(killed.string()));
   // Resuming a finished sweep changes nothing.
-  const Outcome done = run("sweep " + study.string() + " --out " + killed.string() + " --resume --format json");
+  const Outcome done =
+      run("sweep " + study.string() + " --out " + killed.string() + " --resume --format json");
   ASSERT_EQ(done.code, 0) << done.out;
   EXPECT_EQ(json::parse(done.out)["samples_run"].get<int>(), 0);
 }
@@ -315,7 +363,8 @@ TEST(SweepCli, ShardsMergeIntoTheFileOfASingleRun) {
   }
   const fs::path merged = temp_dir() / "merged.h5";
   // A missing shard is refused.
-  const Outcome partial = run("merge --out " + merged.string() + " " + (temp_dir() / "shard0.h5").string());
+  const Outcome partial =
+      run("merge --out " + merged.string() + " " + (temp_dir() / "shard0.h5").string());
   EXPECT_EQ(partial.code, 2);
   EXPECT_NE(partial.out.find("shard 1/3 is missing"), std::string::npos) << partial.out;
   const Outcome m = run("merge --out " + merged.string() + files);
@@ -326,9 +375,12 @@ TEST(SweepCli, ShardsMergeIntoTheFileOfASingleRun) {
 TEST(SweepCli, IntervalRuleStopsEarlyAndWallTimeStopsResumably) {
   // The mean peak force of the analytical model to +-2 %: its coefficient of variation is about
   // 0.5, so about (1.96 * 0.5 / 0.02)^2 = 2400 samples are needed, far fewer than 20000.
-  const fs::path study = write_study(
-      "interval", {{"stop", {{"interval", {{"method", "analytical"}, {"output", "peak_force"},
-                                           {"statistic", "mean"}, {"relative_half_width", 0.02}}}}}});
+  const fs::path study = write_study("interval", {{"stop",
+                                                   {{"interval",
+                                                     {{"method", "analytical"},
+                                                      {"output", "peak_force"},
+                                                      {"statistic", "mean"},
+                                                      {"relative_half_width", 0.02}}}}}});
   const fs::path out = temp_dir() / "interval.h5";
   const Outcome r = run("sweep " + study.string() + " --out " + out.string() + " --format json");
   ASSERT_EQ(r.code, 0) << r.out;
@@ -341,7 +393,8 @@ TEST(SweepCli, IntervalRuleStopsEarlyAndWallTimeStopsResumably) {
   EXPECT_LE(n, 8192u);
 
   // A wall-time limit far below one chunk's time: one chunk per invocation, then --resume.
-  const fs::path timed = write_study("timed", {{"samples", 10000}, {"stop", {{"wall_time_s", 1e-6}}}});
+  const fs::path timed =
+      write_study("timed", {{"samples", 10000}, {"stop", {{"wall_time_s", 1e-6}}}});
   const fs::path t = temp_dir() / "timed.h5";
   const Outcome first = run("sweep " + timed.string() + " --out " + t.string() + " --format json");
   ASSERT_EQ(first.code, 0) << first.out;
@@ -357,12 +410,18 @@ TEST(SweepCli, IntervalRuleStopsEarlyAndWallTimeStopsResumably) {
 }
 
 TEST(SweepCli, GridDesignRunsTheFullFactorialFirstInputFastest) {
-  const fs::path study = write_study(
-      "grid", {{"design", "grid"},
-               {"samples", nullptr},
-               {"correlation", nullptr},
-               {"inputs", {{{"path", "/landslide/velocity_m_s"}, {"distribution", "grid"}, {"min", 4}, {"max", 8}, {"count", 3}},
-                           {{"path", "/barrier/base_friction"}, {"distribution", "discrete"}, {"values", {0.4, 0.6}}}}}});
+  const fs::path study = write_study("grid", {{"design", "grid"},
+                                              {"samples", nullptr},
+                                              {"correlation", nullptr},
+                                              {"inputs",
+                                               {{{"path", "/landslide/velocity_m_s"},
+                                                 {"distribution", "grid"},
+                                                 {"min", 4},
+                                                 {"max", 8},
+                                                 {"count", 3}},
+                                                {{"path", "/barrier/base_friction"},
+                                                 {"distribution", "discrete"},
+                                                 {"values", {0.4, 0.6}}}}}});
   const fs::path out = temp_dir() / "grid.h5";
   ASSERT_EQ(run("sweep " + study.string() + " --out " + out.string()).code, 0);
   const lsi::SweepFile f = lsi::read_sweep_file(out.string());
@@ -378,17 +437,20 @@ TEST(SweepCli, MpmSamplesRunBesideTheClosedForms) {
   // Two coarse MPM runs (cell h/4, 1 particle per cell: about a second each).
   json scene;
   std::ifstream(source_dir / "scenes/former-reference/L1-B1.json") >> scene;
-  scene["methods"]["mpm"] = {{"cell_size_m", 0.5}, {"phases", "dry"}, {"transfer", "pic"},
-                             {"particles_per_cell", 1}};
-  const fs::path study = write_study(
-      "mpm", {{"scene", scene},
-              {"samples", 2},
-              {"chunk_samples", 1},
-              {"correlation", nullptr},
-              {"thresholds", nullptr},
-              {"methods", {"analytical", "mpm"}},
-              {"outputs", {"peak_force", "impact_duration"}},
-              {"inputs", {{{"path", "/landslide/velocity_m_s"}, {"distribution", "uniform"}, {"min", 5}, {"max", 7}}}}});
+  scene["methods"]["mpm"] = {
+      {"cell_size_m", 0.5}, {"phases", "dry"}, {"transfer", "pic"}, {"particles_per_cell", 1}};
+  const fs::path study = write_study("mpm", {{"scene", scene},
+                                             {"samples", 2},
+                                             {"chunk_samples", 1},
+                                             {"correlation", nullptr},
+                                             {"thresholds", nullptr},
+                                             {"methods", {"analytical", "mpm"}},
+                                             {"outputs", {"peak_force", "impact_duration"}},
+                                             {"inputs",
+                                              {{{"path", "/landslide/velocity_m_s"},
+                                                {"distribution", "uniform"},
+                                                {"min", 5},
+                                                {"max", 7}}}}});
   const fs::path out = temp_dir() / "mpm.h5";
   const Outcome r = run("sweep " + study.string() + " --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.out;
@@ -399,8 +461,8 @@ TEST(SweepCli, MpmSamplesRunBesideTheClosedForms) {
   EXPECT_EQ(f.table.output_columns, cols);
   const lsi::Study st = lsi::load_study(study.string());
   for (int i = 0; i < 2; ++i) {
-    EXPECT_EQ(f.table.status[i], 0) << (f.table.failure_reason.empty() ? std::string("")
-                                                                        : f.table.failure_reason[0]);
+    EXPECT_EQ(f.table.status[i], 0)
+        << (f.table.failure_reason.empty() ? std::string("") : f.table.failure_reason[0]);
     EXPECT_GT(f.table.wall_time[i], 0.0f);
     // The same sample run directly: the sweep must store what the MPM gives. Same code and
     // thread count, so equal up to the order of floating-point sums: 1e-9 relative.
@@ -420,16 +482,21 @@ TEST(SweepCli, MpmSamplesRunBesideTheClosedForms) {
 TEST(SweepCli, MpmRunsAtQuantilesOfAClosedFormOutput) {
   json scene;
   std::ifstream(source_dir / "scenes/former-reference/L1-B1.json") >> scene;
-  scene["methods"]["mpm"] = {{"cell_size_m", 0.5}, {"phases", "dry"}, {"transfer", "pic"},
-                             {"particles_per_cell", 1}};
+  scene["methods"]["mpm"] = {
+      {"cell_size_m", 0.5}, {"phases", "dry"}, {"transfer", "pic"}, {"particles_per_cell", 1}};
   const fs::path study = write_study(
       "quantiles", {{"scene", scene},
                     {"samples", 1001},
                     {"correlation", nullptr},
                     {"thresholds", nullptr},
                     {"outputs", {"peak_force"}},
-                    {"inputs", {{{"path", "/landslide/velocity_m_s"}, {"distribution", "uniform"}, {"min", 4}, {"max", 8}}}},
-                    {"mpm_at_quantiles", {{"method", "analytical"}, {"output", "peak_force"}, {"quantiles", {0.5}}}}});
+                    {"inputs",
+                     {{{"path", "/landslide/velocity_m_s"},
+                       {"distribution", "uniform"},
+                       {"min", 4},
+                       {"max", 8}}}},
+                    {"mpm_at_quantiles",
+                     {{"method", "analytical"}, {"output", "peak_force"}, {"quantiles", {0.5}}}}});
   const fs::path out = temp_dir() / "quantiles.h5";
   const Outcome r = run("sweep " + study.string() + " --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.out;
@@ -451,7 +518,8 @@ TEST(SweepCli, MpmRunsAtQuantilesOfAClosedFormOutput) {
       lsi::run_mpm_case(lsi::impact_case(lsi::parse_scene(lsi::sample_scene_document(st, &x))));
   const double m = q[0]["mpm"]["peak_force"].get<double>();
   EXPECT_NEAR(m, o.result.peak_force, 1e-9 * m);
-  EXPECT_NEAR(q[0]["relative_error"]["analytical/peak_force"].get<double>(), (peaks[500] - m) / m, 1e-12);
+  EXPECT_NEAR(q[0]["relative_error"]["analytical/peak_force"].get<double>(), (peaks[500] - m) / m,
+              1e-12);
 }
 
 }  // namespace
@@ -466,13 +534,19 @@ TEST(SweepCli, MomentumBarrierModelRunsInTheSweepKernel) {
   std::ifstream(source_dir / "scenes/reference/L2-B1.json") >> scene;
   scene["methods"] = {{"empirical", {{"barrier_model", "momentum"}}},
                       {"analytical", {{"barrier_model", "momentum"}}}};
-  const fs::path study = write_study(
-      "momentum", {{"scene", scene},
-                   {"samples", 24},
-                   {"correlation", nullptr},
-                   {"thresholds", nullptr},
-                   {"inputs", {{{"path", "/landslide/velocity_m_s"}, {"distribution", "uniform"}, {"min", 4}, {"max", 12}},
-                               {{"path", "/barrier/face_friction"}, {"distribution", "uniform"}, {"min", 0}, {"max", 0.5}}}}});
+  const fs::path study = write_study("momentum", {{"scene", scene},
+                                                  {"samples", 24},
+                                                  {"correlation", nullptr},
+                                                  {"thresholds", nullptr},
+                                                  {"inputs",
+                                                   {{{"path", "/landslide/velocity_m_s"},
+                                                     {"distribution", "uniform"},
+                                                     {"min", 4},
+                                                     {"max", 12}},
+                                                    {{"path", "/barrier/face_friction"},
+                                                     {"distribution", "uniform"},
+                                                     {"min", 0},
+                                                     {"max", 0.5}}}}});
   const fs::path out = temp_dir() / "momentum.h5";
   const Outcome r = run("sweep " + study.string() + " --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.out;
@@ -494,6 +568,6 @@ TEST(SweepCli, MomentumBarrierModelRunsInTheSweepKernel) {
           << "sample " << i << " column " << f.table.output_columns[c];
     sliding += a.final_displacement > 0.01;
   }
-  EXPECT_GT(sliding, 10);   // most samples slide: the comparison covers the sliding phases
+  EXPECT_GT(sliding, 10);  // most samples slide: the comparison covers the sliding phases
 }
 }  // namespace

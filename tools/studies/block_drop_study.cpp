@@ -32,13 +32,12 @@ int study(bool plastic, double dx, double width, double height, double v0, doubl
   m.model = plastic ? Material::Model::MohrCoulomb : Material::Model::LinearElastic;
   m.density = 1800;
   m.poisson_ratio = nu;
-  m.young_modulus = m.density * kG * 3.0 / 0.005;   // the a = 3 column's (H0 = 3 m)
+  m.young_modulus = m.density * kG * 3.0 / 0.005;  // the a = 3 column's (H0 = 3 m)
   m.friction_angle = 30.0 * kPi / 180.0;
   // Room above for a rebound at v0 (v0^2 / 2g) and beside for the spreading block.
   const double x0 = 2 * dx, y0 = 2 * dx, gap = dx, side = 2.0 * height + 1.0;
-  const double lo[2] = {0, 0},
-               hi[2] = {x0 + 2 * side + width + 2 * dx,
-                        y0 + gap + height + v0 * v0 / (2 * kG) + 0.5 + 2 * dx};
+  const double lo[2] = {0, 0}, hi[2] = {x0 + 2 * side + width + 2 * dx,
+                                        y0 + gap + height + v0 * v0 / (2 * kG) + 0.5 + 2 * dx};
   Grid<Mem> grid(lo, hi, dx);
   BodySpec b;
   const double xl = x0 + side, yb = y0 + gap;
@@ -68,7 +67,7 @@ int study(bool plastic, double dx, double width, double height, double v0, doubl
       return 1;
     }
     Kokkos::deep_copy(v, p.velocity);
-    double vy = 0;   // all points carry the same mass
+    double vy = 0;  // all points carry the same mass
     for (int q = 0; q < p.count; ++q) vy += v(q, 1);
     vy /= p.count;
     v_down = std::min(v_down, vy);
@@ -78,13 +77,14 @@ int study(bool plastic, double dx, double width, double height, double v0, doubl
     }
   }
   const EnergyReport e = solver.energy();
-  std::printf("%s, nu %.2f, cell %.4g m, block %.4g x %.4g m, v0 %.3g m/s (P-wave %.1f m/s, "
-              "transit %.4f s): centroid velocity most downward %.3f m/s, most upward %.3f m/s "
-              "(t = %.3f s): restitution %.3f; plastic work %.3f and wall work %.3f of the "
-              "initial kinetic energy; energy residual %+.4f; %ld steps\n",
-              plastic ? "Mohr-Coulomb" : "elastic", nu, dx, width, height, v0, c, height / c,
-              v_down, v_up, t_up, v_up / -v_down, e.plastic / e0.kinetic,
-              e.boundary / e0.kinetic, solver.energy_residual(e), solver.steps());
+  std::printf(
+      "%s, nu %.2f, cell %.4g m, block %.4g x %.4g m, v0 %.3g m/s (P-wave %.1f m/s, "
+      "transit %.4f s): centroid velocity most downward %.3f m/s, most upward %.3f m/s "
+      "(t = %.3f s): restitution %.3f; plastic work %.3f and wall work %.3f of the "
+      "initial kinetic energy; energy residual %+.4f; %ld steps\n",
+      plastic ? "Mohr-Coulomb" : "elastic", nu, dx, width, height, v0, c, height / c, v_down, v_up,
+      t_up, v_up / -v_down, e.plastic / e0.kinetic, e.boundary / e0.kinetic,
+      solver.energy_residual(e), solver.steps());
   return 0;
 }
 
@@ -102,8 +102,9 @@ int main(int argc, char** argv) {
   if ((model != "mc" && model != "elastic") || !(dx > 0 && dx <= 0.1) ||
       !(width >= 2 * dx && width <= 10) || !(height >= 2 * dx && height <= 5) ||
       !(v0 > 0 && v0 <= 10) || !(nu >= 0 && nu < 0.5)) {
-    std::fprintf(stderr, "need mc|elastic, 0 < cell_size <= 0.1, 2 cells <= width <= 10, "
-                         "2 cells <= height <= 5, 0 < v0 <= 10, 0 <= nu < 0.5\n");
+    std::fprintf(stderr,
+                 "need mc|elastic, 0 < cell_size <= 0.1, 2 cells <= width <= 10, "
+                 "2 cells <= height <= 5, 0 < v0 <= 10, 0 <= nu < 0.5\n");
     return 2;
   }
   Kokkos::ScopeGuard kokkos(argc, argv);

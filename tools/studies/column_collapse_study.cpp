@@ -4,7 +4,7 @@
 // space), as the test's a = 3 case; `space=default` runs it on a GPU in a CUDA build.
 //
 //   column_collapse_study a cells_per_L0 [key=value ...]
-//     L0=1 (m)  phi=30 (deg)  nu=0.3  base=tan(phi) (Coulomb mu; -1: no slip)  room=1.6
+//     L0=1 (m)  phi=30 (deg)  nu=0.3  base=tan(phi) (Coulomb mu, or no-slip)  room=1.6
 //     dump=FILE  (the final points, "x y" per line in units of L0 from the wall and base)
 //     k0=K       (start from the geostatic stress sigma_xx = sigma_zz = K sigma_yy, not from zero)
 //     space=default  (run on Kokkos's default execution space, a GPU in a CUDA build, instead
@@ -44,15 +44,27 @@ int main(int argc, char** argv) {
     const auto eq = arg.find('=');
     const std::string key = arg.substr(0, eq);
     const std::string value = eq == std::string::npos ? "" : arg.substr(eq + 1);
-    if (key == "L0") spec.L0 = std::atof(value.c_str());
-    else if (key == "phi") spec.friction_angle_deg = std::atof(value.c_str());
-    else if (key == "nu") spec.poisson_ratio = std::atof(value.c_str());
-    else if (key == "base") spec.base_friction = std::atof(value.c_str());
-    else if (key == "room") spec.room = std::atof(value.c_str());
-    else if (key == "dump") dump = value;
-    else if (key == "trace") spec.trace = value == "1";
-    else if (key == "k0") spec.geostatic_k0 = std::atof(value.c_str());
-    else if (key == "space" && value == "default") default_space = true;
+    if (key == "L0")
+      spec.L0 = std::atof(value.c_str());
+    else if (key == "phi")
+      spec.friction_angle_deg = std::atof(value.c_str());
+    else if (key == "nu")
+      spec.poisson_ratio = std::atof(value.c_str());
+    else if (key == "base" && value == "no-slip")
+      spec.base = lsi::test::ColumnSpec::Base::NoSlip;
+    else if (key == "base") {
+      spec.base = lsi::test::ColumnSpec::Base::Coulomb;
+      spec.base_friction = std::atof(value.c_str());
+    } else if (key == "room")
+      spec.room = std::atof(value.c_str());
+    else if (key == "dump")
+      dump = value;
+    else if (key == "trace")
+      spec.trace = value == "1";
+    else if (key == "k0")
+      spec.geostatic_k0 = std::atof(value.c_str());
+    else if (key == "space" && value == "default")
+      default_space = true;
     else if (key == "mu_i" && value == "glass-beads") {
       spec.friction_angle_deg = std::asin(std::tan(20.9 * kPi / 180)) * 180 / kPi;
       spec.limit_friction_angle_deg = std::asin(std::tan(32.76 * kPi / 180)) * 180 / kPi;
@@ -70,13 +82,17 @@ int main(int argc, char** argv) {
     return 2;
   }
   Kokkos::ScopeGuard kokkos(argc, argv);
-  const lsi::test::Collapse R =
-      default_space ? lsi::test::collapse<Kokkos::DefaultExecutionSpace>(spec)
-                    : lsi::test::collapse<lsi::test::StudySpace>(spec);
+  const lsi::test::Collapse R = default_space
+                                    ? lsi::test::collapse<Kokkos::DefaultExecutionSpace>(spec)
+                                    : lsi::test::collapse<lsi::test::StudySpace>(spec);
   const std::string space_name =
       default_space ? Kokkos::DefaultExecutionSpace::name() : lsi::test::StudySpace::name();
-  std::printf("a = %g, %d cells per L0, L0 = %g m, phi = %.3f deg, base %g, mu(I) %s\n", spec.a,
-              spec.cells_per_L0, spec.L0, spec.friction_angle_deg, spec.base_friction,
+  using Base = lsi::test::ColumnSpec::Base;
+  const std::string base = spec.base == Base::NoSlip    ? std::string("no slip")
+                           : spec.base == Base::Coulomb ? "mu " + std::to_string(spec.base_friction)
+                                                        : std::string("tan(phi)");
+  std::printf("a = %g, %d cells per L0, L0 = %g m, phi = %.3f deg, base %s, mu(I) %s\n", spec.a,
+              spec.cells_per_L0, spec.L0, spec.friction_angle_deg, base.c_str(),
               spec.reference_inertial_number > 0 ? "on" : "off");
   lsi::test::print(R, space_name.c_str());
   std::printf("room to the right wall: %.1f cells\n", R.right_room);

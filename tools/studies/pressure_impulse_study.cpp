@@ -18,9 +18,10 @@ int main(int argc, char** argv) {
   const double scale = b.impulse_scale(), U = b.speed;
   std::printf("theory: wall impulse %.4f rho_m U H^2, vertical momentum %.4f rho_m U H^2\n",
               theory_wall_impulse(b) / scale, theory_vertical_momentum(b) / scale);
-  std::printf("walls | pore pressure | transfer | cells | steps | wall impulse | vertical momentum | "
-              "largest wall force in window (rho_m c U H) | corner cell (U) | corner point (U) | "
-              "theory's corner cell (U)\n");
+  std::printf(
+      "walls | pore pressure | transfer | cells | steps | wall impulse | vertical momentum | "
+      "largest wall force in window (rho_m c U H) | corner cell (U) | corner point (U) | "
+      "theory's corner cell (U)\n");
   for (bool held : {true, false})
     for (bool cell : {true, false})
       for (Transfer tr : {Transfer::FlipPic, Transfer::Apic})

@@ -39,16 +39,18 @@ int study(bool on_bed, double dx, double thickness, double v0) {
   m.model = Material::Model::MohrCoulomb;
   m.density = 1800;
   m.poisson_ratio = 0.3;
-  m.young_modulus = m.density * kG * 3.0 / 0.005;   // the a = 3 column's (H0 = 3 m)
+  m.young_modulus = m.density * kG * 3.0 / 0.005;  // the a = 3 column's (H0 = 3 m)
   m.friction_angle = phi;
-  const double bed = on_bed ? 0.3 : 0.0, length = 1.0;   // m
+  const double bed = on_bed ? 0.3 : 0.0, length = 1.0;  // m
   const double x0 = 2 * dx, y0 = 2 * dx, top = y0 + bed;
   const double lo[2] = {0, 0}, hi[2] = {x0 + 4.0, top + thickness + 1.0};
   Grid<Mem> grid(lo, hi, dx);
   std::vector<BodySpec> bodies(1);
   BodySpec& sheet = bodies[0];
-  sheet.polygon = {{{x0 + 0.2, top}}, {{x0 + 0.2 + length, top}},
-                   {{x0 + 0.2 + length, top + thickness}}, {{x0 + 0.2, top + thickness}}};
+  sheet.polygon = {{{x0 + 0.2, top}},
+                   {{x0 + 0.2 + length, top}},
+                   {{x0 + 0.2 + length, top + thickness}},
+                   {{x0 + 0.2, top + thickness}}};
   sheet.velocity = {v0, 0.0};
   sheet.geostatic_k0 = 0.5;
   sheet.surface_y = top + thickness;
@@ -69,8 +71,8 @@ int study(bool on_bed, double dx, double thickness, double v0) {
   }
   Boundaries walls;
   walls.left = {true, x0, 0.0};
-  walls.bottom = on_bed ? Wall{true, y0, 0.0, false, /*no_slip=*/true}
-                        : Wall{true, y0, std::tan(phi)};
+  walls.bottom =
+      on_bed ? Wall{true, y0, 0.0, false, /*no_slip=*/true} : Wall{true, y0, std::tan(phi)};
   walls.right = {true, grid.upper(0) - 2 * dx, 0.0};
   Settings s;
   s.courant = 0.5;
@@ -93,14 +95,16 @@ int study(bool on_bed, double dx, double thickness, double v0) {
   }
   travel /= in_sheet.size();
   for (int q = 0; q < p.count; ++q)
-    if (x_start[q] < x0 + 3.9 && x(q, 1) < top) bed_shift = std::max(bed_shift, x(q, 0) - x_start[q]);
-  std::printf("%s, cell %.4g m, sheet %.4g m (%.1f points thick), v0 %.3g m/s: %s after %.2f s "
-              "(%ld steps); sheet centroid travelled %.4f m, rigid sheet %.4f m (mu = %.3f): "
-              "ratio %.3f; front %.3f m past the start's; largest bed point displacement %.3f m; "
-              "largest sheet speed %.1e m/s\n",
-              on_bed ? "bed" : "base", dx, thickness, thickness / (dx / 2), v0, describe(status), t,
-              solver.steps(), travel, rigid, mu, travel / rigid, front - (x0 + 0.2 + length),
-              bed_shift, vmax);
+    if (x_start[q] < x0 + 3.9 && x(q, 1) < top)
+      bed_shift = std::max(bed_shift, x(q, 0) - x_start[q]);
+  std::printf(
+      "%s, cell %.4g m, sheet %.4g m (%.1f points thick), v0 %.3g m/s: %s after %.2f s "
+      "(%ld steps); sheet centroid travelled %.4f m, rigid sheet %.4f m (mu = %.3f): "
+      "ratio %.3f; front %.3f m past the start's; largest bed point displacement %.3f m; "
+      "largest sheet speed %.1e m/s\n",
+      on_bed ? "bed" : "base", dx, thickness, thickness / (dx / 2), v0, describe(status), t,
+      solver.steps(), travel, rigid, mu, travel / rigid, front - (x0 + 0.2 + length), bed_shift,
+      vmax);
   return status == Status::Finished ? 0 : 1;
 }
 
@@ -116,8 +120,9 @@ int main(int argc, char** argv) {
   const double v0 = argc > 4 ? std::atof(argv[4]) : 3.0;
   if ((where != "base" && where != "bed") || !(dx > 0 && dx <= 0.1) ||
       !(thickness >= dx / 2 && thickness <= 0.5) || !(v0 > 0 && v0 <= 10)) {
-    std::fprintf(stderr, "need base|bed, 0 < cell_size <= 0.1, cell_size / 2 <= thickness <= 0.5, "
-                         "0 < v0 <= 10\n");
+    std::fprintf(stderr,
+                 "need base|bed, 0 < cell_size <= 0.1, cell_size / 2 <= thickness <= 0.5, "
+                 "0 < v0 <= 10\n");
     return 2;
   }
   Kokkos::ScopeGuard kokkos(argc, argv);

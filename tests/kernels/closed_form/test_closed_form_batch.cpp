@@ -28,7 +28,8 @@ using Spaces = ::testing::Types<
     Kokkos::OpenMP
 #endif
 #ifdef KOKKOS_ENABLE_CUDA
-    , Kokkos::Cuda
+    ,
+    Kokkos::Cuda
 #endif
     >;
 TYPED_TEST_SUITE(ClosedFormBatch, Spaces);
@@ -36,7 +37,7 @@ TYPED_TEST_SUITE(ClosedFormBatch, Spaces);
 TYPED_TEST(ClosedFormBatch, MatchesScalarModels) {
   using Exec = TypeParam;
   using Mem = typename Exec::memory_space;
-  const int n = 2003;   // not a multiple of the host block: the last, partial block runs too
+  const int n = 2003;  // not a multiple of the host block: the last, partial block runs too
   Kokkos::View<double* [10], Kokkos::LayoutLeft, Kokkos::HostSpace> host("inputs", n);
   std::mt19937_64 rng(42);
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -49,7 +50,7 @@ TYPED_TEST(ClosedFormBatch, MatchesScalarModels) {
     host(i, 3) = rho * L * h;
     host(i, 4) = L;
     host(i, 5) = (i % 10 == 0) ? std::numeric_limits<double>::infinity() : 5e3 + 1e5 * u(rng);
-    host(i, 6) = (i % 13 == 0) ? 0.0 : 0.6 * u(rng);   // no base friction: never stops
+    host(i, 6) = (i % 13 == 0) ? 0.0 : 0.6 * u(rng);  // no base friction: never stops
     host(i, 7) = (i % 7 == 0 ? 90.0 : 20 + 70 * u(rng)) * 3.14159265358979323846 / 180;
     host(i, 8) = 0.05 + 0.9 * u(rng);
     host(i, 9) = 0.1 + 0.9 * u(rng);
@@ -67,12 +68,13 @@ TYPED_TEST(ClosedFormBatch, MatchesScalarModels) {
   in.tau = Kokkos::subview(dev, Kokkos::ALL, 8);
   in.lambda = Kokkos::subview(dev, Kokkos::ALL, 9);
   for (int model = 0; model < 2; ++model) {
-    ClosedFormOutputs<Mem> out{Kokkos::View<double*, Mem>("peak", n),
-                               Kokkos::View<double*, Mem>("T1", n),
-                               Kokkos::View<double*, Mem>("T2", n),
-                               Kokkos::View<double*, Mem>("dx", n)};
-    if (model == 0) evaluate_two_body_batch(Exec(), in, out);
-    else evaluate_empirical_batch(Exec(), in, EmpiricalCoefficients{}, out);
+    ClosedFormOutputs<Mem> out{
+        Kokkos::View<double*, Mem>("peak", n), Kokkos::View<double*, Mem>("T1", n),
+        Kokkos::View<double*, Mem>("T2", n), Kokkos::View<double*, Mem>("dx", n)};
+    if (model == 0)
+      evaluate_two_body_batch(Exec(), in, out);
+    else
+      evaluate_empirical_batch(Exec(), in, EmpiricalCoefficients{}, out);
     Exec().fence();
     auto peak = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out.peak_force);
     auto T2 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out.impact_duration);
@@ -107,8 +109,10 @@ TYPED_TEST(ClosedFormBatch, MatchesScalarModels) {
       // Same code on another backend: identical up to floating-point contraction (1e-12).
       EXPECT_NEAR(peak(i), p.peak, 1e-12 * p.peak) << i;
       EXPECT_NEAR(T2(i), p.duration, 1e-12 * p.duration) << i;
-      if (std::isinf(expected)) EXPECT_TRUE(std::isinf(dx(i))) << i;
-      else EXPECT_NEAR(dx(i), expected, 1e-10 * (1 + expected)) << i;
+      if (std::isinf(expected))
+        EXPECT_TRUE(std::isinf(dx(i))) << i;
+      else
+        EXPECT_NEAR(dx(i), expected, 1e-10 * (1 + expected)) << i;
     }
     // The sample exercises every outcome (the batch selects among them without branches).
     std::printf("[ model %d ] fixed %d, stuck %d, stops before T2 %d, after T2 %d, never %d\n",
@@ -123,7 +127,7 @@ TYPED_TEST(ClosedFormBatch, MatchesScalarModels) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  setenv("OMP_PROC_BIND", "false", /*overwrite=*/0);   // no Kokkos warning in test discovery
+  setenv("OMP_PROC_BIND", "false", /*overwrite=*/0);  // no Kokkos warning in test discovery
   ::testing::InitGoogleTest(&argc, argv);
   Kokkos::ScopeGuard kokkos(argc, argv);
   return RUN_ALL_TESTS();

@@ -33,7 +33,8 @@ json dry_series(std::vector<double> cells, bool reference) {
   return {{"name", reference ? "dry PIC" : "dry APIC"},
           {"parameter", "cells_per_thickness"},
           {"values", cells},
-          {"set", {{"/methods/mpm/phases", "dry"}, {"/methods/mpm/transfer", reference ? "pic" : "apic"}}},
+          {"set",
+           {{"/methods/mpm/phases", "dry"}, {"/methods/mpm/transfer", reference ? "pic" : "apic"}}},
           {"reference", reference}};
 }
 
@@ -59,7 +60,8 @@ TEST(AccuracyStudyFile, ErrorsNameTheKeyAndTheAllowedValues) {
   EXPECT_EQ(parse_error(j), "");
   j = small_study();
   j["series"][0]["valuez"] = 1;
-  EXPECT_NE(parse_error(j).find("series[0].valuez: unknown key"), std::string::npos) << parse_error(j);
+  EXPECT_NE(parse_error(j).find("series[0].valuez: unknown key"), std::string::npos)
+      << parse_error(j);
   j = small_study();
   j["series"][0]["values"] = {4, 3, 8};
   EXPECT_NE(parse_error(j).find("series[0].values[1] = 3: must be >= 4"), std::string::npos)
@@ -72,7 +74,8 @@ TEST(AccuracyStudyFile, ErrorsNameTheKeyAndTheAllowedValues) {
   j = small_study();
   j["series"][0]["reference"] = false;
   EXPECT_NE(parse_error(j).find("exactly one series must have \"reference\": true (found 0)"),
-            std::string::npos) << parse_error(j);
+            std::string::npos)
+      << parse_error(j);
   j = small_study();
   j["series"][0]["values"] = {4, 8};
   EXPECT_NE(parse_error(j).find("the reference series needs at least 3 runs"), std::string::npos)
@@ -81,7 +84,8 @@ TEST(AccuracyStudyFile, ErrorsNameTheKeyAndTheAllowedValues) {
   j["series"].push_back(dry_series({4}, false));
   j["series"][1]["compare_to"] = "nothing";
   EXPECT_NE(parse_error(j).find("series[1].compare_to = \"nothing\": no series has this name"),
-            std::string::npos) << parse_error(j);
+            std::string::npos)
+      << parse_error(j);
   j = small_study();
   j["outputs"] = {"peak_force", "peak_forse"};
   EXPECT_NE(parse_error(j).find("outputs[1] = \"peak_forse\": must be one of"), std::string::npos)
@@ -89,7 +93,8 @@ TEST(AccuracyStudyFile, ErrorsNameTheKeyAndTheAllowedValues) {
   // A setting that makes a run's scene invalid is reported before any run, naming the run.
   j = small_study();
   j["series"][0]["set"]["/methods/mpm/transfer"] = "flipp";
-  EXPECT_NE(parse_error(j).find("series[0] (dry PIC), cells_per_thickness = 4: "), std::string::npos)
+  EXPECT_NE(parse_error(j).find("series[0] (dry PIC), cells_per_thickness = 4: "),
+            std::string::npos)
       << parse_error(j);
   EXPECT_NE(parse_error(j).find("flipp"), std::string::npos) << parse_error(j);
   // Two series whose run files would share their names ("x y" and "x/y" both start "x-y-").
@@ -118,7 +123,7 @@ AccuracyRun run_at(double h, double value, bool finished = true) {
 TEST(AccuracyStudyConvergence, RichardsonReferenceFromFinishedRuns) {
   std::vector<AccuracyRun> runs;
   for (const double h : {0.25, 0.125, 0.0625, 0.03125}) runs.push_back(run_at(h, 10 + 4 * h * h));
-  runs.push_back(run_at(0.01, 1e9, false));   // stopped unstable: not data
+  runs.push_back(run_at(0.01, 1e9, false));  // stopped unstable: not data
   const auto c = lsi::output_convergence(runs, "peak_force");
   EXPECT_EQ(c.runs, 4);
   EXPECT_EQ(c.best_source, "richardson");
@@ -128,7 +133,7 @@ TEST(AccuracyStudyConvergence, RichardsonReferenceFromFinishedRuns) {
   const auto e = lsi::output_convergence(runs, "energy_residual");
   EXPECT_EQ(e.best_source, "exact");
   EXPECT_EQ(e.best, 0.0);
-  EXPECT_NEAR(e.order_to_exact, 1.0, 1e-12);        // residual = 0.01 h: first order
+  EXPECT_NEAR(e.order_to_exact, 1.0, 1e-12);  // residual = 0.01 h: first order
   EXPECT_NEAR(e.order_to_exact_next, 1.0, 1e-12);
   EXPECT_DOUBLE_EQ(lsi::accuracy_error("energy_residual", 0.003, 0.0), 0.003);
   EXPECT_DOUBLE_EQ(lsi::accuracy_error("peak_force", 11.0, 10.0), 0.1);
@@ -158,8 +163,8 @@ TEST(AccuracyCommand, RunsReportsAndResumes) {
   json study = small_study();
   study["series"].push_back(dry_series({4}, false));
   std::ofstream(dir / "study.json") << study.dump(1);
-  const std::string cmd = lsi_exe + " accuracy " + (dir / "study.json").string() + " --out " +
-                          (dir / "out").string();
+  const std::string cmd =
+      lsi_exe + " accuracy " + (dir / "study.json").string() + " --out " + (dir / "out").string();
   const auto first = lsi::testing::run_command(cmd + " 2>" + (dir / "err1.txt").string());
   ASSERT_EQ(first.code, 0) << first.out;
   EXPECT_NE(first.out.find("# Accuracy study: small"), std::string::npos);
@@ -179,7 +184,7 @@ TEST(AccuracyCommand, RunsReportsAndResumes) {
       for (const auto& r : s["runs"]) {
         ASSERT_TRUE(r["finished"].get<bool>()) << r.dump();
         const double v = num(r["outputs"][o]);
-        EXPECT_NEAR(num(r["errors"][o]), (v - ref) / ref, 1e-12) << o;   // round-off only
+        EXPECT_NEAR(num(r["errors"][o]), (v - ref) / ref, 1e-12) << o;  // round-off only
         EXPECT_GT(r["solver_seconds"].get<double>(), 0.0);
       }
   }
@@ -188,18 +193,19 @@ TEST(AccuracyCommand, RunsReportsAndResumes) {
   for (const auto& c : rep["closed_forms"]) {
     EXPECT_GT(c["seconds_per_evaluation"].get<double>(), 0.0);
     const double ref = num(rep["reference"]["peak_force"]["value"]);
-    EXPECT_NEAR(num(c["errors"]["peak_force"]), (num(c["outputs"]["peak_force"]) - ref) / ref, 1e-12);
+    EXPECT_NEAR(num(c["errors"]["peak_force"]), (num(c["outputs"]["peak_force"]) - ref) / ref,
+                1e-12);
   }
   EXPECT_TRUE(fs::exists(dir / "out/accuracy.md"));
   EXPECT_TRUE(fs::exists(dir / "out/runs/dry-pic-cells_per_thickness-6.h5"));
   // --resume: every run kept from its record, identical report apart from the closed forms' timing.
-  const auto second =
-      lsi::testing::run_command(cmd + " --resume 2>" + (dir / "err2.txt").string());
+  const auto second = lsi::testing::run_command(cmd + " --resume 2>" + (dir / "err2.txt").string());
   ASSERT_EQ(second.code, 0);
   std::ifstream err(dir / "err2.txt");
   const std::string log((std::istreambuf_iterator<char>(err)), {});
   size_t kept = 0;
-  for (size_t p = log.find("kept from"); p != std::string::npos; p = log.find("kept from", p + 1)) ++kept;
+  for (size_t p = log.find("kept from"); p != std::string::npos; p = log.find("kept from", p + 1))
+    ++kept;
   EXPECT_EQ(kept, 4u) << log;
   const json again = read_json(dir / "out/accuracy.json");
   EXPECT_EQ(again["series"], rep["series"]);
@@ -226,9 +232,12 @@ TEST(AccuracyCommand, FollowsTheOvertoppedVolume) {
       {"name", "overtopping"},
       {"scene", (source_dir / "scenes/former-reference/L3-B3.json").string()},
       {"outputs", {"peak_force", "overtopped_volume"}},
-      {"series", {{{"name", "dry"}, {"parameter", "cells_per_thickness"}, {"values", {4, 5, 6}},
-                   {"set", {{"/methods/mpm/phases", "dry"}, {"/methods/mpm/transfer", "apic"}}},
-                   {"reference", true}}}}};
+      {"series",
+       {{{"name", "dry"},
+         {"parameter", "cells_per_thickness"},
+         {"values", {4, 5, 6}},
+         {"set", {{"/methods/mpm/phases", "dry"}, {"/methods/mpm/transfer", "apic"}}},
+         {"reference", true}}}}};
   std::ofstream(dir / "study.json") << study.dump(1);
   const auto r = lsi::testing::run_command(lsi_exe + " accuracy " + (dir / "study.json").string() +
                                            " --out " + (dir / "out").string() + " 2>&1");
@@ -237,12 +246,12 @@ TEST(AccuracyCommand, FollowsTheOvertoppedVolume) {
   ASSERT_EQ(rep["series"][0]["runs"].size(), 3u);
   for (const json& run : rep["series"][0]["runs"]) {
     const double v = num(run["outputs"]["overtopped_volume"]);
-    const std::string h5 = "out/runs/dry-cells_per_thickness-" +
-                           std::to_string(run["value"].get<int>()) + ".h5";
+    const std::string h5 =
+        "out/runs/dry-cells_per_thickness-" + std::to_string(run["value"].get<int>()) + ".h5";
     const lsi::hdf5::Handle file = lsi::hdf5::open_read_only((dir / h5).string());
     const lsi::hdf5::Handle mpm(H5Gopen2(file, "mpm", H5P_DEFAULT), H5Gclose, "open /mpm");
-    EXPECT_EQ(v, lsi::hdf5::read_double_attribute(mpm, "overtopped_volume_m2")) << h5;   // a copy
-    EXPECT_GT(v, 1.0) << h5;   // m^2
+    EXPECT_EQ(v, lsi::hdf5::read_double_attribute(mpm, "overtopped_volume_m2")) << h5;  // a copy
+    EXPECT_GT(v, 1.0) << h5;                                                            // m^2
   }
   EXPECT_NE(r.out.find("overtopped_volume [m^2]"), std::string::npos) << r.out;
   fs::remove_all(temp_dir());
@@ -264,7 +273,7 @@ TEST(AccuracyCommand, SceneWithoutAMethodsBlock) {
   std::ofstream(dir / "scene.json") << scene.dump(1);
   json study = small_study();
   study["scene"] = (dir / "scene.json").string();
-  study["series"][0]["set"]["/methods/mpm/end_time_s"] = 8.47276;   // the former default
+  study["series"][0]["set"]["/methods/mpm/end_time_s"] = 8.47276;  // the former default
   std::ofstream(dir / "study.json") << study.dump(1);
   const auto r = lsi::testing::run_command(lsi_exe + " accuracy " + (dir / "study.json").string() +
                                            " --out " + (dir / "out").string() + " 2>&1");

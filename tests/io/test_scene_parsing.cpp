@@ -23,7 +23,8 @@ using lsi::Scene;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-const fs::path kScenes = fs::path(__FILE__).parent_path().parent_path() / "scenes";
+// This file is tests/io/test_scene_parsing.cpp: three levels up is the source root.
+const fs::path kScenes = fs::path(__FILE__).parent_path().parent_path().parent_path() / "scenes";
 
 // A valid scene (L1-B1 without the optional blocks); the bad-input tests mutate it.
 json base_scene() {
@@ -114,9 +115,8 @@ struct Barrier {
   double beta, H, B, b, rho;
 };
 const Landslide kLandslides[] = {{"L1", 2.0, 6.0, 6}, {"L2", 2.5, 9.0, 6}, {"L3", 3.0, 12.5, 4}};
-const Barrier kBarriers[] = {{"B1", 80, 4, 4.0, 1.5, 2400},
-                             {"B2", 70, 5, 6.0, 2.0, 1800},
-                             {"B3", 60, 5, 13.4, 3.0, 2000}};
+const Barrier kBarriers[] = {
+    {"B1", 80, 4, 4.0, 1.5, 2400}, {"B2", 70, 5, 6.0, 2.0, 1800}, {"B3", 60, 5, 13.4, 3.0, 2000}};
 
 // The reference study (README, "The reference study"): nine landslide-barrier cases, each with a
 // free barrier (Lx-By) and a fixed copy (Lx-By-fixed).
@@ -173,11 +173,11 @@ TEST(SceneReference, AllEighteenFilesParseWithTheStudyValues) {
 
 TEST(SceneReference, L1AndB1DerivedValues) {
   const Scene s = lsi::load_scene((kScenes / "reference" / "L1-B1.json").string());
-  EXPECT_DOUBLE_EQ(s.landslide.equivalent_length_m(), 16.0);   // (2 + 6) * 2
-  EXPECT_DOUBLE_EQ(s.landslide.area_m2(), 32.0);               // (2 + 6) * 2^2
-  EXPECT_DOUBLE_EQ(s.landslide.mass_kg_per_m(), 57600.0);      // 1800 * 32
-  EXPECT_DOUBLE_EQ(s.barrier.area_m2(), 11.0);                 // (4 + 1.5) / 2 * 4
-  EXPECT_DOUBLE_EQ(s.barrier.mass(), 26400.0);                 // 2400 * 11
+  EXPECT_DOUBLE_EQ(s.landslide.equivalent_length_m(), 16.0);  // (2 + 6) * 2
+  EXPECT_DOUBLE_EQ(s.landslide.area_m2(), 32.0);              // (2 + 6) * 2^2
+  EXPECT_DOUBLE_EQ(s.landslide.mass_kg_per_m(), 57600.0);     // 1800 * 32
+  EXPECT_DOUBLE_EQ(s.barrier.area_m2(), 11.0);                // (4 + 1.5) / 2 * 4
+  EXPECT_DOUBLE_EQ(s.barrier.mass(), 26400.0);                // 2400 * 11
 }
 
 TEST(SceneExamples, MinimalGetsAllDefaults) {
@@ -206,14 +206,14 @@ TEST(SceneExamples, MinimalGetsAllDefaults) {
   EXPECT_FALSE(s.methods.analytical->tau.has_value());
   EXPECT_FALSE(s.methods.literature.has_value());
   EXPECT_FALSE(s.methods.mpm.has_value());
-  EXPECT_FALSE(s.source.contains("methods"));   // source is the scene as read
+  EXPECT_FALSE(s.source.contains("methods"));  // source is the scene as read
 }
 
 TEST(SceneExamples, RectangleFixedWithMassPerMetre) {
   const Scene s = lsi::load_scene((kScenes / "examples" / "rectangle-fixed.json").string());
   EXPECT_EQ(s.landslide.shape.kind, lsi::LandslideShape::Kind::Rectangle);
   EXPECT_DOUBLE_EQ(s.landslide.equivalent_length_m(), 20.0);
-  EXPECT_DOUBLE_EQ(s.landslide.area_m2(), 50.0);               // 20 * 2.5
+  EXPECT_DOUBLE_EQ(s.landslide.area_m2(), 50.0);  // 20 * 2.5
   EXPECT_DOUBLE_EQ(s.landslide.mass_kg_per_m(), 90000.0);
   EXPECT_FALSE(s.barrier.density_kg_m3.has_value());
   EXPECT_DOUBLE_EQ(s.barrier.mass(), 14400.0);
@@ -238,7 +238,7 @@ TEST(SceneParse, OverridesAndOptionalMethods) {
   const Scene s = lsi::parse_scene(j);
   EXPECT_DOUBLE_EQ(s.landslide.material.porosity, 0.4);
   EXPECT_DOUBLE_EQ(s.landslide.material.cohesion_kpa, 5.0);
-  EXPECT_DOUBLE_EQ(s.landslide.material.friction_angle_deg, 20.0);   // default kept
+  EXPECT_DOUBLE_EQ(s.landslide.material.friction_angle_deg, 20.0);  // default kept
   EXPECT_DOUBLE_EQ(s.barrier.base_friction, 0.6);
   EXPECT_DOUBLE_EQ(s.barrier.face_friction, 0.0);
   EXPECT_DOUBLE_EQ(s.methods.empirical->a1, 2.0);
@@ -263,29 +263,31 @@ TEST(SceneParse, OverridesAndOptionalMethods) {
 }
 
 TEST(SceneParse, OnlyTheSelectedMethods) {
-  const Scene s = lsi::parse_scene(with(base_scene(), "/methods", {{"analytical", json::object()}}));
+  const Scene s =
+      lsi::parse_scene(with(base_scene(), "/methods", {{"analytical", json::object()}}));
   EXPECT_FALSE(s.methods.empirical.has_value());
   EXPECT_TRUE(s.methods.analytical.has_value());
 }
 
 TEST(SceneParse, LiteratureTakesUserGivenCoefficients) {
   // family defaults to "mixed", which uses both coefficients.
-  const Scene s = lsi::parse_scene(with(
-      base_scene(), "/methods",
-      {{"literature", {{"hydrostatic_k", 1.0}, {"hydrodynamic_alpha", 1.5}}}}));
+  const Scene s = lsi::parse_scene(
+      with(base_scene(), "/methods",
+           {{"literature", {{"hydrostatic_k", 1.0}, {"hydrodynamic_alpha", 1.5}}}}));
   ASSERT_TRUE(s.methods.literature.has_value());
   EXPECT_EQ(s.methods.literature->family, "mixed");
   EXPECT_DOUBLE_EQ(s.methods.literature->hydrostatic_k.value(), 1.0);
   EXPECT_DOUBLE_EQ(s.methods.literature->hydrodynamic_alpha.value(), 1.5);
   // A single-coefficient family needs only its own coefficient.
-  const Scene h = lsi::parse_scene(with(
-      base_scene(), "/methods", {{"literature", {{"family", "hydrostatic"}, {"hydrostatic_k", 2}}}}));
+  const Scene h =
+      lsi::parse_scene(with(base_scene(), "/methods",
+                            {{"literature", {{"family", "hydrostatic"}, {"hydrostatic_k", 2}}}}));
   EXPECT_EQ(h.methods.literature->family, "hydrostatic");
   EXPECT_DOUBLE_EQ(h.methods.literature->hydrostatic_k.value(), 2.0);
   EXPECT_FALSE(h.methods.literature->hydrodynamic_alpha.has_value());
-  const Scene d = lsi::parse_scene(with(
-      base_scene(), "/methods",
-      {{"literature", {{"family", "hydrodynamic"}, {"hydrodynamic_alpha", 3}}}}));
+  const Scene d = lsi::parse_scene(
+      with(base_scene(), "/methods",
+           {{"literature", {{"family", "hydrodynamic"}, {"hydrodynamic_alpha", 3}}}}));
   EXPECT_EQ(d.methods.literature->family, "hydrodynamic");
   EXPECT_DOUBLE_EQ(d.methods.literature->hydrodynamic_alpha.value(), 3.0);
   EXPECT_FALSE(d.methods.literature->hydrostatic_k.has_value());
@@ -447,7 +449,8 @@ TEST(SceneErrors, WrongTypesForStringsBoolsAndObjects) {
 }
 
 TEST(SceneErrors, TopLevelNotAnObject) {
-  EXPECT_CONTAINS(error_of(json::array({1, 2})), "(top level) = [1,2]: a scene must be a JSON object");
+  EXPECT_CONTAINS(error_of(json::array({1, 2})),
+                  "(top level) = [1,2]: a scene must be a JSON object");
 }
 
 TEST(SceneErrors, NonFiniteNumbers) {
@@ -456,8 +459,9 @@ TEST(SceneErrors, NonFiniteNumbers) {
   EXPECT_EQ(error_of(with(base_scene(), "/landslide/thickness_m",
                           std::numeric_limits<double>::infinity())),
             "landslide.thickness_m = inf: must be finite");
-  EXPECT_EQ(error_of(with(base_scene(), "/barrier/height_m", -std::numeric_limits<double>::infinity())),
-            "barrier.height_m = -inf: must be finite");
+  EXPECT_EQ(
+      error_of(with(base_scene(), "/barrier/height_m", -std::numeric_limits<double>::infinity())),
+      "barrier.height_m = -inf: must be finite");
   EXPECT_EQ(error_of(with(base_scene(), "/methods/empirical/tau",
                           std::numeric_limits<double>::quiet_NaN())),
             "methods.empirical.tau = nan: must be finite");
@@ -497,10 +501,11 @@ TEST(SceneErrors, MaterialRanges) {
 json landslide_with_inertial_friction() {
   return with(with(base_scene(), "/landslide/material",
                    {{"friction_angle_deg", 25},
-                    {"inertial_friction", {{"limit_friction_angle_deg", 38},
-                                           {"reference_inertial_number", 0.3},
-                                           {"grain_diameter_mm", 10},
-                                           {"grain_density_kg_m3", 2650}}}}),
+                    {"inertial_friction",
+                     {{"limit_friction_angle_deg", 38},
+                      {"reference_inertial_number", 0.3},
+                      {"grain_diameter_mm", 10},
+                      {"grain_density_kg_m3", 2650}}}}),
               "/methods/mpm", {{"cell_size_m", 0.5}, {"end_time_s", 1}});
 }
 
@@ -522,7 +527,7 @@ TEST(SceneParse, LandslideInertialFrictionInSiUnits) {
   EXPECT_DOUBLE_EQ(s.landslide.material.inertial_friction->limit_friction_angle_deg, 38);
   const lsi::MpmCase c = lsi::impact_case(s);
   ASSERT_EQ(c.materials.size(), 1u);
-  expect_inertial_friction(c.materials[0], 25, 38, 0.3, 10e-3, 2650);   // 25: the static angle
+  expect_inertial_friction(c.materials[0], 25, 38, 0.3, 10e-3, 2650);  // 25: the static angle
   // Without the block (and in the reference scenes) the landslide is rate-independent.
   const Scene plain = lsi::parse_scene(
       without(landslide_with_inertial_friction(), "/landslide/material/inertial_friction"));
@@ -542,10 +547,10 @@ TEST(SceneErrors, LandslideInertialFrictionNamesTheFieldValueAndRange) {
             "below friction_angle_deg (25, the static angle): friction rises with the inertial "
             "number");
   // The default static angle (20 deg) when the material does not give one.
-  EXPECT_CONTAINS(error_of(without(with(landslide_with_inertial_friction(),
-                                        f + "limit_friction_angle_deg", 15),
-                                   "/landslide/material/friction_angle_deg")),
-                  "limit_friction_angle_deg = 15: must not be below friction_angle_deg (20,");
+  EXPECT_CONTAINS(
+      error_of(without(with(landslide_with_inertial_friction(), f + "limit_friction_angle_deg", 15),
+                       "/landslide/material/friction_angle_deg")),
+      "limit_friction_angle_deg = 15: must not be below friction_angle_deg (20,");
   EXPECT_EQ(error_of(with(landslide_with_inertial_friction(), f + "limit_friction_angle_deg", 90)),
             "landslide.material.inertial_friction.limit_friction_angle_deg = 90: must be in "
             "[0, 90) (deg)");
@@ -628,7 +633,7 @@ TEST(SceneErrors, FaceAngleInconsistentWithWidths) {
   const std::string m = error_of(with(base_scene(), "/barrier/face_angle_deg", 60));
   EXPECT_CONTAINS(m, "barrier.face_angle_deg = 60: the upstream face would run out");
   EXPECT_CONTAINS(m, "2.309 m but base_width_m - top_width_m = 1 m");
-  EXPECT_CONTAINS(m, "face_angle_deg >= 75.96");   // atan(4 / 1)
+  EXPECT_CONTAINS(m, "face_angle_deg >= 75.96");  // atan(4 / 1)
 }
 
 TEST(SceneErrors, BodySquaresNotAnInteger) {
@@ -679,32 +684,36 @@ TEST(SceneErrors, LiteratureWithoutCoefficients) {
   EXPECT_CONTAINS(error_of(with(base_scene(), "/methods",
                                 {{"literature", {{"family", "mixed"}, {"hydrostatic_k", 1}}}})),
                   "methods.literature.hydrodynamic_alpha: missing");
-  EXPECT_CONTAINS(error_of(with(base_scene(), "/methods",
-                                {{"literature", {{"family", "hydrodynamic"}}}})),
-                  "methods.literature.hydrodynamic_alpha: missing");
+  EXPECT_CONTAINS(
+      error_of(with(base_scene(), "/methods", {{"literature", {{"family", "hydrodynamic"}}}})),
+      "methods.literature.hydrodynamic_alpha: missing");
 }
 
 TEST(SceneErrors, LiteraturePresetIsAnUnknownKey) {
   // No named coefficient set is shipped: `preset` is rejected like every unknown key.
-  EXPECT_EQ(error_of(with(base_scene(), "/methods",
-                          {{"literature",
-                            {{"preset", "anything"}, {"hydrostatic_k", 1}, {"hydrodynamic_alpha", 1}}}})),
-            "methods.literature.preset: unknown key (allowed: family, hydrostatic_k, "
-            "hydrodynamic_alpha)");
-  EXPECT_CONTAINS(error_of(with(base_scene(), "/methods", {{"literature", {{"preset", "anything"}}}})),
-                  "methods.literature.preset: unknown key");
+  EXPECT_EQ(
+      error_of(with(base_scene(), "/methods",
+                    {{"literature",
+                      {{"preset", "anything"}, {"hydrostatic_k", 1}, {"hydrodynamic_alpha", 1}}}})),
+      "methods.literature.preset: unknown key (allowed: family, hydrostatic_k, "
+      "hydrodynamic_alpha)");
+  EXPECT_CONTAINS(
+      error_of(with(base_scene(), "/methods", {{"literature", {{"preset", "anything"}}}})),
+      "methods.literature.preset: unknown key");
 }
 
 TEST(SceneErrors, LiteratureBadFamilyBadCoefficientAndUnusedCoefficient) {
   EXPECT_EQ(error_of(with(base_scene(), "/methods", {{"literature", {{"family", "static"}}}})),
             "methods.literature.family = \"static\": must be one of \"hydrostatic\", "
             "\"hydrodynamic\", \"mixed\"");
-  EXPECT_EQ(error_of(with(base_scene(), "/methods",
-                          {{"literature", {{"family", "hydrodynamic"}, {"hydrodynamic_alpha", -1}}}})),
-            "methods.literature.hydrodynamic_alpha = -1: must be > 0");
-  EXPECT_EQ(error_of(with(base_scene(), "/methods",
-                          {{"literature",
-                            {{"family", "hydrostatic"}, {"hydrostatic_k", 1}, {"hydrodynamic_alpha", 2}}}})),
+  EXPECT_EQ(
+      error_of(with(base_scene(), "/methods",
+                    {{"literature", {{"family", "hydrodynamic"}, {"hydrodynamic_alpha", -1}}}})),
+      "methods.literature.hydrodynamic_alpha = -1: must be > 0");
+  EXPECT_EQ(error_of(with(
+                base_scene(), "/methods",
+                {{"literature",
+                  {{"family", "hydrostatic"}, {"hydrostatic_k", 1}, {"hydrodynamic_alpha", 2}}}})),
             "methods.literature.hydrodynamic_alpha = 2: not used by family = \"hydrostatic\"");
   EXPECT_EQ(error_of(with(base_scene(), "/methods",
                           {{"literature", {{"hydrostatic_k", 0}, {"hydrodynamic_alpha", 1}}}})),
@@ -760,8 +769,9 @@ TEST(SceneLoad, HugeExponentInFileIsNotFinite) {
       "  \"landslide\": {\"velocity_m_s\": 6, \"thickness_m\": 1e999}\n"
       "}\n");
   EXPECT_EQ(load_error_of(f.path()),
-            f.path() + ":3:55: landslide.thickness_m = 1e999: must be finite (the number overflows "
-                       "a double)");
+            f.path() +
+                ":3:55: landslide.thickness_m = 1e999: must be finite (the number overflows "
+                "a double)");
 }
 
 TEST(SceneLoad, HugeExponentInsideAnArrayNamesTheIndex) {
@@ -777,8 +787,7 @@ TEST(SceneLoad, DuplicateKey) {
 
 TEST(SceneLoad, TopLevelMustBeAnObject) {
   const TempFile f("[1, 2, 3]");
-  EXPECT_EQ(load_error_of(f.path()),
-            f.path() + ": the top level must be a JSON object, got array");
+  EXPECT_EQ(load_error_of(f.path()), f.path() + ": the top level must be a JSON object, got array");
 }
 
 TEST(SceneLoad, ValidationErrorsComeThrough) {
@@ -810,10 +819,10 @@ std::string mpm_case_error_of(const json& j) {
 TEST(MpmCaseParse, InertialFrictionInSiUnits) {
   const lsi::MpmCase c = lsi::parse_mpm_case(granular_case());
   ASSERT_EQ(c.materials.size(), 1u);
-  expect_inertial_friction(c.materials[0], 22.5, 40, 0.279, 0.5e-3, 2450);   // 22.5: static
+  expect_inertial_friction(c.materials[0], 22.5, 40, 0.279, 0.5e-3, 2450);  // 22.5: static
   // Without the block the material is rate-independent.
-  const lsi::MpmCase plain = lsi::parse_mpm_case(
-      without(granular_case(), "/mpm_case/materials/beads/inertial_friction"));
+  const lsi::MpmCase plain =
+      lsi::parse_mpm_case(without(granular_case(), "/mpm_case/materials/beads/inertial_friction"));
   EXPECT_FALSE(plain.materials[0].rate_dependent());
 }
 
@@ -825,8 +834,9 @@ TEST(MpmCaseErrors, InertialFrictionNamesTheFieldValueAndRange) {
   EXPECT_CONTAINS(mpm_case_error_of(with(granular_case(), f + "reference_inertial_number", 0)),
                   "mpm_case.materials.beads.inertial_friction.reference_inertial_number = 0: must "
                   "be > 0");
-  EXPECT_CONTAINS(mpm_case_error_of(with(granular_case(), f + "grain_diameter_mm", -0.5)),
-                  "mpm_case.materials.beads.inertial_friction.grain_diameter_mm = -0.5: must be > 0");
+  EXPECT_CONTAINS(
+      mpm_case_error_of(with(granular_case(), f + "grain_diameter_mm", -0.5)),
+      "mpm_case.materials.beads.inertial_friction.grain_diameter_mm = -0.5: must be > 0");
   EXPECT_CONTAINS(mpm_case_error_of(with(granular_case(), f + "grain_density_kg_m3", "2450")),
                   "mpm_case.materials.beads.inertial_friction.grain_density_kg_m3");
   EXPECT_CONTAINS(mpm_case_error_of(without(granular_case(), f + "grain_density_kg_m3")),

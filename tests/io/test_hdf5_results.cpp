@@ -12,7 +12,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
-#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
+#include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 
 namespace fs = std::filesystem;
 using lsi::MethodResult;
@@ -78,8 +78,8 @@ MethodResult full_result() {
   r.scalars.reduced_mass = 1234.5;
   r.scalars.barrier_stop_time = std::numeric_limits<double>::infinity();
   r.run = lsi::RunStatistics{1024, 5000, 3.5, true, 1.25, 4.1e6, true};
-  r.convergence = lsi::ConvergenceBars{16, 0.25, {{"peak_force", {1234.0, true}},
-                                                   {"final_displacement", {0.5, false}}}};
+  r.convergence = lsi::ConvergenceBars{
+      16, 0.25, {{"peak_force", {1234.0, true}}, {"final_displacement", {0.5, false}}}};
   return r;
 }
 
@@ -87,7 +87,7 @@ MethodResult sparse_result() {
   MethodResult r;
   r.method = "empirical";
   r.time = {0.0, 0.5, 1.0};
-  r.force = {0.0, 9.0e4, 0.0};   // the other histories are empty: not written
+  r.force = {0.0, 9.0e4, 0.0};  // the other histories are empty: not written
   r.peak_force = 9.0e4;
   r.rise_time = 0.5;
   r.impact_duration = 1.0;
@@ -146,7 +146,7 @@ TEST_F(hdf5_results, RoundTripTwoMethods) {
   EXPECT_EQ(stored.scene, scene);
   EXPECT_EQ(stored.lsi_version, LSI_VERSION);
   ASSERT_EQ(stored.results.size(), 2u);
-  expect_same(stored.results[0], results[0]);   // written order is preserved
+  expect_same(stored.results[0], results[0]);  // written order is preserved
   expect_same(stored.results[1], results[1]);
   EXPECT_TRUE(std::isinf(stored.results[0].final_displacement));
   EXPECT_GT(stored.results[0].final_displacement, 0.0);
@@ -166,8 +166,8 @@ TEST_F(hdf5_results, EveryNamedScalarRoundTrips) {
   std::set<std::string> names;
   for (const auto& [name, value] : lsi::named_scalars(r)) {
     EXPECT_TRUE(names.insert(name).second) << name << " named twice";
-    for (const char* reserved : {"peak_force", "rise_time", "impact_duration",
-                                 "final_displacement", "units", "end_state", "status"})
+    for (const char* reserved : {"peak_force", "rise_time", "impact_duration", "final_displacement",
+                                 "units", "end_state", "status"})
       EXPECT_NE(name, reserved);
   }
   lsi::write_results(path, sample_scene(), {r});
@@ -182,7 +182,7 @@ TEST_F(hdf5_results, EveryNamedScalarRoundTrips) {
   EXPECT_EQ(back.convergence->finer_cells, 16);
   EXPECT_TRUE(back.convergence->outputs.at("impulse").converged);
   EXPECT_EQ(lsi::scalar_by_name(back, "impulse"), r.scalars.impulse.value());
-  EXPECT_TRUE(std::isnan(lsi::scalar_by_name(sparse_result(), "impulse")));   // not given
+  EXPECT_TRUE(std::isnan(lsi::scalar_by_name(sparse_result(), "impulse")));  // not given
 }
 
 TEST_F(hdf5_results, LayoutAndMetadata) {
@@ -200,10 +200,13 @@ TEST_F(hdf5_results, LayoutAndMetadata) {
   ASSERT_GE(g, 0);
   EXPECT_EQ(string_attribute(g, "units"),
             "peak_force N/m; rise_time s; impact_duration s; final_displacement m");
-  const std::pair<const char*, const char*> expected_units[] = {
-      {"time", "s"}, {"force", "N/m"}, {"force_horizontal", "N/m"}, {"force_vertical", "N/m"},
-      {"landslide_kinetic_energy", "J/m"}, {"barrier_velocity", "m/s"},
-      {"barrier_displacement", "m"}};
+  const std::pair<const char*, const char*> expected_units[] = {{"time", "s"},
+                                                                {"force", "N/m"},
+                                                                {"force_horizontal", "N/m"},
+                                                                {"force_vertical", "N/m"},
+                                                                {"landslide_kinetic_energy", "J/m"},
+                                                                {"barrier_velocity", "m/s"},
+                                                                {"barrier_displacement", "m"}};
   for (const auto& [name, units] : expected_units) {
     const hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
     ASSERT_GE(d, 0) << name;
@@ -216,7 +219,7 @@ TEST_F(hdf5_results, LayoutAndMetadata) {
   const hid_t e = H5Gopen2(f, "empirical", H5P_DEFAULT);
   ASSERT_GE(e, 0);
   EXPECT_GT(H5Lexists(e, "force", H5P_DEFAULT), 0);
-  EXPECT_EQ(H5Lexists(e, "barrier_velocity", H5P_DEFAULT), 0);   // empty: not written
+  EXPECT_EQ(H5Lexists(e, "barrier_velocity", H5P_DEFAULT), 0);  // empty: not written
   EXPECT_EQ(H5Lexists(e, "landslide_kinetic_energy", H5P_DEFAULT), 0);
   H5Gclose(e);
   H5Fclose(f);
@@ -263,7 +266,7 @@ TEST_F(hdf5_results, NoTemporaryFileAfterSuccessAndOverwriteReplaces) {
   lsi::write_results(path, sample_scene(), {full_result()});
   EXPECT_TRUE(temporaries().empty());
 
-  lsi::write_results(path, sample_scene(), {sparse_result()});   // replaces the old file
+  lsi::write_results(path, sample_scene(), {sparse_result()});  // replaces the old file
   EXPECT_TRUE(temporaries().empty());
   const auto stored = lsi::read_results(path);
   ASSERT_EQ(stored.results.size(), 1u);
@@ -306,7 +309,7 @@ TEST_F(hdf5_results, FailedWriteOverAnExistingFileKeepsIt) {
   fs::create_directories(blocker);
   EXPECT_THROW(lsi::write_results(path, sample_scene(), {sparse_result()}), std::runtime_error);
   EXPECT_EQ(slurp(path), before);
-  EXPECT_TRUE(fs::is_directory(blocker));   // not ours to delete
+  EXPECT_TRUE(fs::is_directory(blocker));  // not ours to delete
   fs::remove(blocker);
   EXPECT_EQ(lsi::read_results(path).results.at(0).method, "analytical");
 }

@@ -10,9 +10,20 @@
 #include "kernels/closed_form/face_resolution.hpp"
 #include "kernels/closed_form/momentum_barrier.hpp"
 #include "kernels/common/constants.hpp"
+#include "support/tolerances.hpp"
 
 namespace {
 using namespace lsi;
+using test::kIntegratedRel;
+using test::kRoundOffAbs;
+using test::kTwoRoutesRel;
+
+// The model against a fixed-step integration of the same equations: the direct integration's own
+// error at its step (below 1e-10 relative; about 2e-9 at 4 times the step).
+constexpr double kDirectIntegrationRel = 1e-9;
+// h J of the shortened pulse against m1 v0: the pulse's duration solved for its impulse and the
+// impulse integrated back (a loose round-off bound).
+constexpr double kCappedImpulseRel = 1e-9;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -67,10 +78,10 @@ double direct_integration(const MomentumBarrierSetup& s, const std::vector<doubl
     t = 0.0;
     v1 = v0;
   } else if (gf > 0.0) {
-    t = 0.5 * (gf * m2 / c) / (p.peak / p.rise_time);   // half way to the slip
+    t = 0.5 * (gf * m2 / c) / (p.peak / p.rise_time);  // half way to the slip
     v1 = v0 - h * p.impulse(t) / m1;
   } else {
-    const double a2 = 2.0 * p.peak * m1 / (h * p.rise_time);   // a^2
+    const double a2 = 2.0 * p.peak * m1 / (h * p.rise_time);  // a^2
     const double kappa = h / m1 + c / m2;
     t = 1e-7 * p.duration;
     v1 = v0 - h * kappa * a2 * t * t / (4.0 * m1);
@@ -102,7 +113,7 @@ double direct_integration(const MomentumBarrierSetup& s, const std::vector<doubl
     v2 += dt / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1]);
     x2 += dt / 6 * (k1[2] + 2 * k2[2] + 2 * k3[2] + k4[2]);
     t += dt;
-    if (sliding && v2 <= 0.0) {   // stops; the drive has fallen below the friction
+    if (sliding && v2 <= 0.0) {  // stops; the drive has fallen below the friction
       // v2 is nearly linear over the step: take back the displacement after the stop.
       const double v_before = v2 - dt / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1]);
       const double f = v_before / (v_before - v2);
@@ -111,7 +122,7 @@ double direct_integration(const MomentumBarrierSetup& s, const std::vector<doubl
       sliding = false;
     }
     while (k < times.size() && times[k] <= t) v2_at[k++] = v2;
-    if (decay && !sliding && Phi(v0 - v1 + v2) <= 0.0) break;   // the contact is over
+    if (decay && !sliding && Phi(v0 - v1 + v2) <= 0.0) break;  // the contact is over
   }
   while (k < times.size()) v2_at[k++] = v2;
   return x2;
@@ -125,11 +136,14 @@ TEST(MomentumBarrier, MatchesADirectIntegrationOfItsEquations) {
   };
   // The last three with the flow braked by its base (f1 = 0.2 g x 0.72: the reference study's
   // flow base on a saturated flow's grain contacts).
-  for (const Case& c : {Case{90000, 9, 20, 26400, 0.5, 80, 0.3, 0}, Case{57600, 6, 16, 26400, 0.5, 80, 0.3, 0},
-                        Case{97200, 12.5, 18, 82000, 0.5, 60, 0.3, 0}, Case{57600, 6, 16, 26400, 0.2, 90, 0.0, 0},
-                        Case{90000, 9, 20, 26400, 0.5, 80, 0.3, 1.416}, Case{97200, 12.5, 18, 26400, 0.5, 80, 0.3, 1.416},
-                        Case{57600, 6, 16, 26400, 0.2, 90, 0.0, 1.416}}) {
-    const MomentumBarrierSetup s = setup(c.m1, c.v0, c.L, c.m2, c.mu_b, c.beta, c.mu_f, 0.72, 0.17, c.f1);
+  for (const Case& c :
+       {Case{90000, 9, 20, 26400, 0.5, 80, 0.3, 0}, Case{57600, 6, 16, 26400, 0.5, 80, 0.3, 0},
+        Case{97200, 12.5, 18, 82000, 0.5, 60, 0.3, 0}, Case{57600, 6, 16, 26400, 0.2, 90, 0.0, 0},
+        Case{90000, 9, 20, 26400, 0.5, 80, 0.3, 1.416},
+        Case{97200, 12.5, 18, 26400, 0.5, 80, 0.3, 1.416},
+        Case{57600, 6, 16, 26400, 0.2, 90, 0.0, 1.416}}) {
+    const MomentumBarrierSetup s =
+        setup(c.m1, c.v0, c.L, c.m2, c.mu_b, c.beta, c.mu_f, 0.72, 0.17, c.f1);
     const MomentumBarrierResult r0 = momentum_barrier(s);
     ASSERT_TRUE(r0.ok);
     ASSERT_GT(r0.start_time, 0.0) << "the case must slide";
@@ -140,12 +154,13 @@ TEST(MomentumBarrier, MatchesADirectIntegrationOfItsEquations) {
     const double x_direct = direct_integration(s, t, v2, s.fixed_pulse.duration * 5e-7);
     // 1e-9: the fixed-step integration converges to the model as its step shrinks (its error at
     // this step is below 1e-10 relative; at 4 times the step, about 2e-9).
-    EXPECT_NEAR(r.final_displacement, x_direct, 1e-9 * x_direct + 1e-12) << c.m1 << " " << c.m2;
+    EXPECT_NEAR(r.final_displacement, x_direct, kDirectIntegrationRel * x_direct + kRoundOffAbs)
+        << c.m1 << " " << c.m2;
     double vmax = 0.0;
     for (size_t i = 0; i < t.size(); ++i) vmax = std::max(vmax, v2[i]);
     for (size_t i = 0; i < t.size(); ++i)
       EXPECT_NEAR(st[i].barrier_velocity, v2[i], 1e-8 * vmax) << "t = " << t[i];
-    EXPECT_EQ(r.final_displacement, r0.final_displacement);   // sampling does not change it
+    EXPECT_EQ(r.final_displacement, r0.final_displacement);  // sampling does not change it
   }
 }
 
@@ -158,13 +173,14 @@ TEST(MomentumBarrier, NeverFasterThanTheFlowAndMomentumOnlyLostToFriction) {
     momentum_barrier(s, t.data(), int(t.size()), st.data());
     for (const auto& x : st) {
       // 1e-9 of v0: the integration's tolerance.
-      EXPECT_LE(x.barrier_velocity, x.landslide_velocity + 1e-9 * 12.5) << "m2 " << m2 << " t " << x.time;
+      EXPECT_LE(x.barrier_velocity, x.landslide_velocity + kIntegratedRel * 12.5)
+          << "m2 " << m2 << " t " << x.time;
       EXPECT_GE(x.barrier_velocity, 0.0);
       EXPECT_GE(x.force, 0.0);
       EXPECT_LE(x.force, s.fixed_pulse.peak * (1 + 1e-12));
     }
     // Everything at rest at the end: the flow's momentum went into the barrier's base.
-    EXPECT_NEAR(st.back().landslide_velocity, 0.0, 1e-9 * 12.5) << m2;
+    EXPECT_NEAR(st.back().landslide_velocity, 0.0, kIntegratedRel * 12.5) << m2;
     EXPECT_EQ(st.back().barrier_velocity, 0.0);
     EXPECT_TRUE(std::isfinite(r0.final_displacement));
   }
@@ -178,15 +194,16 @@ TEST(MomentumBarrier, FixedAndStickingBarriersGetTheFixedPulse) {
     const MomentumBarrierResult r = momentum_barrier(s, t.data(), int(t.size()), st.data());
     EXPECT_EQ(r.start_time, -1.0);
     EXPECT_EQ(r.final_displacement, 0.0);
-    EXPECT_NEAR(r.rise_time, s.fixed_pulse.rise_time, 1e-12);
-    EXPECT_NEAR(r.contact_end, s.fixed_pulse.duration, 1e-12 * s.fixed_pulse.duration);
+    EXPECT_NEAR(r.rise_time, s.fixed_pulse.rise_time, kRoundOffAbs);
+    EXPECT_NEAR(r.contact_end, s.fixed_pulse.duration, kTwoRoutesRel * s.fixed_pulse.duration);
     for (size_t i = 0; i < t.size(); ++i) {
       // Sticking phases are exact: round-off.
-      EXPECT_NEAR(st[i].force, s.fixed_pulse.force(t[i]), 1e-9 * s.fixed_pulse.peak) << t[i];
+      EXPECT_NEAR(st[i].force, s.fixed_pulse.force(t[i]), kIntegratedRel * s.fixed_pulse.peak)
+          << t[i];
       EXPECT_EQ(st[i].barrier_velocity, 0.0);
     }
     // The fixed barrier stops the flow: its horizontal impulse is m1 v0.
-    EXPECT_NEAR(st.back().landslide_velocity, 0.0, 1e-9);
+    EXPECT_NEAR(st.back().landslide_velocity, 0.0, kIntegratedRel);
   }
 }
 
@@ -200,8 +217,8 @@ TEST(MomentumBarrier, WithoutBaseFrictionBothEndAtTheCommonVelocityAndNeverStop)
   EXPECT_TRUE(std::isinf(r.final_displacement));
   EXPECT_TRUE(std::isinf(r.stop_time));
   const double v_cm = m1 * v0 / (m1 + m2);
-  EXPECT_NEAR(r.final_landslide_velocity, v_cm, 1e-9 * v0);
-  EXPECT_NEAR(r.largest_barrier_velocity, v_cm, 1e-9 * v0);
+  EXPECT_NEAR(r.final_landslide_velocity, v_cm, kIntegratedRel * v0);
+  EXPECT_NEAR(r.largest_barrier_velocity, v_cm, kIntegratedRel * v0);
   // The pulse is faster than the fixed one (the relative velocity falls from both sides) and as
   // high.
   EXPECT_LT(r.contact_end, s.fixed_pulse.duration);
@@ -214,7 +231,7 @@ TEST(MomentumBarrier, AfterThePulseFlowAndBarrierDecelerateTogether) {
   const double m1 = 97200, m2 = 26400, mu_b = 0.5;
   const MomentumBarrierSetup s = setup(m1, 12.5, 18, m2, mu_b, 90, 0.0);
   const MomentumBarrierResult r0 = momentum_barrier(s);
-  ASSERT_GT(r0.stop_time, 2.0 * s.fixed_pulse.duration);   // a long joint slide
+  ASSERT_GT(r0.stop_time, 2.0 * s.fixed_pulse.duration);  // a long joint slide
   const double t_a = 1.5 * s.fixed_pulse.duration, t_b = 0.9 * r0.stop_time;
   const std::vector<double> t = {t_a, t_b};
   std::vector<MomentumBarrierState> st(2);
@@ -230,7 +247,8 @@ TEST(MomentumBarrier, AfterThePulseFlowAndBarrierDecelerateTogether) {
   const ForcePulse& p = s.fixed_pulse;
   const double b = std::sqrt(2.0 * p.peak * m1 / (p.duration - p.rise_time));
   const double N = mu_b * gravity / (1.0 / m1 + 1.0 / m2);
-  EXPECT_NEAR(st[1].landslide_velocity - st[1].barrier_velocity, (N / b) * (N / b), 1e-3 * (N / b) * (N / b));
+  EXPECT_NEAR(st[1].landslide_velocity - st[1].barrier_velocity, (N / b) * (N / b),
+              1e-3 * (N / b) * (N / b));
 }
 
 TEST(MomentumBarrier, TheFaceFrictionAndTheVerticalLoadEnterTheDrive) {
@@ -253,18 +271,19 @@ namespace {
 // slides less.
 TEST(MomentumBarrier, TheFlowsBaseFrictionTakesItsShareOfTheMomentum) {
   const double m1 = 90000, v0 = 9, f1 = 1.416;
-  const MomentumBarrierSetup fixed = setup(m1, v0, 20, std::numeric_limits<double>::infinity(), 0.5,
-                                           80, 0.3, 0.72, 0.17, f1);
+  const MomentumBarrierSetup fixed =
+      setup(m1, v0, 20, std::numeric_limits<double>::infinity(), 0.5, 80, 0.3, 0.72, 0.17, f1);
   const MomentumBarrierResult r0 = momentum_barrier(fixed);
   ASSERT_TRUE(r0.ok);
   EXPECT_LT(r0.contact_end, fixed.fixed_pulse.duration);
   const std::vector<double> t = grid(r0.contact_end, 20001);
   std::vector<MomentumBarrierState> st(t.size());
   momentum_barrier(fixed, t.data(), int(t.size()), st.data());
-  double J = 0.0;   // trapezoids on 20001 samples: 1e-6 of the impulse
-  for (size_t i = 1; i < t.size(); ++i) J += 0.5 * (st[i].force + st[i - 1].force) * (t[i] - t[i - 1]);
+  double J = 0.0;  // trapezoids on 20001 samples: 1e-6 of the impulse
+  for (size_t i = 1; i < t.size(); ++i)
+    J += 0.5 * (st[i].force + st[i - 1].force) * (t[i] - t[i - 1]);
   EXPECT_NEAR(fixed.face.horizontal * J + m1 * f1 * r0.contact_end, m1 * v0, 1e-6 * m1 * v0);
-  EXPECT_NEAR(r0.final_landslide_velocity, 0.0, 1e-9 * v0);
+  EXPECT_NEAR(r0.final_landslide_velocity, 0.0, kIntegratedRel * v0);
   // A free barrier slides less when the flow's base brakes it too.
   const double smooth = momentum_barrier(setup(m1, v0, 20, 26400, 0.5, 80, 0.3)).final_displacement;
   const double rough =
@@ -284,20 +303,21 @@ TEST(MomentumBarrier, PulsesAreCappedAtTheFlowsMomentum) {
   p.duration = 2.0;
   p.rise_time = 0.3;
   const double m1 = 90000, v0 = 9, h = 1.04;
-  const ForcePulse same = momentum_capped_pulse(p, m1, v0, h);   // h J = 5.2e5 < m1 v0 = 8.1e5
+  const ForcePulse same = momentum_capped_pulse(p, m1, v0, h);  // h J = 5.2e5 < m1 v0 = 8.1e5
   EXPECT_EQ(same.duration, p.duration);
-  p.duration = 4.0;   // h J = 1.04e6 > 8.1e5
+  p.duration = 4.0;  // h J = 1.04e6 > 8.1e5
   p.rise_time = 0.6;
   const ForcePulse c = momentum_capped_pulse(p, m1, v0, h);
-  EXPECT_NEAR(h * c.pulse_impulse(), m1 * v0, 1e-9 * m1 * v0);
+  EXPECT_NEAR(h * c.pulse_impulse(), m1 * v0, kCappedImpulseRel * m1 * v0);
   EXPECT_EQ(c.peak, p.peak);
-  EXPECT_NEAR(c.rise_time / c.duration, 0.15, 1e-12);
+  EXPECT_NEAR(c.rise_time / c.duration, 0.15, kRoundOffAbs);
   // The barrier then never outruns the flow: a light barrier on a vertical face with friction.
   MomentumBarrierSetup s = setup(m1, v0, 20, 5000, 0.5, 90, 0.3);
   s.fixed_pulse = momentum_capped_pulse(p, m1, v0, s.face.horizontal);
   const std::vector<double> t = grid(3.0, 601);
   std::vector<MomentumBarrierState> st(t.size());
   ASSERT_TRUE(momentum_barrier(s, t.data(), int(t.size()), st.data()).ok);
-  for (const auto& x : st) EXPECT_LE(x.barrier_velocity, x.landslide_velocity + 1e-9 * v0);
+  for (const auto& x : st)
+    EXPECT_LE(x.barrier_velocity, x.landslide_velocity + kIntegratedRel * v0);
 }
 }  // namespace

@@ -31,18 +31,20 @@ using nlohmann::json;
 const fs::path source_dir = LSI_SOURCE_DIR;
 const std::string lsi_exe = LSI_EXE;
 
-using Outcome = lsi::testing::CommandOutcome;   // out: stdout and stderr together
+using Outcome = lsi::testing::CommandOutcome;  // out: stdout and stderr together
 
 Outcome run(const std::string& args) {
   return lsi::testing::run_command(lsi_exe + " " + args + " 2>&1");
 }
 // The command under bash, e.g. with resource limits set first.
 Outcome run_in_bash(const std::string& setup, const std::string& args) {
-  return lsi::testing::run_command("bash -c '" + setup + "; exec " + lsi_exe + " " + args + "' 2>&1");
+  return lsi::testing::run_command("bash -c '" + setup + "; exec " + lsi_exe + " " + args +
+                                   "' 2>&1");
 }
 
 fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("lsi_robustness_test_" + std::to_string(getpid()));
+  const fs::path d =
+      fs::temp_directory_path() / ("lsi_robustness_test_" + std::to_string(getpid()));
   fs::create_directories(d);
   return d;
 }
@@ -66,7 +68,7 @@ fs::path write_study(const std::string& name, const json& extra) {
   s["name"] = name;
   s["scene"] = (source_dir / "scenes/former-reference/L1-B1.json").string();
   s["samples"] = 2000;
-  if (!extra.is_null()) s.merge_patch(extra);   // `{}` is a null json: nothing to merge
+  if (!extra.is_null()) s.merge_patch(extra);  // `{}` is a null json: nothing to merge
   return write_json(name + ".json", s);
 }
 
@@ -241,23 +243,27 @@ TEST(CliRobustness, SweepsWhoseFilesCannotFitOnTheDiskAreRefused) {
 TEST(CliRobustness, MpmRunsThatCannotFitAreRefusedUpFront) {
   json scene = read_json(source_dir / "scenes/examples/impact-small.json");
   scene["methods"]["mpm"]["cell_size_m"] = 0.004;
-  Outcome r = run_in_bash("ulimit -v 2000000", "run " + write_json("fine.json", scene).string() + " --methods mpm");
+  Outcome r = run_in_bash("ulimit -v 2000000",
+                          "run " + write_json("fine.json", scene).string() + " --methods mpm");
   EXPECT_EQ(r.code, 2) << r.out;
-  EXPECT_NE(r.out.find("methods.mpm.cell_size_m = 0.004: the MPM state"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("methods.mpm.cell_size_m = 0.004: the MPM state"), std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("a cell of at least"), std::string::npos) << r.out;
 
   scene = read_json(source_dir / "scenes/examples/impact-small.json");
   scene["methods"]["mpm"]["end_time_s"] = 1e9;
   r = run("run " + write_json("long.json", scene).string() + " --methods mpm");
   EXPECT_EQ(r.code, 2) << r.out;
-  EXPECT_NE(r.out.find("methods.mpm.end_time_s = 1000000000: the histories"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("methods.mpm.end_time_s = 1000000000: the histories"), std::string::npos)
+      << r.out;
 
   scene = read_json(source_dir / "scenes/examples/impact-small.json");
   scene["methods"]["mpm"]["end_time_s"] = 1e3;
   scene["methods"]["mpm"]["snapshot_interval_s"] = 1e-6;
   r = run("run " + write_json("snapshots.json", scene).string() + " --methods mpm");
   EXPECT_EQ(r.code, 2) << r.out;
-  EXPECT_NE(r.out.find("methods.mpm.snapshot_interval_s = 1e-06: snapshots"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("methods.mpm.snapshot_interval_s = 1e-06: snapshots"), std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("a snapshot_interval_s of at least"), std::string::npos) << r.out;
 }
 
@@ -278,12 +284,12 @@ TEST(MpmFootprint, EstimatesThePointsNodesAndTimeStepOfARun) {
   const double nx = static_cast<int>((c.upper[0] - c.lower[0]) / dx + 0.5) + 1;
   const double ny = static_cast<int>((c.upper[1] - c.lower[1]) / dx + 0.5) + 1;
   EXPECT_EQ(f.nodes, nx * ny);
-  const auto& steps = o.result.series.at("time_step").values;   // [0]: the output at t = 0
+  const auto& steps = o.result.series.at("time_step").values;  // [0]: the output at t = 0
   ASSERT_GE(steps.size(), 2u);
   const double first_output_step = steps[1];
   EXPECT_NEAR(f.first_time_step, first_output_step, 1e-6 * first_output_step);
   EXPECT_NEAR(f.max_steps, c.settings.end_time_s / f.first_time_step, 1e-9 * f.max_steps);
-  EXPECT_GT(f.state_bytes, 200.0 * o.run().particles);   // at least the points' own fields
+  EXPECT_GT(f.state_bytes, 200.0 * o.run().particles);  // at least the points' own fields
 }
 
 // Closed forms evaluated where their arithmetic overflows or underflows: an input error naming
@@ -296,7 +302,8 @@ TEST(CliRobustness, ClosedFormsOutsideTheirComputableRangeAreErrors) {
     const char* method;
   };
   const Case cases[] = {
-      {"lambda", [](json& s) { s["methods"]["analytical"]["lambda"] = 5e-324; }, "methods.analytical: "},
+      {"lambda", [](json& s) { s["methods"]["analytical"]["lambda"] = 5e-324; },
+       "methods.analytical: "},
       {"a1", [](json& s) { s["methods"]["empirical"]["a1"] = 1e308; }, "methods.empirical: "},
       {"kappa", [](json& s) { s["methods"]["empirical"]["kappa"] = 1e308; }, "methods.empirical: "},
       {"velocity", [](json& s) { s["landslide"]["velocity_m_s"] = 1e-300; }, "methods.empirical: "},
@@ -316,7 +323,8 @@ TEST(CliRobustness, ClosedFormsOutsideTheirComputableRangeAreErrors) {
     EXPECT_EQ(r.code, 2) << c.what << ": " << r.out;
     EXPECT_EQ(lines(r.out), 1u) << c.what << ": " << r.out;
     EXPECT_NE(r.out.find(c.method), std::string::npos) << c.what << ": " << r.out;
-    EXPECT_NE(r.out.find("outside the range in which the"), std::string::npos) << c.what << ": " << r.out;
+    EXPECT_NE(r.out.find("outside the range in which the"), std::string::npos)
+        << c.what << ": " << r.out;
   }
   json scene = minimal_scene();
   scene["barrier"]["base_friction"] = 0.0;
@@ -339,7 +347,8 @@ TEST(CliRobustness, EmptyOptionValuesAreErrors) {
   for (const auto& [command, option] : commands) {
     const Outcome r = run(command);
     EXPECT_EQ(r.code, 2) << command << ": " << r.out;
-    EXPECT_NE(r.out.find(option + " = \"\": must not be empty"), std::string::npos) << command << ": " << r.out;
+    EXPECT_NE(r.out.find(option + " = \"\": must not be empty"), std::string::npos)
+        << command << ": " << r.out;
   }
 }
 
@@ -347,7 +356,8 @@ TEST(CliRobustness, EmptyOptionValuesAreErrors) {
 TEST(CliRobustness, AnInputThatNeverEndsIsRefused) {
   const Outcome r = run("run /dev/zero");
   EXPECT_EQ(r.code, 2) << r.out;
-  EXPECT_NE(r.out.find("/dev/zero: the scene file is larger than 64 MiB"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("/dev/zero: the scene file is larger than 64 MiB"), std::string::npos)
+      << r.out;
 }
 
 // Names reach terminals and file names: control characters (an escape sequence) are refused,
@@ -376,11 +386,12 @@ TEST(CliRobustness, AMaxTimeStepBelowTheSolversSmallestIsRefused) {
 // A study none of whose samples is a valid scene is refused when it is read.
 TEST(CliRobustness, AStudyWithoutAValidSampleIsRefused) {
   json extra = read_json(source_dir / "scenes/studies/L1-B1-monte-carlo.json");
-  extra["inputs"][0]["sd"] = 1e308;   // lognormal thickness: every draw 0 or infinite
+  extra["inputs"][0]["sd"] = 1e308;  // lognormal thickness: every draw 0 or infinite
   const fs::path study = write_study("no-valid-sample", {{"inputs", extra["inputs"]}});
   const Outcome r = run("sweep " + study.string() + " --out " + (temp_dir() / "nv.h5").string());
   EXPECT_EQ(r.code, 2) << r.out;
-  EXPECT_NE(r.out.find("inputs: none of the first 256 samples is a valid scene"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("inputs: none of the first 256 samples is a valid scene"), std::string::npos)
+      << r.out;
   EXPECT_FALSE(fs::exists(temp_dir() / "nv.h5.parts"));
 }
 
@@ -412,7 +423,8 @@ TEST(CliRobustness, MergeRefusesDirectoriesAndAlteredShards) {
   std::string shards;
   for (int i = 0; i < 2; ++i) {
     const fs::path f = temp_dir() / ("merge-shard" + std::to_string(i) + ".h5");
-    r = run("sweep " + study.string() + " --out " + f.string() + " --shard " + std::to_string(i) + "/2");
+    r = run("sweep " + study.string() + " --out " + f.string() + " --shard " + std::to_string(i) +
+            "/2");
     ASSERT_EQ(r.code, 0) << r.out;
     shards += " " + f.string();
   }

@@ -13,10 +13,19 @@
 #include "kernels/closed_form/rigid_block_response.hpp"
 #include "kernels/closed_form/two_body_model.hpp"
 #include "support/sliding_ode.hpp"
+#include "support/tolerances.hpp"
 
 namespace {
 using namespace lsi;
+using test::kFewOpsAbs;
+using test::kIntegratedRel;
+using test::kRoundOffAbs;
+using test::kTwoRoutesRel;
 constexpr double deg = 3.14159265358979323846 / 180.0;
+// Eq. 20 as printed plus the term it drops against the exact displacement at T2: two routes to
+// the same value, the printed one a difference of the phases' cubic terms; looser than
+// kTwoRoutesRel.
+constexpr double kPrintedEquation20Rel = 1e-9;
 
 SlidingBlock block_for(double mass, double mu_b, double beta_deg) {
   return SlidingBlock{mass, mu_b, resolve_face_force(beta_deg * deg).sliding_drive(mu_b)};
@@ -67,14 +76,15 @@ TEST(BarrierSliding, ClosedFormMatchesDirectNumericalIntegration) {
     const auto s = ode.integrate(t_end, {c.pulse.rise_time, c.pulse.duration}, 4000, &ode_stop);
     // RK4 is exact for the cubic displacement on each smooth piece and the events are located
     // by bisection to round-off, so 1e-9 relative is the round-off of ~1e4 steps.
-    EXPECT_NEAR(m.final_displacement, s.x, 1e-9 * s.x) << c.name;
-    EXPECT_NEAR(m.stop_time, ode_stop, 1e-9 * ode_stop) << c.name;
+    EXPECT_NEAR(m.final_displacement, s.x, kIntegratedRel * s.x) << c.name;
+    EXPECT_NEAR(m.stop_time, ode_stop, kIntegratedRel * ode_stop) << c.name;
     for (double f : {0.3, 0.6, 0.9, 1.0, 1.2}) {
       const double t = f * m.stop_time;
       double st = -1;
       const auto p = ode.integrate(t, {c.pulse.rise_time, c.pulse.duration}, 4000, &st);
-      EXPECT_NEAR(m.displacement(t), p.x, 1e-9 * m.final_displacement) << c.name << " t " << t;
-      EXPECT_NEAR(m.velocity(t), p.v, 1e-9 * (1 + m.velocity(t))) << c.name << " t " << t;
+      EXPECT_NEAR(m.displacement(t), p.x, kIntegratedRel * m.final_displacement)
+          << c.name << " t " << t;
+      EXPECT_NEAR(m.velocity(t), p.v, kIntegratedRel * (1 + m.velocity(t))) << c.name << " t " << t;
     }
   }
 }
@@ -88,11 +98,12 @@ TEST(BarrierSliding, ClosedFormMatchesExactPiecewiseIntegratorForAnyHistory) {
     double v[3], x[3];
     const auto r = rigid_block_response(t, N, 3, c.block, v, x);
     // Same exact solution by two routes: round-off only (1e-12 relative).
-    EXPECT_NEAR(r.final_displacement, m.final_displacement, 1e-12 * m.final_displacement) << c.name;
-    EXPECT_NEAR(r.stop_time, m.stop_time, 1e-12 * m.stop_time) << c.name;
-    EXPECT_NEAR(r.start_time, m.start_time, 1e-12 * m.stop_time) << c.name;
-    EXPECT_NEAR(x[1], m.displacement(t[1]), 1e-12 * m.final_displacement) << c.name;
-    EXPECT_NEAR(v[2], m.velocity(t[2]), 1e-12 * (1 + m.velocity(t[1]))) << c.name;
+    EXPECT_NEAR(r.final_displacement, m.final_displacement, kTwoRoutesRel * m.final_displacement)
+        << c.name;
+    EXPECT_NEAR(r.stop_time, m.stop_time, kTwoRoutesRel * m.stop_time) << c.name;
+    EXPECT_NEAR(r.start_time, m.start_time, kTwoRoutesRel * m.stop_time) << c.name;
+    EXPECT_NEAR(x[1], m.displacement(t[1]), kTwoRoutesRel * m.final_displacement) << c.name;
+    EXPECT_NEAR(v[2], m.velocity(t[2]), kTwoRoutesRel * (1 + m.velocity(t[1]))) << c.name;
     // Finely resampled history (2001 samples) gives the same answer too.
     std::vector<double> ts(2001), Ns(2001);
     for (int i = 0; i < 2001; ++i) {
@@ -114,17 +125,18 @@ TEST(BarrierSliding, PhaseAMatchesCorrectedEquation17AndStartTime) {
   const SlidingBlock b = block_for(m2, mu_b, 80);
   const BarrierMotion m = barrier_motion(imp.pulse, b);
   const double q1 = imp.q1, K1 = imp.K1, c = b.drive, g = 9.81;
-  const double t_star = 2 * K1 * m2 * tau * g * mu_b / (q1 * q1 * c);     // eq. 17, t*
-  EXPECT_NEAR(m.start_time, t_star, 1e-12 * t_star);
+  const double t_star = 2 * K1 * m2 * tau * g * mu_b / (q1 * q1 * c);  // eq. 17, t*
+  EXPECT_NEAR(m.start_time, t_star, kTwoRoutesRel * t_star);
   for (double f : {0.2, 0.5, 0.8, 1.0}) {
     const double t = t_star + f * (imp.pulse.rise_time - t_star);
-    const double v17 = q1 * q1 / (4 * K1 * m2) * c * (t * t - t_star * t_star) / tau -
-                       g * mu_b * (t - t_star);
+    const double v17 =
+        q1 * q1 / (4 * K1 * m2) * c * (t * t - t_star * t_star) / tau - g * mu_b * (t - t_star);
     const double x18 = q1 * q1 / (12 * K1 * m2) * c *
-                           (t * t * t - 3 * t_star * t_star * t + 2 * t_star * t_star * t_star) / tau -
+                           (t * t * t - 3 * t_star * t_star * t + 2 * t_star * t_star * t_star) /
+                           tau -
                        0.5 * g * mu_b * (t - t_star) * (t - t_star);
-    EXPECT_NEAR(m.velocity(t), v17, 1e-12 * 10);
-    EXPECT_NEAR(m.displacement(t), x18, 1e-12 * 10);
+    EXPECT_NEAR(m.velocity(t), v17, kTwoRoutesRel * 10);
+    EXPECT_NEAR(m.displacement(t), x18, kTwoRoutesRel * 10);
   }
 }
 
@@ -138,11 +150,10 @@ TEST(BarrierSliding, PhaseBMatchesPrintedEquation18SecondBranch) {
                T2 = imp.pulse.duration;
   for (double f : {0.1, 0.5, 0.9, 1.0}) {
     const double t = T1 + f * (T2 - T1);
-    const double x18 = q1 * q1 / (12 * K1 * m2) * c * (T1 - t) * (T1 - t) * (3 * T2 - 2 * T1 - t) /
-                           (1 - tau) -
-                       0.5 * g * mu_b * (T1 - t) * (T1 - t) - m.velocity(T1) * (T1 - t) +
-                       m.displacement(T1);
-    EXPECT_NEAR(m.displacement(t), x18, 1e-12 * 10);
+    const double x18 =
+        q1 * q1 / (12 * K1 * m2) * c * (T1 - t) * (T1 - t) * (3 * T2 - 2 * T1 - t) / (1 - tau) -
+        0.5 * g * mu_b * (T1 - t) * (T1 - t) - m.velocity(T1) * (T1 - t) + m.displacement(T1);
+    EXPECT_NEAR(m.displacement(t), x18, kTwoRoutesRel * 10);
   }
 }
 
@@ -156,15 +167,15 @@ TEST(BarrierSliding, SecondBranchOfEquation17HasTheWrongSignAndDropsATerm) {
   const BarrierMotion m = barrier_motion(imp.pulse, b);
   const double q1 = imp.q1, K1 = imp.K1, c = b.drive, g = 9.81, T1 = imp.pulse.rise_time,
                T2 = imp.pulse.duration, ts = m.start_time;
-  ASSERT_GT(m.velocity(T2), 0.0);   // still sliding through the decay: the branch applies
+  ASSERT_GT(m.velocity(T2), 0.0);  // still sliding through the decay: the branch applies
   for (double f : {0.1, 0.5, 0.9}) {
     const double t = T1 + f * (T2 - T1);
     const double k = q1 * q1 * c / (4 * K1 * m2);
     const double derived =
         k * (-(t * t - 2 * T2 * t + T1 * T2) / (1 - tau) - ts * ts / tau) - g * mu_b * (t - ts);
     const double printed = k * (t * t - 2 * T2 * t + T1 * T2) / (1 - tau) - g * mu_b * (t - ts);
-    EXPECT_NEAR(m.velocity(t), derived, 1e-12 * 10) << "t = " << t;   // m/s: round-off
-    EXPECT_GT(std::fabs(printed - derived), 1.0) << "t = " << t;       // printed: off by m/s
+    EXPECT_NEAR(m.velocity(t), derived, kTwoRoutesRel * 10) << "t = " << t;  // m/s: round-off
+    EXPECT_GT(std::fabs(printed - derived), 1.0) << "t = " << t;             // printed: off by m/s
   }
 }
 
@@ -176,15 +187,15 @@ TEST(BarrierSliding, PrintedEquation20OmitsTermsThatMatter) {
   const BarrierMotion m = barrier_motion(imp.pulse, b);
   const double q1 = imp.q1, K1 = imp.K1, c = b.drive, g = 9.81, T1 = imp.pulse.rise_time,
                T2 = imp.pulse.duration, ts = m.start_time;
-  const double printed = q1 * q1 / (12 * K1 * m2) * c *
-                             ((T1 - ts) * (T1 - ts) * (T1 + 2 * ts) / tau +
-                              2 * std::pow(T2 - T1, 3) / (1 - tau)) -
-                         0.5 * g * mu_b * ((T1 - ts) * (T1 - ts) + (T2 - T1) * (T2 - T1));
+  const double printed =
+      q1 * q1 / (12 * K1 * m2) * c *
+          ((T1 - ts) * (T1 - ts) * (T1 + 2 * ts) / tau + 2 * std::pow(T2 - T1, 3) / (1 - tau)) -
+      0.5 * g * mu_b * ((T1 - ts) * (T1 - ts) + (T2 - T1) * (T2 - T1));
   // The exact displacement at T2 is the printed value plus v2(T1) (T2 - T1) (the term eq. 20
   // drops) ...
   const double x_T2 = m.displacement(T2);
   const double restored = printed + m.velocity(T1) * (T2 - T1);
-  EXPECT_NEAR(x_T2, restored, 1e-9 * x_T2);
+  EXPECT_NEAR(x_T2, restored, kPrintedEquation20Rel * x_T2);
   // ... and the barrier still moves at T2 and slides on: the final displacement is larger.
   EXPECT_GT(m.velocity(T2), 0.1);
   EXPECT_GT(m.final_displacement, 1.05 * x_T2);
@@ -199,7 +210,7 @@ TEST(BarrierSliding, NoBaseFrictionMeansItNeverStops) {
   EXPECT_EQ(m.start_time, 0.0);
   EXPECT_TRUE(std::isinf(m.final_displacement));
   // Without friction it leaves the impact with all the impulse: v2(T2) = I / m2 = mu v10 / m2.
-  EXPECT_NEAR(m.velocity(imp.pulse.duration), imp.reduced_mass * 6 / 14400, 1e-12);
+  EXPECT_NEAR(m.velocity(imp.pulse.duration), imp.reduced_mass * 6 / 14400, kRoundOffAbs);
   const double t[3] = {0, imp.pulse.rise_time, imp.pulse.duration};
   const double N[3] = {0, imp.pulse.peak, 0};
   EXPECT_TRUE(std::isinf(rigid_block_response(t, N, 3, b).final_displacement));
@@ -227,15 +238,16 @@ TEST(BarrierSliding, DisplacementDecreasesWithBarrierMass) {
     EXPECT_LE(d, previous) << m2;
     previous = d;
   }
-  EXPECT_EQ(previous, 0.0);   // heavy enough to stick
+  EXPECT_EQ(previous, 0.0);  // heavy enough to stick
 }
 
 TEST(BarrierSliding, VerticalFaceDrivesWithTheFullForce) {
   const FaceResolution r = resolve_face_force(90 * deg);
-  EXPECT_NEAR(r.horizontal, 1.0, 1e-15);
-  EXPECT_NEAR(r.vertical_down, 0.0, 1e-15);
-  EXPECT_NEAR(r.sliding_drive(0.7), 1.0, 1e-15);
+  EXPECT_NEAR(r.horizontal, 1.0, kFewOpsAbs);
+  EXPECT_NEAR(r.vertical_down, 0.0, kFewOpsAbs);
+  EXPECT_NEAR(r.sliding_drive(0.7), 1.0, kFewOpsAbs);
   // Inclined face, no face shear: c = sin(beta) - tan(delta_b) cos(beta).
-  EXPECT_NEAR(resolve_face_force(60 * deg).sliding_drive(0.5), std::sqrt(3.0) / 2 - 0.25, 1e-15);
+  EXPECT_NEAR(resolve_face_force(60 * deg).sliding_drive(0.5), std::sqrt(3.0) / 2 - 0.25,
+              kFewOpsAbs);
 }
 }  // namespace

@@ -15,17 +15,17 @@ using lsi::first_stop;
 constexpr double rel = 1e-14;
 
 TEST(SlidingBlockFirstStop, AtRestStaysAtRestUnlessPushed) {
-  EXPECT_EQ(first_stop(0.0, -1.0, 0.0, 10.0), 0.0);   // decelerating: stays
-  EXPECT_EQ(first_stop(0.0, 0.0, -1.0, 10.0), 0.0);   // force falling: stays
-  EXPECT_EQ(first_stop(0.0, 0.0, 0.0, 10.0), 0.0);    // no net force: stays
-  EXPECT_LT(first_stop(0.0, 1.0, -5.0, 10.0), 0.0);   // pushed: moves off
-  EXPECT_LT(first_stop(0.0, 0.0, 1.0, 10.0), 0.0);    // force rising: moves off
+  EXPECT_EQ(first_stop(0.0, -1.0, 0.0, 10.0), 0.0);  // decelerating: stays
+  EXPECT_EQ(first_stop(0.0, 0.0, -1.0, 10.0), 0.0);  // force falling: stays
+  EXPECT_EQ(first_stop(0.0, 0.0, 0.0, 10.0), 0.0);   // no net force: stays
+  EXPECT_LT(first_stop(0.0, 1.0, -5.0, 10.0), 0.0);  // pushed: moves off
+  EXPECT_LT(first_stop(0.0, 0.0, 1.0, 10.0), 0.0);   // force rising: moves off
 }
 
 TEST(SlidingBlockFirstStop, ConstantDeceleration) {
   EXPECT_NEAR(first_stop(3.0, -2.0, 0.0, 10.0), 1.5, rel * 1.5);
-  EXPECT_LT(first_stop(3.0, -2.0, 0.0, 1.0), 0.0);    // stops after the end of the interval
-  EXPECT_LT(first_stop(3.0, 0.0, 0.0, 10.0), 0.0);    // no deceleration: never
+  EXPECT_LT(first_stop(3.0, -2.0, 0.0, 1.0), 0.0);  // stops after the end of the interval
+  EXPECT_LT(first_stop(3.0, 0.0, 0.0, 10.0), 0.0);  // no deceleration: never
   EXPECT_LT(first_stop(3.0, 2.0, 0.0, 10.0), 0.0);
 }
 

@@ -27,9 +27,11 @@ namespace fs = std::filesystem;
 const fs::path source_dir = LSI_SOURCE_DIR;
 const std::string lsi_exe = LSI_EXE;
 
-using Outcome = lsi::testing::CommandOutcome;   // out: stdout and stderr together
+using Outcome = lsi::testing::CommandOutcome;  // out: stdout and stderr together
 
-Outcome run(const std::string& args) { return lsi::testing::run_command(lsi_exe + " " + args + " 2>&1"); }
+Outcome run(const std::string& args) {
+  return lsi::testing::run_command(lsi_exe + " " + args + " 2>&1");
+}
 
 fs::path temp_dir() {
   const fs::path d = fs::temp_directory_path() / ("lsi_cli_test_" + std::to_string(getpid()));
@@ -70,7 +72,8 @@ TEST(Cli, VersionAndHelp) {
 }
 
 TEST(Cli, JsonSummaryEqualsTheLibraryResults) {
-  const Outcome r = run("run " + reference("L3-B1") + " --methods empirical,analytical --format json");
+  const Outcome r =
+      run("run " + reference("L3-B1") + " --methods empirical,analytical --format json");
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   const lsi::Scene scene = lsi::load_scene(reference("L3-B1"));
@@ -123,7 +126,7 @@ TEST(Cli, DesignFindsTheMassForTheTolerableDisplacement) {
   scene.barrier.density_kg_m3.reset();
   scene.barrier.mass_kg_per_m = mass;
   EXPECT_NEAR(lsi::run_analytical(scene).final_displacement, 0.5, 1e-6);
-  EXPECT_GT(mass, 14400.0);   // B1 itself (14.4 t/m) slides about 4 m
+  EXPECT_GT(mass, 14400.0);  // B1 itself (14.4 t/m) slides about 4 m
   EXPECT_FALSE(j["analytical"]["geometries"].empty());
 }
 
@@ -139,13 +142,13 @@ TEST(Cli, BadInputExitsWithCode2AndOneClearLine) {
                      "density_kg_m3": 2400})";
   const Bad cases[] = {
       {R"({"name": "x", "landslide": {"thickness_m": -3, "velocity_m_s": 12.5, "density_kg_m3": 1800,
-           "shape": {"kind": "rectangle", "length_m": 10}}, )" + ok_barrier + "}",
+           "shape": {"kind": "rectangle", "length_m": 10}}, )" +
+           ok_barrier + "}",
        "landslide.thickness_m = -3"},
       {R"({"name": "x", )" + ok_landslide + ", " + ok_barrier +
            R"(, "methods": {"analytical": {"tau": 1.5}}})",
        "methods.analytical.tau = 1.5"},
-      {R"({"name": "x", )" + ok_landslide + ", " + ok_barrier + R"(, "colour": "red"})",
-       "colour"},
+      {R"({"name": "x", )" + ok_landslide + ", " + ok_barrier + R"(, "colour": "red"})", "colour"},
       {R"({"name": "x", )" + ok_landslide + ", " + ok_barrier +
            R"(, "methods": {"empirical": {"tau": NaN}}})",
        "malformed JSON"},
@@ -158,7 +161,7 @@ TEST(Cli, BadInputExitsWithCode2AndOneClearLine) {
     const Outcome r = run("run " + p.string() + " --out " + out.string());
     EXPECT_EQ(r.code, 2) << r.out;
     EXPECT_NE(r.out.find(c.expect), std::string::npos) << r.out;
-    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;   // one line
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;  // one line
     EXPECT_FALSE(fs::exists(out));
   }
   EXPECT_EQ(run("run /nonexistent/scene.json").code, 2);
@@ -166,6 +169,36 @@ TEST(Cli, BadInputExitsWithCode2AndOneClearLine) {
   EXPECT_EQ(run("run " + reference("L1-B1") + " --format xml").code, 2);
   EXPECT_EQ(run("design " + reference("L1-B1") + " --max-displacement -1").code, 2);
   EXPECT_EQ(run("frobnicate").code, 2);
+}
+
+// `--set /pointer=value` runs the scene as if the file held the value: the same summary as the
+// edited file, the overridden scene stored in the result, and bad overrides refused with exit 2.
+TEST(Cli, SetOverridesAValueAsTheFileWould) {
+  const fs::path scene = source_dir / "scenes/tutorial/my-scene.json";
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(scene));
+  doc["landslide"]["velocity_m_s"] = 8;
+  doc["barrier"]["fixed"] = true;
+  const fs::path edited = write_file("set_edited.json", doc.dump());
+  const std::string common = " --methods empirical,analytical --format json";
+  const fs::path out = temp_dir() / "set.h5";
+  const Outcome a =
+      run("run " + scene.string() + common +
+          " --set /landslide/velocity_m_s=8 --set /barrier/fixed=true --out " + out.string());
+  const Outcome b = run("run " + edited.string() + common);
+  ASSERT_EQ(a.code, 0) << a.out;
+  ASSERT_EQ(b.code, 0) << b.out;
+  EXPECT_EQ(a.out, b.out);
+  EXPECT_EQ(lsi::read_results(out.string()).scene, doc);
+  const Outcome d =
+      run("design " + scene.string() + " --max-displacement 0.1 --set /barrier/base_friction=0.6");
+  ASSERT_EQ(d.code, 0) << d.out;
+  EXPECT_NE(d.out, run("design " + scene.string() + " --max-displacement 0.1").out);
+  for (const char* bad :
+       {"velocity=8", "/landslide/velocity=8", "/landslide/velocity_m_s=-1", "/nowhere/x=1"}) {
+    const Outcome e = run("run " + scene.string() + " --methods empirical --set " + bad);
+    EXPECT_EQ(e.code, 2) << bad << ": " << e.out;
+    EXPECT_EQ(std::count(e.out.begin(), e.out.end(), '\n'), 1) << e.out;  // one line
+  }
 }
 
 // A safety factor is infinite where no load of the history tips the barrier (its resultant acts
@@ -188,12 +221,12 @@ TEST(Cli, LiteratureFamilyGivesOnlyAPeakForce) {
   const double vn = 9 * std::sin(80 * 3.14159265358979323846 / 180);
   const double expected = 1.5 * 1800 * vn * vn * 2.5 + 0.5 * 1.0 * 1800 * 9.81 * 2.5 * 2.5;
   EXPECT_NEAR(j["literature"]["peak_force"].get<double>(), expected, 1e-12 * expected);
-  EXPECT_FALSE(j["literature"].contains("impact_duration"));   // not given by this method
+  EXPECT_FALSE(j["literature"].contains("impact_duration"));  // not given by this method
   const fs::path out = temp_dir() / "lit.h5";
   ASSERT_EQ(run("run " + scene + " --out " + out.string()).code, 0);
   const auto stored = lsi::read_results(out.string());
   ASSERT_EQ(stored.results.size(), 3u);
-  EXPECT_TRUE(std::isnan(stored.results[2].impact_duration));   // absent, not stored as NaN
+  EXPECT_TRUE(std::isnan(stored.results[2].impact_duration));  // absent, not stored as NaN
 }
 
 std::string mpm_block_scene(double courant, const std::string& extra_mpm = "") {
@@ -221,10 +254,10 @@ TEST(Cli, MpmVerificationSceneRunsAndWritesHistories) {
   ASSERT_EQ(stored.results.size(), 1u);
   const auto& m = stored.results[0];
   EXPECT_EQ(m.method, "mpm");
-  ASSERT_GE(m.time.size(), 30u);   // every 0.01 s over 0.3 s
+  ASSERT_GE(m.time.size(), 30u);  // every 0.01 s over 0.3 s
   EXPECT_NEAR(m.time.back(), 0.3, 1e-9);
-  for (const char* k : {"kinetic_energy", "elastic_energy", "energy_residual", "time_step",
-                        "wall_force_y"}) {
+  for (const char* k :
+       {"kinetic_energy", "elastic_energy", "energy_residual", "time_step", "wall_force_y"}) {
     ASSERT_TRUE(m.series.count(k)) << k;
     EXPECT_EQ(m.series.at(k).values.size(), m.time.size()) << k;
   }
@@ -255,7 +288,8 @@ TEST(Cli, MpmSceneErrorsNameTheField) {
     std::string text, expect;
   };
   const Bad cases[] = {
-      {mpm_block_scene(0.5, R"(, "flip_ratio": 0.5)"), "methods.mpm.flip_ratio = 0.5: only used with"},
+      {mpm_block_scene(0.5, R"(, "flip_ratio": 0.5)"),
+       "methods.mpm.flip_ratio = 0.5: only used with"},
       {mpm_block_scene(0.5, R"(, "transfer": "pic", "flip_ratio": 0.5)"),
        "methods.mpm.flip_ratio = 0.5: only used with"},
       {mpm_block_scene(0.5, R"(, "transfer": "apick")"), "methods.mpm.transfer"},
@@ -272,7 +306,8 @@ TEST(Cli, MpmSceneErrorsNameTheField) {
 }
 
 // Reads one double dataset (any rank) of an HDF5 file: values and dimensions.
-std::vector<double> read_h5_doubles(hid_t file, const std::string& name, std::vector<hsize_t>& dims) {
+std::vector<double> read_h5_doubles(hid_t file, const std::string& name,
+                                    std::vector<hsize_t>& dims) {
   std::vector<double> v;
   const hid_t d = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
   if (d < 0) return v;
@@ -307,7 +342,7 @@ TEST(Cli, MpmSnapshotsAreWrittenWithAnXdmfIndex) {
   ASSERT_GE(f, 0);
   H5G_info_t info;
   ASSERT_GE(H5Gget_info_by_name(f, "/mpm/snapshots", &info, H5P_DEFAULT), 0);
-  ASSERT_EQ(info.nlinks, 4u);   // t = 0, 0.1, 0.2, 0.3
+  ASSERT_EQ(info.nlinks, 4u);  // t = 0, 0.1, 0.2, 0.3
   for (int k = 0; k < 4; ++k) {
     char group[64];
     std::snprintf(group, sizeof group, "/mpm/snapshots/%06d", k);
@@ -318,16 +353,20 @@ TEST(Cli, MpmSnapshotsAreWrittenWithAnXdmfIndex) {
     H5Aclose(a);
     // Snapshots are taken at history outputs, which are not aligned to the snapshot interval:
     // the snapshot time is the first output time that reaches k * 0.1 s (0 and the end exactly).
-    const auto first = std::find_if(t.begin(), t.end(), [&](double x) { return x >= k * 0.1 - 1e-9; });
+    const auto first =
+        std::find_if(t.begin(), t.end(), [&](double x) { return x >= k * 0.1 - 1e-9; });
     ASSERT_NE(first, t.end()) << group;
     EXPECT_NEAR(time, *first, 1e-9) << group;
-    EXPECT_LT(time - k * 0.1, 0.01) << group;   // within the 0.01 s output interval
+    EXPECT_LT(time - k * 0.1, 0.01) << group;  // within the 0.01 s output interval
     if (k == 0 || k == 3) {
       EXPECT_NEAR(time, k * 0.1, 1e-9) << group;
     }
-    for (const auto& [name, cols] : std::vector<std::pair<std::string, hsize_t>>{
-             {"position", 3}, {"velocity", 3}, {"stress", 4}, {"deviatoric_strain", 0},
-             {"plastic_work", 0}}) {
+    for (const auto& [name, cols] :
+         std::vector<std::pair<std::string, hsize_t>>{{"position", 3},
+                                                      {"velocity", 3},
+                                                      {"stress", 4},
+                                                      {"deviatoric_strain", 0},
+                                                      {"plastic_work", 0}}) {
       std::vector<hsize_t> dims;
       const auto v = read_h5_doubles(f, std::string(group) + "/" + name, dims);
       ASSERT_EQ(dims.size(), cols == 0 ? 1u : 2u) << group << "/" << name;
@@ -336,8 +375,9 @@ TEST(Cli, MpmSnapshotsAreWrittenWithAnXdmfIndex) {
         EXPECT_EQ(dims[1], cols) << group << "/" << name;
       }
       for (double x : v) ASSERT_TRUE(std::isfinite(x)) << group << "/" << name;
-      EXPECT_GT(H5Aexists_by_name(f, (std::string(group) + "/" + name).c_str(), "units",
-                                  H5P_DEFAULT), 0) << group << "/" << name;
+      EXPECT_GT(
+          H5Aexists_by_name(f, (std::string(group) + "/" + name).c_str(), "units", H5P_DEFAULT), 0)
+          << group << "/" << name;
     }
   }
   H5Fclose(f);
@@ -353,7 +393,7 @@ TEST(Cli, MpmSnapshotsAreWrittenWithAnXdmfIndex) {
       ++grids;
   EXPECT_EQ(grids, 4u);
   EXPECT_NE(x.find("mpm_snap.h5:/mpm/snapshots/000003/position"), std::string::npos);
-  EXPECT_EQ(x.find(temp_dir().string()), std::string::npos);   // the HDF5 file by name only
+  EXPECT_EQ(x.find(temp_dir().string()), std::string::npos);  // the HDF5 file by name only
   EXPECT_NE(x.find(R"(TopologyType="Polyvertex" NumberOfElements=")" + std::to_string(particles)),
             std::string::npos);
 }
@@ -391,7 +431,8 @@ std::string impact_scene(const std::string& mpm) {
      "poisson_ratio": 0.25, "hydraulic_conductivity_m_s": 1e-4, "liquid_bulk_modulus_mpa": 30}},
  "barrier": {"height_m": 2, "base_width_m": 1.5, "top_width_m": 1.0, "face_angle_deg": 90,
    "density_kg_m3": 2400, "base_friction": 0.5, "face_friction": 0.3, "fixed": true},
- "methods": {"empirical": {}, "analytical": {}, "mpm": )" + mpm + "}}";
+ "methods": {"empirical": {}, "analytical": {}, "mpm": )" +
+         mpm + "}}";
 }
 
 // Checks the MPM impact histories of a result file: every history on the time axis, and the
@@ -416,7 +457,7 @@ void check_impact_histories(const lsi::MethodResult& m, double initial_momentum)
     EXPECT_NEAR(impulse, p[0] - p[i], 1e-9 * initial_momentum) << "t = " << m.time[i];
   }
   EXPECT_GT(checked, 20u);
-  EXPECT_GT(impulse, 0.5 * initial_momentum);   // the barrier did stop the flow
+  EXPECT_GT(impulse, 0.5 * initial_momentum);  // the barrier did stop the flow
   // Overtopped + retained = the landslide's area as placed (3 m^2) at every output, to
   // round-off.
   const auto& over = m.series.at("overtopped_volume").values;
@@ -437,7 +478,7 @@ TEST(Cli, MpmImpactRunsBesideTheClosedFormsAndConservesMomentum) {
   const auto j = nlohmann::json::parse(r.out.substr(r.out.find('{')));
   for (const char* m : {"empirical", "analytical", "mpm"}) ASSERT_TRUE(j.contains(m)) << m;
   EXPECT_EQ(j["mpm"]["saturated"], 0.0);
-  EXPECT_EQ(j["mpm"]["final_displacement"], 0.0);   // a fixed barrier never moves
+  EXPECT_EQ(j["mpm"]["final_displacement"], 0.0);  // a fixed barrier never moves
   // Nothing overtops a 2 m barrier hit by a dry 1 m flow at 4 m/s (run-up v0^2 / 2g = 0.8 m).
   EXPECT_EQ(j["mpm"]["overtopped_volume_m2"], 0.0);
   EXPECT_DOUBLE_EQ(j["mpm"]["retained_volume_m2"].get<double>(), 3.0);
@@ -483,7 +524,7 @@ TEST(Cli, MpmImpactSummaryGivesTheVolumes) {
                 "barrier, the contact's leak), retained %.2f m^2/m\n",
                 over, 100.0 * over / (over + kept), leak, kept);
   EXPECT_NE(r.out.find(line), std::string::npos) << r.out << "\nexpected: " << line;
-  EXPECT_NEAR(over + kept, 54.0, 1e-9 * 54.0);   // the landslide as placed, m^2
+  EXPECT_NEAR(over + kept, 54.0, 1e-9 * 54.0);  // the landslide as placed, m^2
 }
 
 // A free, light barrier (a 1 m x 3 m flow at 4 m/s, dry, 4 cells through it) hit by the flow:
@@ -498,7 +539,8 @@ std::string sliding_barrier_scene(const std::string& mpm, double flow_base_frict
    "material": {"friction_angle_deg": 20, "young_modulus_mpa": 2, "poisson_ratio": 0.25}},
  "barrier": {"height_m": 2, "base_width_m": 1.5, "top_width_m": 1.0, "face_angle_deg": 90,
    "density_kg_m3": 400, "base_friction": 0.5, "face_friction": 0.3, "fixed": false},
- "methods": {"mpm": )" + mpm + "}}";
+ "methods": {"mpm": )" +
+         mpm + "}}";
 }
 
 TEST(Cli, MpmRunCutShortWhileTheBarrierSlidesHasNoFinalDisplacement) {
@@ -507,7 +549,7 @@ TEST(Cli, MpmRunCutShortWhileTheBarrierSlidesHasNoFinalDisplacement) {
       sliding_barrier_scene(R"({"cell_size_m": 0.25, "phases": "dry", "end_time_s": 0.4})"));
   const fs::path out = temp_dir() / "cut_short.h5";
   const Outcome table = run("run " + scene.string() + " --out " + out.string());
-  ASSERT_EQ(table.code, 0) << table.out;   // a physical outcome, not a failure
+  ASSERT_EQ(table.code, 0) << table.out;  // a physical outcome, not a failure
   EXPECT_NE(table.out.find("mpm: the barrier was still sliding at t = 0.4 s (>= "),
             std::string::npos)
       << table.out;
@@ -523,14 +565,13 @@ TEST(Cli, MpmRunCutShortWhileTheBarrierSlidesHasNoFinalDisplacement) {
   const auto& r = stored.results[0];
   EXPECT_EQ(r.end_state, lsi::EndState::EndTimeBarrierSliding);
   EXPECT_TRUE(std::isnan(r.final_displacement)) << r.final_displacement;
-  EXPECT_GT(r.barrier_velocity.back(), 0.0);   // it was indeed still moving
+  EXPECT_GT(r.barrier_velocity.back(), 0.0);  // it was indeed still moving
   EXPECT_EQ(r.scalars.displacement_at_end.value(), r.barrier_displacement.back());
 }
 
 TEST(Cli, MpmRunEndsWhenTheLandslideAndTheBarrierAreAtRest) {
   const fs::path scene = write_file(
-      "at_rest.json",
-      sliding_barrier_scene(R"({"cell_size_m": 0.25, "phases": "dry"})", 0.4));
+      "at_rest.json", sliding_barrier_scene(R"({"cell_size_m": 0.25, "phases": "dry"})", 0.4));
   const fs::path out = temp_dir() / "at_rest.h5";
   const Outcome r = run("run " + scene.string() + " --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.out;
@@ -574,7 +615,7 @@ TEST(Cli, MpmSnapshotPorePressureIsTheCellMeanByDefault) {
     EXPECT_EQ(r.code, 0) << r.out;
     std::vector<double> p = snapshot_dataset(out, "/mpm/snapshots/000001/pore_pressure");
     const size_t n = p.size();
-    EXPECT_GT(n, 700u);   // 3 m x 1 m at 4 points per 0.125 m cell: 768
+    EXPECT_GT(n, 700u);  // 3 m x 1 m at 4 points per 0.125 m cell: 768
     std::sort(p.begin(), p.end());
     return double(std::unique(p.begin(), p.end()) - p.begin()) / n;
   };
@@ -598,16 +639,21 @@ TEST(Cli, CompareAttachesTheErrorBarsOfAConvergenceStudy) {
   const auto doc = nlohmann::json::parse(sliding_barrier_scene(mpm, 0.4));
   auto study = [&](double peak_scale, const nlohmann::json& mpm_block) {
     nlohmann::json outputs = {
-        {"peak_force", {{"value", peak_scale * m["peak_force"].get<double>()}, {"spread", 1234.0},
-                        {"converged", true}}},
+        {"peak_force",
+         {{"value", peak_scale * m["peak_force"].get<double>()},
+          {"spread", 1234.0},
+          {"converged", true}}},
         {"final_displacement",
          {{"value", m["final_displacement"].get<double>()}, {"spread", 0.5}, {"converged", false}}},
         {"face_pore_pressure_max_pa", {{"value", nullptr}, {"spread", nullptr}}}};
-    nlohmann::json st = {
-        {"base", {{"cells", 4}, {"courant", 0.5}}},
-        {"finer", {{"cells", 8}, {"courant", 0.25}}},
-        {"cases", {{"sliding", {{"landslide", doc["landslide"]}, {"barrier", doc["barrier"]},
-                                {"mpm", mpm_block}, {"outputs", outputs}}}}}};
+    nlohmann::json st = {{"base", {{"cells", 4}, {"courant", 0.5}}},
+                         {"finer", {{"cells", 8}, {"courant", 0.25}}},
+                         {"cases",
+                          {{"sliding",
+                            {{"landslide", doc["landslide"]},
+                             {"barrier", doc["barrier"]},
+                             {"mpm", mpm_block},
+                             {"outputs", outputs}}}}}};
     return st.dump();
   };
   const fs::path good = write_file("bars_study.json", study(1.0, doc["methods"]["mpm"]));
@@ -615,8 +661,8 @@ TEST(Cli, CompareAttachesTheErrorBarsOfAConvergenceStudy) {
   const Outcome r = run("compare " + scene.string() + " --convergence " + good.string() +
                         " --out-dir " + out.string());
   ASSERT_EQ(r.code, 0) << r.out;
-  EXPECT_NE(r.out.find("+-1.2"), std::string::npos) << r.out;   // the peak's 1234 N/m in kN/m
-  EXPECT_NE(r.out.find("+-0.500*"), std::string::npos) << r.out;   // not converged
+  EXPECT_NE(r.out.find("+-1.2"), std::string::npos) << r.out;     // the peak's 1234 N/m in kN/m
+  EXPECT_NE(r.out.find("+-0.500*"), std::string::npos) << r.out;  // not converged
   EXPECT_EQ(r.out.find("no error bars"), std::string::npos) << r.out;
   const auto stored = lsi::read_results((out / "sliding.h5").string());
   ASSERT_TRUE(stored.results.back().convergence.has_value());
@@ -624,7 +670,7 @@ TEST(Cli, CompareAttachesTheErrorBarsOfAConvergenceStudy) {
   EXPECT_EQ(x.at("peak_force").spread, 1234.0);
   EXPECT_TRUE(x.at("peak_force").converged);
   EXPECT_FALSE(x.at("final_displacement").converged);
-  EXPECT_EQ(x.count("face_pore_pressure_max_pa"), 0u);   // the study had none
+  EXPECT_EQ(x.count("face_pore_pressure_max_pa"), 0u);  // the study had none
   // Other settings: no error bars, and why.
   nlohmann::json finer = doc["methods"]["mpm"];
   finer["cell_size_m"] = 0.125;
@@ -660,8 +706,8 @@ TEST(Cli, MpmFaceLoadResultantOfARestingBlockIsNearAThirdOfItsHeight) {
         "material": {"friction_angle_deg": 30, "young_modulus_mpa": 20, "poisson_ratio": 0.3}},
       "barrier": {"height_m": 2, "base_width_m": 1.5, "top_width_m": 1.5, "face_angle_deg": 90,
         "density_kg_m3": 2400, "base_friction": 0.5, "face_friction": 0.0, "fixed": true},
-      "methods": {"mpm": {"cell_size_m": )" + std::to_string(dx) +
-                              R"(, "phases": "dry", "end_time_s": 1.0}}})";
+      "methods": {"mpm": {"cell_size_m": )" +
+                              std::to_string(dx) + R"(, "phases": "dry", "end_time_s": 1.0}}})";
     const fs::path p = write_file("at_rest_" + std::to_string(int(1 / dx)) + ".json", scene);
     const Outcome r = run("run " + p.string() + " --format json");
     EXPECT_EQ(r.code, 0) << r.out;
@@ -677,14 +723,14 @@ TEST(Cli, MpmFaceLoadResultantOfARestingBlockIsNearAThirdOfItsHeight) {
 }
 
 TEST(Cli, MpmSaturatedImpactReportsPorePressureOnTheFace) {
-  const fs::path scene = write_file(
-      "impact_sat.json", impact_scene(R"({"cell_size_m": 0.125, "end_time_s": 0.6})"));
+  const fs::path scene =
+      write_file("impact_sat.json", impact_scene(R"({"cell_size_m": 0.125, "end_time_s": 0.6})"));
   const fs::path out = temp_dir() / "impact_sat.h5";
-  const Outcome r = run("run " + scene.string() + " --methods mpm --out " + out.string() +
-                        " --format json");
+  const Outcome r =
+      run("run " + scene.string() + " --methods mpm --out " + out.string() + " --format json");
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out.substr(r.out.find('{')));
-  ASSERT_FALSE(j.contains("empirical"));   // --methods mpm: only the MPM
+  ASSERT_FALSE(j.contains("empirical"));  // --methods mpm: only the MPM
   EXPECT_EQ(j["mpm"]["saturated"], 1.0);
   // At least the hydrostatic pressure at the base of the 1 m flow, 9.81 kPa: the impact raises
   // it (the undrained mixture is stiff).
@@ -716,7 +762,7 @@ TEST(Cli, MpmSaturatedCellPorePressureReachesTheSolver) {
   const double p_cell = cell["face_pore_pressure_max_pa"].get<double>();
   // 5 %: half the measured 11 % drop, so the option has to act.
   EXPECT_LT(p_cell, 0.95 * p_point);
-  EXPECT_GT(p_cell, 9810.0);   // still above the 1 m flow's hydrostatic base pressure
+  EXPECT_GT(p_cell, 9810.0);  // still above the 1 m flow's hydrostatic base pressure
   // The blunt front's peak is the mixture's water hammer either way: within 5 % (measured 0.9 %).
   EXPECT_NEAR(cell["peak_force"].get<double>(), point["peak_force"].get<double>(),
               0.05 * point["peak_force"].get<double>());
@@ -727,7 +773,8 @@ TEST(Cli, MpmImpactErrorsNameTheField) {
     std::string mpm, expect;
   };
   const Bad cases[] = {
-      {R"({"cell_size_m": 0.5})", "methods.mpm.cell_size_m = 0.5: must be <= landslide.thickness_m / 4"},
+      {R"({"cell_size_m": 0.5})",
+       "methods.mpm.cell_size_m = 0.5: must be <= landslide.thickness_m / 4"},
       {R"({"cell_size_m": 0.1, "phases": "wet"})", "methods.mpm.phases"},
       {R"({"cell_size_m": 0.1, "phases": "dry", "drag": "explicit"})",
        "methods.mpm.drag = \"explicit\": only used with"},
@@ -743,7 +790,8 @@ TEST(Cli, MpmImpactErrorsNameTheField) {
   };
   int k = 0;
   for (const auto& c : cases) {
-    const fs::path p = write_file("impact_bad" + std::to_string(k++) + ".json", impact_scene(c.mpm));
+    const fs::path p =
+        write_file("impact_bad" + std::to_string(k++) + ".json", impact_scene(c.mpm));
     const Outcome r = run("run " + p.string() + " --methods mpm");
     EXPECT_EQ(r.code, 2) << r.out;
     EXPECT_NE(r.out.find(c.expect), std::string::npos) << r.out;
@@ -758,8 +806,8 @@ TEST(Cli, MpmImpactErrorsNameTheField) {
     }
   }
   {
-    const fs::path p = write_file("impact_bad_key.json",
-                                  impact_scene(R"({"cell_size_m": 0.1, "cel_size": 1})"));
+    const fs::path p =
+        write_file("impact_bad_key.json", impact_scene(R"({"cell_size_m": 0.1, "cel_size": 1})"));
     const Outcome r = run("run " + p.string() + " --methods empirical");
     EXPECT_EQ(r.code, 2) << r.out;
     EXPECT_NE(r.out.find("methods.mpm.cel_size"), std::string::npos) << r.out;
@@ -775,13 +823,13 @@ TEST(Cli, MpmImpactErrorsNameTheField) {
 TEST(Cli, CompareWritesOneFilePerSceneAndPrintsTheTable) {
   const fs::path dir = temp_dir() / "compare";
   const Outcome r = run("compare " + reference("L1-B1") + " " + reference("L3-B3") + " --out-dir " +
-                    dir.string());
+                        dir.string());
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_TRUE(fs::exists(dir / "L1-B1.h5"));
   EXPECT_TRUE(fs::exists(dir / "L3-B3.h5"));
   EXPECT_NE(r.out.find("L3-B3"), std::string::npos);
   EXPECT_NE(r.out.find("mass for 0.5 m"), std::string::npos);
-  EXPECT_NE(r.out.find("M: MPM"), std::string::npos);   // the reference scenes run the MPM too
+  EXPECT_NE(r.out.find("M: MPM"), std::string::npos);  // the reference scenes run the MPM too
   EXPECT_NE(r.out.find("MPM run time per case"), std::string::npos);
 }
 }  // namespace
@@ -831,7 +879,8 @@ TEST(Cli, OutputsNeverReplaceDevicesInputsOrLeaveTheirDirectory) {
     std::ofstream(p) << s.dump();
     return p;
   };
-  for (const std::string& name : std::vector<std::string>{"../escape", "/tmp/lsi-escape", "..", "a\nb"}) {
+  for (const std::string& name :
+       std::vector<std::string>{"../escape", "/tmp/lsi-escape", "..", "a\nb"}) {
     const fs::path p = named("named.json", name);
     r = run("compare " + p.string() + " --out-dir " + (dir / "out").string());
     EXPECT_EQ(r.code, 2) << name << ": " << r.out;
@@ -842,7 +891,8 @@ TEST(Cli, OutputsNeverReplaceDevicesInputsOrLeaveTheirDirectory) {
   EXPECT_TRUE(fs::is_empty(dir / "out"));
   // Two scenes of one name would write one file.
   const fs::path twin = named("twin.json", "minimal");
-  r = run("compare " + scene.string() + " " + twin.string() + " --out-dir " + (dir / "out").string());
+  r = run("compare " + scene.string() + " " + twin.string() + " --out-dir " +
+          (dir / "out").string());
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.out.find("also the name of"), std::string::npos) << r.out;
   EXPECT_TRUE(fs::is_empty(dir / "out"));
@@ -873,11 +923,12 @@ TEST(Cli, OutputsNeverReplaceDevicesInputsOrLeaveTheirDirectory) {
 // barrier faster than the flow that pushes it (the flow's velocity from its kinetic energy,
 // sqrt(2 E / m1), at every history sample; 1e-9 of v0: the integration's tolerance).
 TEST(Cli, ReferenceClosedFormsNeverMoveTheBarrierFasterThanTheFlow) {
-  for (const char* name : {"L1-B1", "L1-B2", "L1-B3", "L2-B1", "L2-B2", "L2-B3", "L3-B1", "L3-B2",
-                           "L3-B3"}) {
+  for (const char* name :
+       {"L1-B1", "L1-B2", "L1-B3", "L2-B1", "L2-B2", "L2-B3", "L3-B1", "L3-B2", "L3-B3"}) {
     const fs::path out = temp_dir() / (std::string(name) + "_closed.h5");
-    const Outcome r = run("run " + (source_dir / "scenes/reference" / (std::string(name) + ".json")).string() +
-                          " --methods empirical,analytical --out " + out.string());
+    const Outcome r =
+        run("run " + (source_dir / "scenes/reference" / (std::string(name) + ".json")).string() +
+            " --methods empirical,analytical --out " + out.string());
     ASSERT_EQ(r.code, 0) << r.out;
     const auto stored = lsi::read_results(out.string());
     ASSERT_EQ(stored.results.size(), 2u);
@@ -902,7 +953,8 @@ TEST(Cli, DesignVerifyRunsTheMpmOnEachDesignedBarrier) {
   s["methods"]["empirical"] = {{"barrier_model", "momentum"}};
   s["methods"]["analytical"] = {{"barrier_model", "momentum"}};
   const fs::path scene = write_file("design_verify.json", s.dump());
-  const Outcome r = run("design " + scene.string() + " --max-displacement 0.2 --verify --format json");
+  const Outcome r =
+      run("design " + scene.string() + " --max-displacement 0.2 --verify --format json");
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out.substr(r.out.find('{')));
   for (const char* m : {"empirical", "analytical"}) {
@@ -948,5 +1000,5 @@ TEST(Cli, MpmUnstableImpactStoresItsStatusAndNoSummary) {
   EXPECT_FALSE(m.scalars.impulse.has_value());
   ASSERT_TRUE(m.run.has_value());
   EXPECT_FALSE(m.run->finished);
-  EXPECT_FALSE(m.time.empty());   // the histories up to the stop
+  EXPECT_FALSE(m.time.empty());  // the histories up to the stop
 }

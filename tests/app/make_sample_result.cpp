@@ -24,7 +24,7 @@ lsi::MethodResult synthetic(const std::string& method, double peak_n_per_m, doub
     const double f = t <= t1   ? peak_n_per_m * t / t1
                      : t <= t2 ? peak_n_per_m * (t2 - t) / (t2 - t1)
                                : 0.0;
-    const double s = std::min(t / t2, 1.0);   // progress of the impact
+    const double s = std::min(t / t2, 1.0);  // progress of the impact
     r.time.push_back(t);
     r.force.push_back(f);
     r.force_horizontal.push_back(f * std::sin(80.0 * std::numbers::pi / 180.0));
@@ -52,10 +52,14 @@ int main(int argc, char** argv) {
         {"name", "synthetic sample"},
         {"landslide", {{"thickness_m", 2.0}, {"velocity_m_s", 10.0}, {"density_kg_m3", 2000.0}}},
         {"barrier",
-         {{"height_m", 5.0}, {"base_width_m", 4.0}, {"top_width_m", 2.0}, {"density_kg_m3", 2400.0}}},
-        {"methods", {{"empirical", nlohmann::json::object()}, {"analytical", nlohmann::json::object()}}}};
+         {{"height_m", 5.0},
+          {"base_width_m", 4.0},
+          {"top_width_m", 2.0},
+          {"density_kg_m3", 2400.0}}},
+        {"methods",
+         {{"empirical", nlohmann::json::object()}, {"analytical", nlohmann::json::object()}}}};
     auto empirical = synthetic("empirical", 3.2e5, 0.25, 1.1, 9.0e5, 0.12);
-    empirical.barrier_velocity.clear();   // exercises "method lacks a dataset"
+    empirical.barrier_velocity.clear();  // exercises "method lacks a dataset"
     empirical.scalars.froude_number = 2.26;
     auto analytical = synthetic("analytical", 2.7e5, 0.3, 1.4, 9.0e5, 0.18);
     lsi::write_results(argv[1], scene, {empirical, analytical});

@@ -21,7 +21,8 @@ TEST(Progress, EstimateOnlyForLongRuns) {
             "time (an impact run ends earlier, once at rest)");
   // 40 min and 3 days are shown in their units.
   EXPECT_NE(lsi::Progress::estimate("a", 1.0, 240.0, 10.0).find("about 40 min"), std::string::npos);
-  EXPECT_NE(lsi::Progress::estimate("a", 1.0, 25920.0, 10.0).find("about 3 days"), std::string::npos);
+  EXPECT_NE(lsi::Progress::estimate("a", 1.0, 25920.0, 10.0).find("about 3 days"),
+            std::string::npos);
   // Projected 200 s (not long), nothing simulated yet, or the end already reached: no estimate.
   EXPECT_EQ(lsi::Progress::estimate("a", 1.0, 20.0, 10.0), "");
   EXPECT_EQ(lsi::Progress::estimate("a", 0.0, 20.0, 10.0), "");
@@ -35,6 +36,8 @@ TEST(SampleProgress, LineShowsTheSamplesRateAndTimeLeft) {
   EXPECT_EQ(lsi::SampleProgress::line("sweep s", 300, 1000, 200, 4.0),
             "sweep s: 300 of 1000 samples (30 %), 50 samples/s, ETA 14 s");
   // Nothing run yet: no rate, no estimate; an empty study is complete.
-  EXPECT_EQ(lsi::SampleProgress::line("s", 0, 10, 0, 0.0), "s: 0 of 10 samples (0 %), 0 samples/s, ETA 0 s");
-  EXPECT_EQ(lsi::SampleProgress::line("s", 0, 0, 0, 1.0), "s: 0 of 0 samples (100 %), 0 samples/s, ETA 0 s");
+  EXPECT_EQ(lsi::SampleProgress::line("s", 0, 10, 0, 0.0),
+            "s: 0 of 10 samples (0 %), 0 samples/s, ETA 0 s");
+  EXPECT_EQ(lsi::SampleProgress::line("s", 0, 0, 0, 1.0),
+            "s: 0 of 0 samples (100 %), 0 samples/s, ETA 0 s");
 }
