@@ -33,7 +33,7 @@ bool load_record(const fs::path& file, const json& scene, AccuracyRun& run) {
     run = accuracy_run_from_json(j.at("run"));
     return true;
   } catch (const json::exception&) {
-    return false;   // unreadable: run again
+    return false;  // unreadable: run again
   }
 }
 
@@ -58,16 +58,18 @@ Subcommand add_accuracy_command(CLI::App& app) {
   auto args = std::make_shared<Args>();
   Subcommand s;
   s.command = app.add_subcommand(
-      "accuracy", "Run an accuracy study (docs/reference/scene_schema.md, \"Accuracy studies\"): MPM "
-                  "series refining the cell size, points per cell or Courant number; observed "
-                  "order, Richardson extrapolation, GCI, and the error of every run and of the "
-                  "closed forms against run time (docs/vv/accuracy.md)");
+      "accuracy",
+      "Run an accuracy study (docs/reference/scene_schema.md, \"Accuracy studies\"): MPM "
+      "series refining the cell size, points per cell or Courant number; observed "
+      "order, Richardson extrapolation, GCI, and the error of every run and of the "
+      "closed forms against run time (docs/vv/accuracy.md)");
   s.command->add_option("study", args->study, "Accuracy study JSON file")->required();
   s.command->add_option("--out", args->out, "Output directory (default results/accuracy)");
   s.command->add_flag("--resume", args->resume,
                       "Reuse the finished runs of an earlier, interrupted run of the same study");
-  s.command->add_option("--only", args->only, "Run only these series (by name); the others are "
-                                              "reused from their records and must exist");
+  s.command->add_option("--only", args->only,
+                        "Run only these series (by name); the others are "
+                        "reused from their records and must exist");
   s.run = [args] {
     const AccuracyStudy study = load_accuracy_study(args->study);
     for (const auto& name : args->only)
@@ -80,25 +82,28 @@ Subcommand add_accuracy_command(CLI::App& app) {
     std::vector<std::vector<AccuracyRun>> runs(study.series.size());
     for (size_t i = 0; i < study.series.size(); ++i) {
       const AccuracySeries& series = study.series[i];
-      const bool selected = args->only.empty() ||
-                            std::find(args->only.begin(), args->only.end(), series.name) !=
-                                args->only.end();
-      std::vector<double> values = series.values;   // coarse (cheap) first
+      const bool selected = args->only.empty() || std::find(args->only.begin(), args->only.end(),
+                                                            series.name) != args->only.end();
+      std::vector<double> values = series.values;  // coarse (cheap) first
       std::sort(values.begin(), values.end(), [&](double a, double b) {
         return accuracy_spacing(series.parameter, a) > accuracy_spacing(series.parameter, b);
       });
       for (const double v : values) {
         const json scene = accuracy_run_scene(study, series, v);
-        const std::string stem = (runs_dir / (series_file_stem(series.name) + "-" + series.parameter + "-" +
-                                              json_fields::format_number(v))).string();
+        const std::string stem =
+            (runs_dir / (series_file_stem(series.name) + "-" + series.parameter + "-" +
+                         json_fields::format_number(v)))
+                .string();
         AccuracyRun run;
         if ((args->resume || !selected) && load_record(stem + ".json", scene, run)) {
           std::cerr << "[accuracy] " << series.name << ", " << series.parameter << " = " << v
                     << ": kept from " << stem << ".json\n";
         } else if (!selected) {
-          throw InputError("series \"" + series.name + "\" was left out by --only but has no "
-                           "record for " + series.parameter + " = " +
-                           json_fields::format_number(v) + " in " + runs_dir.string());
+          throw InputError("series \"" + series.name +
+                           "\" was left out by --only but has no "
+                           "record for " +
+                           series.parameter + " = " + json_fields::format_number(v) + " in " +
+                           runs_dir.string());
         } else {
           run = run_accuracy_case(scene, series, v);
           write_results(stem + ".h5", scene, {run.result});

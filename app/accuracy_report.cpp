@@ -13,7 +13,7 @@
 #include "io/json_fields.hpp"
 #include "model/scene.hpp"
 #include "model/time_call.hpp"
-#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
+#include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 #include "io/scene_parser.hpp"
 
 namespace lsi {
@@ -59,7 +59,8 @@ std::string fmt(double v, int digits = 4) {
 std::string percent(double v) {
   if (!std::isfinite(v)) return "-";
   std::ostringstream s;
-  s << std::showpos << std::fixed << std::setprecision(std::abs(v) < 0.1 ? 2 : 1) << 100 * v << " %";
+  s << std::showpos << std::fixed << std::setprecision(std::abs(v) < 0.1 ? 2 : 1) << 100 * v
+    << " %";
   return s.str();
 }
 
@@ -70,9 +71,7 @@ const char* unit_of(const std::string& output) {
   if (output == "energy_residual") return "1";
   return "s";
 }
-double display(const std::string& output, double v) {
-  return output == "peak_force" ? v / 1e3 : v;
-}
+double display(const std::string& output, double v) { return output == "peak_force" ? v / 1e3 : v; }
 
 }  // namespace
 
@@ -80,8 +79,8 @@ std::vector<ClosedFormTiming> time_closed_forms(const AccuracyStudy& study) {
   json doc = study.scene_document;
   // The closed forms with the scene's parameters where it gives them (a scene without a methods
   // block runs both with their defaults).
-  const json methods = doc.contains("methods") && doc["methods"].is_object() ? doc["methods"]
-                                                                             : json::object();
+  const json methods =
+      doc.contains("methods") && doc["methods"].is_object() ? doc["methods"] : json::object();
   doc["methods"] = {{"empirical", methods.value("empirical", json::object())},
                     {"analytical", methods.value("analytical", json::object())}};
   const Scene scene = parse_scene(doc);
@@ -137,8 +136,11 @@ json accuracy_report(const AccuracyStudy& study, const std::vector<std::vector<A
   json jseries = json::array();
   for (size_t i = 0; i < study.series.size(); ++i) {
     const AccuracySeries& s = study.series[i];
-    json js = {{"name", s.name}, {"parameter", s.parameter}, {"set", s.set},
-               {"reference", s.reference}, {"outputs", s.outputs}};
+    json js = {{"name", s.name},
+               {"parameter", s.parameter},
+               {"set", s.set},
+               {"reference", s.reference},
+               {"outputs", s.outputs}};
     const std::map<std::string, double> against =
         s.compare_to.empty() ? reference : best_of(index_of(s.compare_to));
     js["compared_to"] = s.compare_to.empty() ? study.series[ref].name : s.compare_to;
@@ -149,7 +151,8 @@ json accuracy_report(const AccuracyStudy& study, const std::vector<std::vector<A
       for (const auto& o : s.outputs) {
         const auto it = r.outputs.find(o);
         errors[o] = number(r.finished && it != r.outputs.end()
-                               ? accuracy_error(o, it->second, against.at(o)) : kNaN);
+                               ? accuracy_error(o, it->second, against.at(o))
+                               : kNaN);
       }
       jr["errors"] = errors;
       jruns.push_back(jr);
@@ -196,8 +199,10 @@ json accuracy_report(const AccuracyStudy& study, const std::vector<std::vector<A
       outs[o] = number(v);
       errs[o] = number(accuracy_error(o, v, reference.at(o)));
     }
-    jcf.push_back({{"method", t.method}, {"seconds_per_evaluation", t.seconds_per_evaluation},
-                   {"outputs", outs}, {"errors", errs}});
+    jcf.push_back({{"method", t.method},
+                   {"seconds_per_evaluation", t.seconds_per_evaluation},
+                   {"outputs", outs},
+                   {"errors", errs}});
   }
   rep["closed_forms"] = jcf;
   return rep;
@@ -207,11 +212,11 @@ std::string accuracy_markdown(const json& rep) {
   std::ostringstream md;
   const json& st = rep.at("study");
   md << "# Accuracy study: " << st.value("name", std::string()) << "\n\n"
-     << "Base scene `" << st.at("scene").value("name", std::string()) << "`; machine: "
-     << rep.at("machine").at("cpu").get<std::string>() << ", "
+     << "Base scene `" << st.at("scene").value("name", std::string())
+     << "`; machine: " << rep.at("machine").at("cpu").get<std::string>() << ", "
      << rep.at("machine").at("hardware_threads").get<unsigned>() << " hardware threads, "
-     << "OMP_NUM_THREADS=" << rep.at("machine").at("omp_num_threads").get<std::string>()
-     << ", lsi " << rep.at("machine").at("lsi_revision").get<std::string>() << ".\n\n"
+     << "OMP_NUM_THREADS=" << rep.at("machine").at("omp_num_threads").get<std::string>() << ", lsi "
+     << rep.at("machine").at("lsi_revision").get<std::string>() << ".\n\n"
      << "Errors are against the reference below (relative; the energy residual is absolute, its "
         "exact value being 0). Wall time is the solver loop of one run (no set-up, no I/O), one "
         "repetition on a shared machine: read ratios, not absolute values.\n\n";
@@ -222,8 +227,9 @@ std::string accuracy_markdown(const json& rep) {
        << "` |\n";
   for (const json& s : rep.at("series")) {
     const auto outputs = s.at("outputs").get<std::vector<std::string>>();
-    md << "\n## " << s.at("name").get<std::string>() << (s.at("reference").get<bool>() ? " (reference)" : "")
-       << "\n\n" << "Settings: `" << s.at("set").dump() << "`; refined: `"
+    md << "\n## " << s.at("name").get<std::string>()
+       << (s.at("reference").get<bool>() ? " (reference)" : "") << "\n\n"
+       << "Settings: `" << s.at("set").dump() << "`; refined: `"
        << s.at("parameter").get<std::string>() << "`; errors against the best estimate of `"
        << s.at("compared_to").get<std::string>() << "`.\n\n";
     md << "| " << s.at("parameter").get<std::string>() << " | status | points | steps | wall s |";
@@ -234,8 +240,8 @@ std::string accuracy_markdown(const json& rep) {
     for (const json& r : s.at("runs")) {
       md << "| " << fmt(r.at("value").get<double>()) << " | " << r.at("status").get<std::string>()
          << " | " << fmt(r.at("particles").get<double>(), 7) << " | "
-         << fmt(r.at("steps").get<double>(), 8) << " | " << fmt(r.at("solver_seconds").get<double>(), 3)
-         << " |";
+         << fmt(r.at("steps").get<double>(), 8) << " | "
+         << fmt(r.at("solver_seconds").get<double>(), 3) << " |";
       for (const auto& o : outputs) {
         const double v = read_number(r.at("outputs").value(o, json("nan")));
         const double e = read_number(r.at("errors").value(o, json("nan")));
@@ -252,8 +258,8 @@ std::string accuracy_markdown(const json& rep) {
        << "|---|---|---|---|---|---|---|\n";
     for (const auto& o : outputs) {
       const json& c = s.at("convergence").at(o);
-      md << "| " << o << " | " << c.at("runs").get<int>() << " | " << c.at("kind").get<std::string>()
-         << " | " << fmt(read_number(c.at("order")), 3) << " | "
+      md << "| " << o << " | " << c.at("runs").get<int>() << " | "
+         << c.at("kind").get<std::string>() << " | " << fmt(read_number(c.at("order")), 3) << " | "
          << fmt(read_number(c.at("order_next_coarser")), 3) << " | "
          << fmt(display(o, read_number(c.at("extrapolated")))) << " | "
          << percent(read_number(c.at("gci_fine"))) << " |\n";

@@ -34,7 +34,8 @@ std::vector<std::string> parse_outputs(const ObjectReader& r, const std::string&
   for (size_t i = 0; i < o->size(); ++i) {
     const json& v = (*o)[i];
     const auto& names = accuracy_output_names();
-    if (!v.is_string() || std::find(names.begin(), names.end(), v.get<std::string>()) == names.end())
+    if (!v.is_string() ||
+        std::find(names.begin(), names.end(), v.get<std::string>()) == names.end())
       fail(r.path_of(key) + "[" + std::to_string(i) + "] = " + format_value(v) +
            ": must be one of " + join(names, true));
     if (std::find(out.begin(), out.end(), v.get<std::string>()) != out.end())
@@ -45,15 +46,15 @@ std::vector<std::string> parse_outputs(const ObjectReader& r, const std::string&
 }
 
 Range parameter_range(const std::string& parameter) {
-  if (parameter == "cells_per_thickness") return at_least(4.0, "cells");   // cell <= h / 4
+  if (parameter == "cells_per_thickness") return at_least(4.0, "cells");  // cell <= h / 4
   if (parameter == "particles_per_cell") return interval('[', 1.0, 64.0, ']', "points");
-  return interval('(', 0.0, 10.0, ']');                                  // Courant number
+  return interval('(', 0.0, 10.0, ']');  // Courant number
 }
 
 AccuracySeries parse_series(const json& j, const std::string& path,
                             const std::vector<std::string>& default_outputs) {
-  const ObjectReader r(j, path, {"name", "parameter", "values", "set", "reference", "compare_to",
-                                     "outputs"});
+  const ObjectReader r(
+      j, path, {"name", "parameter", "values", "set", "reference", "compare_to", "outputs"});
   AccuracySeries s;
   s.name = r.string("name");
   s.parameter = r.choice("parameter", kParameters);
@@ -69,7 +70,8 @@ AccuracySeries parse_series(const json& j, const std::string& path,
       fail(p + " = " + format_number(v) + ": must be a whole number");
     if (s.parameter == "particles_per_cell") {
       const double side = std::round(std::sqrt(v));
-      if (side * side != v) fail(p + " = " + format_number(v) + ": must be a square (1, 4, 9, ...)");
+      if (side * side != v)
+        fail(p + " = " + format_number(v) + ": must be a square (1, 4, 9, ...)");
     }
     for (const double w : s.values)
       if (w == v) fail(p + " = " + format_number(v) + ": listed twice");
@@ -82,7 +84,8 @@ AccuracySeries parse_series(const json& j, const std::string& path,
       try {
         (void)json::json_pointer(pointer);
       } catch (const json::exception&) {
-        fail(r.path_of("set") + "[\"" + pointer + "\"]: not a JSON pointer (e.g. /methods/mpm/transfer)");
+        fail(r.path_of("set") + "[\"" + pointer +
+             "\"]: not a JSON pointer (e.g. /methods/mpm/transfer)");
       }
       s.set[pointer] = value;
     }
@@ -102,30 +105,33 @@ double largest_abs(const std::vector<double>& v) {
 }  // namespace
 
 const std::vector<std::string>& accuracy_output_names() {
-  static const std::vector<std::string> names = {"peak_force",         "rise_time",
-                                                 "impact_duration",    "final_displacement",
-                                                 "overtopped_volume",  "energy_residual"};
+  static const std::vector<std::string> names = {"peak_force",        "rise_time",
+                                                 "impact_duration",   "final_displacement",
+                                                 "overtopped_volume", "energy_residual"};
   return names;
 }
 
 double accuracy_spacing(const std::string& parameter, double value) {
-  if (parameter == "cells_per_thickness") return 1.0 / value;               // cell / thickness
-  if (parameter == "particles_per_cell") return 1.0 / std::sqrt(value);     // point spacing / cell
-  return value;                                                             // dt ∝ Courant
+  if (parameter == "cells_per_thickness") return 1.0 / value;            // cell / thickness
+  if (parameter == "particles_per_cell") return 1.0 / std::sqrt(value);  // point spacing / cell
+  return value;                                                          // dt ∝ Courant
 }
 
 std::string series_file_stem(const std::string& name) {
   std::string s;
   for (const char c : name) {
-    if (std::isalnum(static_cast<unsigned char>(c))) s += static_cast<char>(std::tolower(c));
-    else if (!s.empty() && s.back() != '-') s += '-';
+    if (std::isalnum(static_cast<unsigned char>(c)))
+      s += static_cast<char>(std::tolower(c));
+    else if (!s.empty() && s.back() != '-')
+      s += '-';
   }
   while (!s.empty() && s.back() == '-') s.pop_back();
   return s.empty() ? "series" : s;
 }
 
 AccuracyStudy parse_accuracy_study(const json& j, const std::string& base_dir) {
-  if (!j.is_object()) fail("(top level) = " + format_value(j) + ": an accuracy study must be a JSON object");
+  if (!j.is_object())
+    fail("(top level) = " + format_value(j) + ": an accuracy study must be a JSON object");
   const ObjectReader root(j, "", {"name", "scene", "outputs", "series"});
   AccuracyStudy st;
   st.name = root.string("name");
@@ -137,8 +143,8 @@ AccuracyStudy parse_accuracy_study(const json& j, const std::string& base_dir) {
   }
   if (!st.scene_document.contains("landslide"))
     fail("scene: an accuracy study needs a landslide-barrier scene (landslide, barrier)");
-  st.outputs = parse_outputs(root, "outputs", {"peak_force", "impact_duration",
-                                               "final_displacement", "energy_residual"});
+  st.outputs = parse_outputs(
+      root, "outputs", {"peak_force", "impact_duration", "final_displacement", "energy_residual"});
   const json* series = root.find("series");
   if (!series) root.fail_missing("series", "an array of series of MPM runs");
   if (!series->is_array() || series->empty())
@@ -158,9 +164,10 @@ AccuracyStudy parse_accuracy_study(const json& j, const std::string& base_dir) {
     // Every run's scene must be valid now, not after an hour of runs.
     for (const double v : s.values) {
       try {
-        (void)impact_case(parse_scene(accuracy_run_scene(st, s, v)));   // specs only: cheap
+        (void)impact_case(parse_scene(accuracy_run_scene(st, s, v)));  // specs only: cheap
       } catch (const InputError& e) {
-        fail(path + " (" + s.name + "), " + s.parameter + " = " + format_number(v) + ": " + e.what());
+        fail(path + " (" + s.name + "), " + s.parameter + " = " + format_number(v) + ": " +
+             e.what());
       } catch (const json::exception& e) {
         fail(path + ".set: " + e.what());
       }
@@ -173,7 +180,8 @@ AccuracyStudy parse_accuracy_study(const json& j, const std::string& base_dir) {
     const std::string& target = st.series[i].compare_to;
     if (!target.empty() && std::none_of(st.series.begin(), st.series.end(),
                                         [&](const AccuracySeries& x) { return x.name == target; }))
-      fail("series[" + std::to_string(i) + "].compare_to = \"" + target + "\": no series has this name");
+      fail("series[" + std::to_string(i) + "].compare_to = \"" + target +
+           "\": no series has this name");
   }
   if (references != 1)
     fail("series: exactly one series must have \"reference\": true (found " +
@@ -242,9 +250,14 @@ AccuracyRun run_accuracy_case(const json& scene, const AccuracySeries& series, d
 json to_json(const AccuracyRun& r) {
   json o = json::object();
   for (const auto& [k, v] : r.outputs) o[k] = std::isfinite(v) ? json(v) : json(format_number(v));
-  return {{"value", r.value},       {"h", r.h},         {"status", r.status},
-          {"finished", r.finished}, {"solver_seconds", r.solver_seconds},
-          {"steps", r.steps},       {"particles", r.particles}, {"outputs", o}};
+  return {{"value", r.value},
+          {"h", r.h},
+          {"status", r.status},
+          {"finished", r.finished},
+          {"solver_seconds", r.solver_seconds},
+          {"steps", r.steps},
+          {"particles", r.particles},
+          {"outputs", o}};
 }
 
 AccuracyRun accuracy_run_from_json(const json& j) {
@@ -257,30 +270,32 @@ AccuracyRun accuracy_run_from_json(const json& j) {
   r.steps = j.at("steps").get<double>();
   r.particles = j.at("particles").get<double>();
   for (const auto& [k, v] : j.at("outputs").items()) {
-    if (v.is_number()) r.outputs[k] = v.get<double>();
-    else r.outputs[k] = std::strtod(v.get<std::string>().c_str(), nullptr);   // "inf", "nan"
+    if (v.is_number())
+      r.outputs[k] = v.get<double>();
+    else
+      r.outputs[k] = std::strtod(v.get<std::string>().c_str(), nullptr);  // "inf", "nan"
   }
   return r;
 }
 
 OutputConvergence output_convergence(const std::vector<AccuracyRun>& runs,
                                      const std::string& output) {
-  std::vector<std::pair<double, double>> hv;   // (h, value), finished and finite
+  std::vector<std::pair<double, double>> hv;  // (h, value), finished and finite
   for (const auto& r : runs) {
     const auto it = r.outputs.find(output);
     if (r.finished && it != r.outputs.end() && std::isfinite(it->second))
       hv.emplace_back(r.h, it->second);
   }
-  std::sort(hv.begin(), hv.end());   // finest first
+  std::sort(hv.begin(), hv.end());  // finest first
   OutputConvergence c;
   c.runs = static_cast<int>(hv.size());
   c.order_next = kNaN;
   c.order_to_exact = c.order_to_exact_next = kNaN;
-  if (output == "energy_residual") {   // exact value known
+  if (output == "energy_residual") {  // exact value known
     c.exact = true;
     c.best = 0.0;
     c.best_source = "exact";
-    const auto order = [&](size_t k) {   // pair k, k+1
+    const auto order = [&](size_t k) {  // pair k, k+1
       const double e1 = std::abs(hv[k].second), e2 = std::abs(hv[k + 1].second);
       return e1 > 0 && e2 > 0 ? std::log(e2 / e1) / std::log(hv[k + 1].first / hv[k].first) : kNaN;
     };

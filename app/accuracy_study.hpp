@@ -23,9 +23,9 @@ const std::vector<std::string>& accuracy_output_names();
 
 struct AccuracySeries {
   std::string name;
-  std::string parameter;          // "cells_per_thickness", "particles_per_cell" or "courant"
-  std::vector<double> values;     // as given; runs go coarse to fine
-  nlohmann::json set;             // JSON pointer -> value, applied to the base scene
+  std::string parameter;       // "cells_per_thickness", "particles_per_cell" or "courant"
+  std::vector<double> values;  // as given; runs go coarse to fine
+  nlohmann::json set;          // JSON pointer -> value, applied to the base scene
   bool reference = false;
   // Errors of this series' runs are against the best values of this series (by name; itself for
   // self-convergence) instead of the study's reference series, e.g. saturated runs against the
@@ -36,10 +36,10 @@ struct AccuracySeries {
 
 struct AccuracyStudy {
   std::string name;
-  nlohmann::json scene_document;   // the base scene
+  nlohmann::json scene_document;  // the base scene
   std::vector<std::string> outputs;
   std::vector<AccuracySeries> series;
-  nlohmann::json source;           // the study as given, scene inlined
+  nlohmann::json source;  // the study as given, scene inlined
 };
 
 // Throws InputError naming the key, its value and what is allowed.
@@ -59,12 +59,12 @@ nlohmann::json accuracy_run_scene(const AccuracyStudy& study, const AccuracySeri
 
 struct AccuracyRun {
   double value = 0.0, h = 0.0;
-  std::string status;                  // "finished" or why the run stopped
+  std::string status;  // "finished" or why the run stopped
   bool finished = false;
-  double solver_seconds = 0.0;         // the solver loop (no setup, no I/O)
+  double solver_seconds = 0.0;  // the solver loop (no setup, no I/O)
   double steps = 0.0, particles = 0.0;
-  std::map<std::string, double> outputs;   // NaN: not known (e.g. a run cut short)
-  MethodResult result;                     // the histories (not kept in the run's JSON record)
+  std::map<std::string, double> outputs;  // NaN: not known (e.g. a run cut short)
+  MethodResult result;                    // the histories (not kept in the run's JSON record)
 };
 
 // Runs the MPM scene in-process. Throws InputError for an invalid scene.
@@ -77,15 +77,15 @@ AccuracyRun accuracy_run_from_json(const nlohmann::json& j);
 // Convergence of one output over the finished runs of a series (ordered by h, finest first):
 // the finest triple's analysis, and the order of the next-coarser triple when there are 4 runs.
 struct OutputConvergence {
-  int runs = 0;                        // finished runs with a finite value
-  sweeps::GridConvergence finest;      // valid when runs >= 3
-  double order_next = 0.0;             // NaN unless runs >= 4
+  int runs = 0;                    // finished runs with a finite value
+  sweeps::GridConvergence finest;  // valid when runs >= 3
+  double order_next = 0.0;         // NaN unless runs >= 4
   // Outputs with a known exact value (the energy residual, exactly 0): the order of the error
   // itself, ln(e2/e1) / ln(h2/h1), over the two finest runs and over the next pair (NaN if fewer).
   bool exact = false;
   double order_to_exact = 0.0, order_to_exact_next = 0.0;
-  double best = 0.0;                   // extrapolated when monotonic, else the finest value
-  std::string best_source;             // "richardson", "finest run", "exact"
+  double best = 0.0;        // extrapolated when monotonic, else the finest value
+  std::string best_source;  // "richardson", "finest run", "exact"
 };
 OutputConvergence output_convergence(const std::vector<AccuracyRun>& runs,
                                      const std::string& output);
@@ -96,7 +96,7 @@ double accuracy_error(const std::string& output, double value, double reference)
 
 // A closed-form method evaluated on the base scene, and its wall time per evaluation.
 struct ClosedFormTiming {
-  std::string method;                      // "empirical", "analytical"
+  std::string method;  // "empirical", "analytical"
   double seconds_per_evaluation = 0.0;
   std::map<std::string, double> outputs;
 };

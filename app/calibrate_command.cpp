@@ -73,7 +73,7 @@ struct Options {
   std::string grid = "41x41";
   std::string out;
   std::string format = "table";
-  std::string barrier_model = "paper";   // the closed forms' barrier model (scene.hpp)
+  std::string barrier_model = "paper";  // the closed forms' barrier model (scene.hpp)
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -81,13 +81,17 @@ struct Options {
 
 sweeps::CalibrationOptions calibration_options(const Options& o) {
   sweeps::CalibrationOptions c;
-  if (o.objective == "nrms") c.objective = sweeps::Objective::NormalisedRms;
-  else if (o.objective == "peak-duration") c.objective = sweeps::Objective::PeakDuration;
-  else throw InputError("--objective " + o.objective + ": allowed: nrms, peak-duration");
+  if (o.objective == "nrms")
+    c.objective = sweeps::Objective::NormalisedRms;
+  else if (o.objective == "peak-duration")
+    c.objective = sweeps::Objective::PeakDuration;
+  else
+    throw InputError("--objective " + o.objective + ": allowed: nrms, peak-duration");
   const std::regex grid_re(R"(^\s*(\d{1,9})\s*[xX]\s*(\d{1,9})\s*$)");
   std::smatch m;
-  const std::string range = ": must be NxM (lambda cells x tau cells) with N and M integers in "
-                            "[2, 2001], e.g. 41x41";
+  const std::string range =
+      ": must be NxM (lambda cells x tau cells) with N and M integers in "
+      "[2, 2001], e.g. 41x41";
   if (!std::regex_match(o.grid, m, grid_re)) throw InputError("--grid " + o.grid + range);
   const long n = std::stol(m[1].str()), k = std::stol(m[2].str());
   if (n < 2 || n > 2001 || k < 2 || k > 2001) throw InputError("--grid " + o.grid + range);
@@ -121,8 +125,8 @@ struct Case {
   std::string path;
   Scene scene;
   MethodResult mpm;
-  std::string source;          // "file DIR/x.h5" or "mpm run"
-  double mpm_seconds = nan;    // the MPM solver's wall time
+  std::string source;        // "file DIR/x.h5" or "mpm run"
+  double mpm_seconds = nan;  // the MPM solver's wall time
   sweeps::CalibrationCase cal;
   sweeps::TwoBodyFit fit;
   sweeps::EmpiricalFit empirical;
@@ -186,9 +190,12 @@ bool load_mpm(Case& c, const std::string& results_dir) {
     }
   }
   if (!s.methods.mpm)
-    throw InputError(c.path + ": methods.mpm: missing: calibrate needs an MPM history; add a "
-                     "methods.mpm block ({\"cell_size_m\": ...}, docs/reference/scene_schema.md) or give "
-                     "--results-dir with " + s.name + ".h5 holding an /mpm group");
+    throw InputError(
+        c.path +
+        ": methods.mpm: missing: calibrate needs an MPM history; add a "
+        "methods.mpm block ({\"cell_size_m\": ...}, docs/reference/scene_schema.md) or give "
+        "--results-dir with " +
+        s.name + ".h5 holding an /mpm group");
   const MpmCase mc = with_path(c.path, [&] { return impact_case(s); });
   MpmOutcome o = run_mpm_case(mc);
   c.mpm = std::move(o.result);
@@ -213,7 +220,7 @@ struct Row {
 };
 
 double relative_error(double x, double ref) {
-  if (!std::isfinite(ref) || ref == 0.0) return nan;   // MPM never stops, or a fixed barrier
+  if (!std::isfinite(ref) || ref == 0.0) return nan;  // MPM never stops, or a fixed barrier
   if (!std::isfinite(x)) return inf;
   return (x - ref) / ref;
 }
@@ -259,7 +266,7 @@ Scene with_analytical(const Scene& s, double lambda, double tau, BarrierModel mo
 
 Scene with_empirical(const Scene& s, double a1, double a2, double tau, BarrierModel model) {
   Scene x = s;
-  EmpiricalParameters p;   // defaults: the paper's a1, a2, tau, kappa 0
+  EmpiricalParameters p;  // defaults: the paper's a1, a2, tau, kappa 0
   p.barrier_model = model;
   if (s.methods.empirical && model == BarrierModel::Paper) p.kappa = s.methods.empirical->kappa;
   if (std::isfinite(a1)) p.a1 = a1;
@@ -275,7 +282,10 @@ Scene with_empirical(const Scene& s, double a1, double a2, double tau, BarrierMo
 json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 json range_json(const sweeps::Range& r) { return json::array({num(r.low), num(r.high)}); }
 json stat_json(const sweeps::GroupStatistic& s) {
-  return {{"n", s.n}, {"mean", num(s.mean)}, {"std", num(s.stddev)}, {"ci", range_json(s.ci)},
+  return {{"n", s.n},
+          {"mean", num(s.mean)},
+          {"std", num(s.stddev)},
+          {"ci", range_json(s.ci)},
           {"confidence", s.confidence}};
 }
 const char* group_name(bool fixed) { return fixed ? "fixed" : "free"; }
@@ -287,26 +297,40 @@ json case_json(const Case& c) {
           {"scene", c.path},
           {"group", group_name(c.scene.barrier.fixed)},
           {"source", c.source},
-          {"mpm", {{"peak_force", num(f.mpm.peak_force)},
-                   {"rise_time", num(f.mpm.rise_time)},
-                   {"impact_duration", num(f.mpm.impact_duration)},
-                   {"final_displacement", num(c.mpm.final_displacement)},
-                   {"samples", c.cal.time.size()},
-                   {"run_time_s", num(c.mpm_seconds)}}},
-          {"analytical", {{"lambda", f.lambda}, {"tau", f.tau},
-                          {"sigma_lambda", num(f.sigma_lambda)}, {"sigma_tau", num(f.sigma_tau)},
-                          {"correlation", num(f.correlation)},
-                          {"lambda_range", range_json(f.lambda_range)},
-                          {"tau_range", range_json(f.tau_range)},
-                          {"misfit", f.misfit}, {"grid_lambda", f.grid_lambda},
-                          {"grid_tau", f.grid_tau}, {"grid_misfit", f.grid_misfit},
-                          {"iterations", f.iterations}, {"converged", f.converged},
-                          {"stop_reason", f.stop_reason}, {"residuals", f.residual_count}}},
-          {"empirical", {{"froude", e.froude}, {"alpha", e.alpha}, {"tau", e.tau},
-                         {"sigma_tau", num(e.sigma_tau)}, {"tau_range", range_json(e.tau_range)},
-                         {"misfit", e.misfit}, {"grid_tau", e.grid_tau},
-                         {"grid_misfit", e.grid_misfit}, {"iterations", e.iterations},
-                         {"converged", e.converged}}}};
+          {"mpm",
+           {{"peak_force", num(f.mpm.peak_force)},
+            {"rise_time", num(f.mpm.rise_time)},
+            {"impact_duration", num(f.mpm.impact_duration)},
+            {"final_displacement", num(c.mpm.final_displacement)},
+            {"samples", c.cal.time.size()},
+            {"run_time_s", num(c.mpm_seconds)}}},
+          {"analytical",
+           {{"lambda", f.lambda},
+            {"tau", f.tau},
+            {"sigma_lambda", num(f.sigma_lambda)},
+            {"sigma_tau", num(f.sigma_tau)},
+            {"correlation", num(f.correlation)},
+            {"lambda_range", range_json(f.lambda_range)},
+            {"tau_range", range_json(f.tau_range)},
+            {"misfit", f.misfit},
+            {"grid_lambda", f.grid_lambda},
+            {"grid_tau", f.grid_tau},
+            {"grid_misfit", f.grid_misfit},
+            {"iterations", f.iterations},
+            {"converged", f.converged},
+            {"stop_reason", f.stop_reason},
+            {"residuals", f.residual_count}}},
+          {"empirical",
+           {{"froude", e.froude},
+            {"alpha", e.alpha},
+            {"tau", e.tau},
+            {"sigma_tau", num(e.sigma_tau)},
+            {"tau_range", range_json(e.tau_range)},
+            {"misfit", e.misfit},
+            {"grid_tau", e.grid_tau},
+            {"grid_misfit", e.grid_misfit},
+            {"iterations", e.iterations},
+            {"converged", e.converged}}}};
 }
 
 json group_json(const sweeps::GroupSummary& g) {
@@ -314,21 +338,31 @@ json group_json(const sweeps::GroupSummary& g) {
   return {{"group", group_name(g.fixed)},
           {"cases", g.cases},
           {"n", g.cases.size()},
-          {"analytical", {{"lambda", stat_json(g.lambda)}, {"tau", stat_json(g.tau)},
-                          {"paper", {{"lambda", g.paper.lambda}, {"tau", g.paper.tau}}}}},
-          {"empirical", {{"a1", num(p.a1)}, {"a1_ci", range_json(p.a1_ci)},
-                         {"a2", num(p.a2)}, {"a2_ci", range_json(p.a2_ci)},
-                         {"rms_log_residual", num(p.rms_log_residual)},
-                         {"tau", stat_json(g.empirical_tau)},
-                         {"paper", {{"a1", g.paper.a1}, {"a2", g.paper.a2},
-                                    {"tau", g.paper.empirical_tau}}}}}};
+          {"analytical",
+           {{"lambda", stat_json(g.lambda)},
+            {"tau", stat_json(g.tau)},
+            {"paper", {{"lambda", g.paper.lambda}, {"tau", g.paper.tau}}}}},
+          {"empirical",
+           {{"a1", num(p.a1)},
+            {"a1_ci", range_json(p.a1_ci)},
+            {"a2", num(p.a2)},
+            {"a2_ci", range_json(p.a2_ci)},
+            {"rms_log_residual", num(p.rms_log_residual)},
+            {"tau", stat_json(g.empirical_tau)},
+            {"paper", {{"a1", g.paper.a1}, {"a2", g.paper.a2}, {"tau", g.paper.empirical_tau}}}}}};
 }
 
 json row_json(const Row& r) {
-  return {{"case", r.case_name}, {"method", r.method}, {"coefficients", r.coefficients},
-          {"lambda", num(r.lambda)}, {"tau", num(r.tau)}, {"a1", num(r.a1)}, {"a2", num(r.a2)},
+  return {{"case", r.case_name},
+          {"method", r.method},
+          {"coefficients", r.coefficients},
+          {"lambda", num(r.lambda)},
+          {"tau", num(r.tau)},
+          {"a1", num(r.a1)},
+          {"a2", num(r.a2)},
           {"empirical_tau", num(r.empirical_tau)},
-          {"peak_force", num(r.peak_force)}, {"peak_force_rel_error", num(r.peak_error)},
+          {"peak_force", num(r.peak_force)},
+          {"peak_force_rel_error", num(r.peak_error)},
           {"impact_duration", num(r.impact_duration)},
           {"impact_duration_rel_error", num(r.duration_error)},
           {"final_displacement", num(r.final_displacement)},
@@ -371,13 +405,12 @@ std::string table(const std::vector<Case>& cases, const std::vector<sweeps::Grou
   t << line;
   for (const auto& c : cases) {
     const auto& f = c.fit;
-    std::snprintf(line, sizeof line, "%-14s %-5s %-7s %-7s %-16s %-7s %-7s %-16s %-9s %-9s %d%s\n",
-                  c.scene.name.c_str(), group_name(c.scene.barrier.fixed),
-                  fmt("%.3f", f.lambda).c_str(), fmt("%.3f", f.sigma_lambda).c_str(),
-                  ci(f.lambda_range).c_str(), fmt("%.3f", f.tau).c_str(),
-                  fmt("%.3f", f.sigma_tau).c_str(), ci(f.tau_range).c_str(),
-                  fmt("%.4f", f.misfit).c_str(), fmt("%.4f", f.grid_misfit).c_str(), f.iterations,
-                  f.converged ? "" : " (not converged)");
+    std::snprintf(
+        line, sizeof line, "%-14s %-5s %-7s %-7s %-16s %-7s %-7s %-16s %-9s %-9s %d%s\n",
+        c.scene.name.c_str(), group_name(c.scene.barrier.fixed), fmt("%.3f", f.lambda).c_str(),
+        fmt("%.3f", f.sigma_lambda).c_str(), ci(f.lambda_range).c_str(), fmt("%.3f", f.tau).c_str(),
+        fmt("%.3f", f.sigma_tau).c_str(), ci(f.tau_range).c_str(), fmt("%.4f", f.misfit).c_str(),
+        fmt("%.4f", f.grid_misfit).c_str(), f.iterations, f.converged ? "" : " (not converged)");
     t << line;
   }
   t << "\nEmpirical model, per case (alpha_MPM = (F_peak,MPM - F_stat) / (rho v_n^2 h))\n";
@@ -387,10 +420,10 @@ std::string table(const std::vector<Case>& cases, const std::vector<sweeps::Grou
   for (const auto& c : cases) {
     const auto& e = c.empirical;
     std::snprintf(line, sizeof line, "%-14s %-7s %-7s %-7s %-7s %-16s %-9s %d%s\n",
-                  c.scene.name.c_str(), fmt("%.3f", e.froude).c_str(),
-                  fmt("%.3f", e.alpha).c_str(), fmt("%.3f", e.tau).c_str(),
-                  fmt("%.3f", e.sigma_tau).c_str(), ci(e.tau_range).c_str(),
-                  fmt("%.4f", e.misfit).c_str(), e.iterations, e.converged ? "" : " (not converged)");
+                  c.scene.name.c_str(), fmt("%.3f", e.froude).c_str(), fmt("%.3f", e.alpha).c_str(),
+                  fmt("%.3f", e.tau).c_str(), fmt("%.3f", e.sigma_tau).c_str(),
+                  ci(e.tau_range).c_str(), fmt("%.4f", e.misfit).c_str(), e.iterations,
+                  e.converged ? "" : " (not converged)");
     t << line;
   }
   t << "\nGroups (mean and " << fmt("%.0f", 100 * confidence)
@@ -441,7 +474,9 @@ std::string table(const std::vector<Case>& cases, const std::vector<sweeps::Grou
 using H5 = hdf5::Handle;
 using hdf5::check;
 
-void attr(hid_t obj, const std::string& name, double v) { hdf5::write_double_attribute(obj, name, v); }
+void attr(hid_t obj, const std::string& name, double v) {
+  hdf5::write_double_attribute(obj, name, v);
+}
 void attr(hid_t obj, const std::string& name, const std::string& v) {
   hdf5::write_string_attribute(obj, name, v);
 }
@@ -453,8 +488,9 @@ void dataset(hid_t g, const std::string& name, const std::vector<double>& v,
            "dataspace " + name);
   H5 d(H5Dcreate2(g, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
        H5Dclose, "dataset " + name);
-  if (!v.empty()) check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()),
-                        "dataset " + name);
+  if (!v.empty())
+    check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()),
+          "dataset " + name);
 }
 
 void dataset(hid_t g, const std::string& name, const std::vector<std::string>& v) {
@@ -465,7 +501,8 @@ void dataset(hid_t g, const std::string& name, const std::vector<std::string>& v
        "dataset " + name);
   std::vector<const char*> p;
   for (const auto& s : v) p.push_back(s.c_str());
-  if (!p.empty()) check(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()), "dataset " + name);
+  if (!p.empty())
+    check(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()), "dataset " + name);
 }
 
 H5 group(hid_t parent, const std::string& name) {
@@ -509,21 +546,35 @@ void write_contents(hid_t file, const std::vector<Case>& cases,
       attr(g, "source", c.source);
       attr(g, "scene", c.scene.source.dump(2));
       const std::pair<const char*, double> scalars[] = {
-          {"lambda", f.lambda}, {"tau", f.tau}, {"sigma_lambda", f.sigma_lambda},
-          {"sigma_tau", f.sigma_tau}, {"correlation", f.correlation},
-          {"lambda_range_low", f.lambda_range.low}, {"lambda_range_high", f.lambda_range.high},
-          {"tau_range_low", f.tau_range.low}, {"tau_range_high", f.tau_range.high},
-          {"misfit", f.misfit}, {"grid_lambda", f.grid_lambda}, {"grid_tau", f.grid_tau},
-          {"grid_misfit", f.grid_misfit}, {"iterations", double(f.iterations)},
-          {"converged", f.converged ? 1.0 : 0.0}, {"residuals", double(f.residual_count)},
+          {"lambda", f.lambda},
+          {"tau", f.tau},
+          {"sigma_lambda", f.sigma_lambda},
+          {"sigma_tau", f.sigma_tau},
+          {"correlation", f.correlation},
+          {"lambda_range_low", f.lambda_range.low},
+          {"lambda_range_high", f.lambda_range.high},
+          {"tau_range_low", f.tau_range.low},
+          {"tau_range_high", f.tau_range.high},
+          {"misfit", f.misfit},
+          {"grid_lambda", f.grid_lambda},
+          {"grid_tau", f.grid_tau},
+          {"grid_misfit", f.grid_misfit},
+          {"iterations", double(f.iterations)},
+          {"converged", f.converged ? 1.0 : 0.0},
+          {"residuals", double(f.residual_count)},
           {"paper_lambda", sweeps::paper_values(c.scene.barrier.fixed).lambda},
           {"paper_tau", sweeps::paper_values(c.scene.barrier.fixed).tau},
-          {"froude", e.froude}, {"alpha_mpm", e.alpha}, {"empirical_tau", e.tau},
-          {"empirical_sigma_tau", e.sigma_tau}, {"empirical_tau_range_low", e.tau_range.low},
-          {"empirical_tau_range_high", e.tau_range.high}, {"empirical_misfit", e.misfit},
+          {"froude", e.froude},
+          {"alpha_mpm", e.alpha},
+          {"empirical_tau", e.tau},
+          {"empirical_sigma_tau", e.sigma_tau},
+          {"empirical_tau_range_low", e.tau_range.low},
+          {"empirical_tau_range_high", e.tau_range.high},
+          {"empirical_misfit", e.misfit},
           {"empirical_iterations", double(e.iterations)},
           {"empirical_converged", e.converged ? 1.0 : 0.0},
-          {"mpm_peak_force", f.mpm.peak_force}, {"mpm_rise_time", f.mpm.rise_time},
+          {"mpm_peak_force", f.mpm.peak_force},
+          {"mpm_rise_time", f.mpm.rise_time},
           {"mpm_impact_duration", f.mpm.impact_duration},
           {"mpm_final_displacement", c.mpm.final_displacement},
           {"mpm_run_time_s", c.mpm_seconds}};
@@ -596,8 +647,9 @@ void write_contents(hid_t file, const std::vector<Case>& cases,
 
 // Atomic (hdf5::write_atomically): `path` is the old file or the complete new one.
 void write_calibration(const std::string& path, const std::vector<Case>& cases,
-                       const std::vector<sweeps::GroupSummary>& groups, const std::vector<Row>& rows,
-                       const sweeps::CalibrationOptions& o, const json& report) {
+                       const std::vector<sweeps::GroupSummary>& groups,
+                       const std::vector<Row>& rows, const sweeps::CalibrationOptions& o,
+                       const json& report) {
   hdf5::write_atomically(path, "lsi calibrate", [&](const std::string& tmp) {
     H5 fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "file creation properties");
     check(H5Pset_link_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
@@ -625,8 +677,10 @@ int run_calibrate(const Options& opt) {
     if (!opt.results_dir.empty()) check_file_name(path + ": name", c.scene.name);
     for (const auto& other : cases)
       if (other.scene.name == c.scene.name)
-        throw InputError(path + ": name = \"" + c.scene.name + "\": must be unique among the "
-                         "scenes (also used by " + other.path + ")");
+        throw InputError(path + ": name = \"" + c.scene.name +
+                         "\": must be unique among the "
+                         "scenes (also used by " +
+                         other.path + ")");
     if (!load_mpm(c, opt.results_dir)) {
       skipped = true;
       continue;
@@ -681,12 +735,12 @@ int run_calibrate(const Options& opt) {
       a2 = 0.0;
     }
     const BarrierModel bm = co.momentum ? BarrierModel::Momentum : BarrierModel::Paper;
-    rows.push_back(closed_form_row(c, "empirical", "default",
-                                   with_empirical(c.scene, nan, nan, nan, bm)));
+    rows.push_back(
+        closed_form_row(c, "empirical", "default", with_empirical(c.scene, nan, nan, nan, bm)));
     rows.push_back(closed_form_row(c, "empirical", "calibrated",
                                    with_empirical(c.scene, a1, a2, g.empirical_tau.mean, bm)));
-    rows.push_back(closed_form_row(c, "analytical", "default",
-                                   with_analytical(c.scene, nan, nan, bm)));
+    rows.push_back(
+        closed_form_row(c, "analytical", "default", with_analytical(c.scene, nan, nan, bm)));
     rows.push_back(closed_form_row(c, "analytical", "calibrated",
                                    with_analytical(c.scene, g.lambda.mean, g.tau.mean, bm)));
     rows.push_back(closed_form_row(c, "analytical", "case fit",
@@ -714,8 +768,10 @@ int run_calibrate(const Options& opt) {
   for (const auto& r : rows) report["comparison"].push_back(row_json(r));
 
   if (!opt.out.empty()) write_calibration(opt.out, cases, groups, rows, co, report);
-  if (opt.format == "json") std::cout << report.dump(2) << "\n";
-  else std::cout << table(cases, groups, rows, co);
+  if (opt.format == "json")
+    std::cout << report.dump(2) << "\n";
+  else
+    std::cout << table(cases, groups, rows, co);
   return skipped ? 3 : 0;
 }
 
@@ -738,8 +794,9 @@ Subcommand add_calibrate_command(CLI::App& app) {
   s.command->add_option("--grid", opt->grid,
                         "Misfit map size NxM: N lambda cells in (0, 1], M tau cells in (0, 1) "
                         "(default 41x41)");
-  s.command->add_option("--out", opt->out, "Write fits, misfit maps and the comparison to this "
-                                           "HDF5 file (atomically)");
+  s.command->add_option("--out", opt->out,
+                        "Write fits, misfit maps and the comparison to this "
+                        "HDF5 file (atomically)");
   s.command->add_option("--format", opt->format, "Report format: table or json");
   s.command->add_option("--barrier-model", opt->barrier_model,
                         "How the closed forms move a free barrier: paper (default) or momentum "

@@ -41,7 +41,7 @@
 #include "app/sweep_runner.hpp"
 #include "app/sweep_report.hpp"
 #include "model/sweep_table.hpp"
-#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
+#include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 #include "io/study_parser.hpp"
 #include "io/sweep_file.hpp"
 
@@ -85,22 +85,26 @@ int agree(const Status& s, int rank, int size) {
     }
     all.resize(total);
   }
-  MPI_Gatherv(s.message.data(), len, MPI_CHAR, all.data(), lens.data(), displs.data(), MPI_CHAR,
-              0, MPI_COMM_WORLD);
+  MPI_Gatherv(s.message.data(), len, MPI_CHAR, all.data(), lens.data(), displs.data(), MPI_CHAR, 0,
+              MPI_COMM_WORLD);
   if (rank == 0) {
     std::vector<std::pair<std::string, std::vector<int>>> distinct;
     for (int r = 0; r < size; ++r) {
       if (lens[r] == 0) continue;
       const std::string m = all.substr(displs[r], lens[r]);
-      auto it = std::find_if(distinct.begin(), distinct.end(), [&](auto& d) { return d.first == m; });
-      if (it == distinct.end()) distinct.push_back({m, {r}});
-      else it->second.push_back(r);
+      auto it =
+          std::find_if(distinct.begin(), distinct.end(), [&](auto& d) { return d.first == m; });
+      if (it == distinct.end())
+        distinct.push_back({m, {r}});
+      else
+        it->second.push_back(r);
     }
     for (const auto& [m, ranks] : distinct) {
       std::string who;
       if (static_cast<int>(ranks.size()) != size) {
         who = ranks.size() == 1 ? "rank " : "ranks ";
-        for (std::size_t k = 0; k < ranks.size(); ++k) who += (k ? "," : "") + std::to_string(ranks[k]);
+        for (std::size_t k = 0; k < ranks.size(); ++k)
+          who += (k ? "," : "") + std::to_string(ranks[k]);
         who += ": ";
       }
       std::cerr << "lsi-mpi: " << who << m << "\n";
@@ -115,9 +119,12 @@ std::string shard_file(const std::string& out, int rank, int size) {
 }
 
 // The summary `lsi sweep` prints, plus the number of ranks.
-void report(const lsi::SweepOutcome& o, const std::string& out, const std::string& format, int ranks) {
-  if (format == "json") std::cout << lsi::sweep_outcome_json(o, out, ranks).dump(2) << "\n";
-  else std::cout << lsi::sweep_outcome_text(o, out, ranks);
+void report(const lsi::SweepOutcome& o, const std::string& out, const std::string& format,
+            int ranks) {
+  if (format == "json")
+    std::cout << lsi::sweep_outcome_json(o, out, ranks).dump(2) << "\n";
+  else
+    std::cout << lsi::sweep_outcome_text(o, out, ranks);
   std::cout.flush();
 }
 
@@ -185,7 +192,7 @@ int run(const CLI::App& app, const Args& args, int rank, int size) {
     o.resume = args.resume;
     o.shard = rank;
     o.shard_count = size;
-    o.progress = false;   // N ranks on one standard error would interleave
+    o.progress = false;  // N ranks on one standard error would interleave
     mine = lsi::run_sweep(study, o);
   });
   MPI_Barrier(MPI_COMM_WORLD);
@@ -263,7 +270,7 @@ int main(int argc, char** argv) {
   if (lsi::set_openmp_wait_defaults()) {
     std::error_code ec;
     const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-    execv(ec ? "/proc/self/exe" : self.c_str(), argv);   // returns only on failure: run as we are
+    execv(ec ? "/proc/self/exe" : self.c_str(), argv);  // returns only on failure: run as we are
   }
 #endif
   MPI_Init(&argc, &argv);
@@ -271,17 +278,23 @@ int main(int argc, char** argv) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
 
-  CLI::App app{"lsi-mpi: run the shards of a sweep (lsi sweep) on the ranks of an MPI job and merge "
-               "them into one result file. Usage: mpirun -np N -x OMP_NUM_THREADS=T lsi-mpi STUDY "
-               "--out F (docs/guide/mpi.md)"};
-  app.set_version_flag("--version", std::string("lsi-mpi ") + LSI_VERSION + " (" + LSI_GIT_REVISION + ")");
+  CLI::App app{
+      "lsi-mpi: run the shards of a sweep (lsi sweep) on the ranks of an MPI job and merge "
+      "them into one result file. Usage: mpirun -np N -x OMP_NUM_THREADS=T lsi-mpi STUDY "
+      "--out F (docs/guide/mpi.md)"};
+  app.set_version_flag("--version",
+                       std::string("lsi-mpi ") + LSI_VERSION + " (" + LSI_GIT_REVISION + ")");
   Args args;
-  app.add_option("study", args.study, "Study JSON file (docs/reference/scene_schema.md, \"Study files\")")
+  app.add_option("study", args.study,
+                 "Study JSON file (docs/reference/scene_schema.md, \"Study files\")")
       ->required();
-  app.add_option("--out", args.out, "Merged HDF5 result file; rank r writes F.rank<r>-of-<N>.h5 "
-                                    "(and its .parts) first")->required();
-  app.add_flag("--resume", args.resume, "Continue an interrupted job (the same study, --out and "
-                                        "number of ranks)");
+  app.add_option("--out", args.out,
+                 "Merged HDF5 result file; rank r writes F.rank<r>-of-<N>.h5 "
+                 "(and its .parts) first")
+      ->required();
+  app.add_flag("--resume", args.resume,
+               "Continue an interrupted job (the same study, --out and "
+               "number of ranks)");
   app.add_option("--format", args.format, "Summary format: table or json");
 
   int code = 0;

@@ -10,21 +10,21 @@
 namespace lsi {
 
 struct Subcommand {
-  CLI::App* command = nullptr;   // owned by the parent app
-  std::function<int()> run;      // returns the exit code
+  CLI::App* command = nullptr;  // owned by the parent app
+  std::function<int()> run;     // returns the exit code
 };
 
-Subcommand add_sweep_command(CLI::App& app);       // app/sweep_command.cpp
-Subcommand add_merge_command(CLI::App& app);       // app/sweep_command.cpp
-Subcommand add_calibrate_command(CLI::App& app);   // app/calibrate_command.cpp
-Subcommand add_accuracy_command(CLI::App& app);    // app/accuracy_command.cpp
+Subcommand add_sweep_command(CLI::App& app);      // app/sweep_command.cpp
+Subcommand add_merge_command(CLI::App& app);      // app/sweep_command.cpp
+Subcommand add_calibrate_command(CLI::App& app);  // app/calibrate_command.cpp
+Subcommand add_accuracy_command(CLI::App& app);   // app/accuracy_command.cpp
 
 // An option given with an empty value (`--out ''`, `--methods ''`) is an input error, not the
 // option left out: throws InputError naming the first such option of `app` or of the subcommands
 // that were parsed.
 inline void reject_empty_values(const CLI::App& app) {
   for (const CLI::Option* o : app.get_options()) {
-    if (o->count() == 0 || o->get_expected_min() == 0) continue;   // not given, or a flag
+    if (o->count() == 0 || o->get_expected_min() == 0) continue;  // not given, or a flag
     for (const std::string& v : o->results())
       if (v.empty())
         json_fields::fail(o->get_name() + " = \"\": must not be empty (" + o->get_description() +

@@ -13,8 +13,10 @@ namespace lsi {
 namespace {
 
 int report(const SweepOutcome& o, const std::string& out, const std::string& format) {
-  if (format == "json") std::cout << sweep_outcome_json(o, out).dump(2) << "\n";
-  else std::cout << sweep_outcome_text(o, out);
+  if (format == "json")
+    std::cout << sweep_outcome_json(o, out).dump(2) << "\n";
+  else
+    std::cout << sweep_outcome_text(o, out);
   return 0;
 }
 
@@ -32,15 +34,20 @@ Subcommand add_sweep_command(CLI::App& app) {
   auto args = std::make_shared<Args>();
   Subcommand s;
   s.command = app.add_subcommand(
-      "sweep", "Run a study file (docs/reference/scene_schema.md, \"Study files\"): Monte Carlo, Latin "
-               "hypercube, Sobol or grid samples of a scene through the methods; per-sample table "
-               "and statistics in HDF5");
+      "sweep",
+      "Run a study file (docs/reference/scene_schema.md, \"Study files\"): Monte Carlo, Latin "
+      "hypercube, Sobol or grid samples of a scene through the methods; per-sample table "
+      "and statistics in HDF5");
   s.command->add_option("study", args->study, "Study JSON file")->required();
-  s.command->add_option("--out", args->out, "HDF5 result file (chunks go to <out>.parts until "
-                                            "the sweep is complete)")->required();
+  s.command
+      ->add_option("--out", args->out,
+                   "HDF5 result file (chunks go to <out>.parts until "
+                   "the sweep is complete)")
+      ->required();
   s.command->add_flag("--resume", args->resume, "Continue an interrupted run of the same study");
-  s.command->add_option("--shard", args->shard, "Run only shard i of N (i/N); join the shards "
-                                                "with `lsi merge`");
+  s.command->add_option("--shard", args->shard,
+                        "Run only shard i of N (i/N); join the shards "
+                        "with `lsi merge`");
   s.command->add_option("--format", args->format, "Summary format: table or json");
   s.run = [args] {
     check_format(args->format);
@@ -62,8 +69,9 @@ Subcommand add_merge_command(CLI::App& app) {
   };
   auto args = std::make_shared<Args>();
   Subcommand s;
-  s.command = app.add_subcommand("merge", "Join the result files of a sharded sweep into the "
-                                          "file an unsharded run writes");
+  s.command = app.add_subcommand("merge",
+                                 "Join the result files of a sharded sweep into the "
+                                 "file an unsharded run writes");
   s.command->add_option("shards", args->shards, "Shard result files (lsi sweep --shard i/N)")
       ->required();
   s.command->add_option("--out", args->out, "Merged HDF5 file")->required();

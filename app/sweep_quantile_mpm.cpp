@@ -17,7 +17,6 @@ namespace {
 
 using nlohmann::json;
 
-
 double mpm_value(const MethodResult& r, const std::string& output) {
   return scalar_by_name(r, output);
 }
@@ -64,24 +63,27 @@ json mpm_at_quantiles(const Study& study, const SweepTable& t) {
     e["inputs"] = inputs;
     json closed = json::object();
     for (std::size_t c = 0; c < t.output_columns.size(); ++c)
-      if (t.output_columns[c].rfind("mpm/", 0) != 0) closed[t.output_columns[c]] = json_number(t.outputs[c][row]);
+      if (t.output_columns[c].rfind("mpm/", 0) != 0)
+        closed[t.output_columns[c]] = json_number(t.outputs[c][row]);
     e["closed_form"] = closed;
     const auto t0 = std::chrono::steady_clock::now();
     try {
       const MpmOutcome o =
           run_mpm_case(impact_case(parse_scene(sample_scene_document(study, x.data()))));
       e["mpm_status"] = o.status();
-      e["mpm_end_state"] = end_state_token(o.result.end_state);   // at_rest, or how it was cut short
+      e["mpm_end_state"] = end_state_token(o.result.end_state);  // at_rest, or how it was cut short
       json mpm = json::object(), errors = json::object();
-      for (const auto& output : study.outputs) mpm[output] = json_number(mpm_value(o.result, output));
+      for (const auto& output : study.outputs)
+        mpm[output] = json_number(mpm_value(o.result, output));
       if (o.finished()) {
         for (std::size_t c = 0; c < t.output_columns.size(); ++c) {
           const std::string& name = t.output_columns[c];
           if (name.rfind("mpm/", 0) == 0) continue;
           const double m = mpm_value(o.result, name.substr(name.find('/') + 1));
           const double v = t.outputs[c][row];
-          errors[name] = (std::isfinite(m) && m != 0.0 && std::isfinite(v)) ? json_number((v - m) / m)
-                                                                            : json(nullptr);
+          errors[name] = (std::isfinite(m) && m != 0.0 && std::isfinite(v))
+                             ? json_number((v - m) / m)
+                             : json(nullptr);
         }
       }
       e["mpm"] = mpm;
@@ -89,8 +91,7 @@ json mpm_at_quantiles(const Study& study, const SweepTable& t) {
     } catch (const std::exception& ex) {
       e["mpm_status"] = std::string("failed: ") + ex.what();
     }
-    e["mpm_seconds"] =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    e["mpm_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     out.push_back(e);
   }
   return out;
@@ -102,9 +103,9 @@ std::string mpm_at_quantiles_table(const json& j) {
   char buf[512];
   s += "MPM at quantiles of " + j[0]["column"].get<std::string>() + ":\n";
   for (const auto& e : j) {
-    std::snprintf(buf, sizeof buf, "  q = %.3g (sample %llu, %.1f s): %s\n", e["quantile"].get<double>(),
-                  e["sample"].get<unsigned long long>(), e["mpm_seconds"].get<double>(),
-                  e["mpm_status"].get<std::string>().c_str());
+    std::snprintf(buf, sizeof buf, "  q = %.3g (sample %llu, %.1f s): %s\n",
+                  e["quantile"].get<double>(), e["sample"].get<unsigned long long>(),
+                  e["mpm_seconds"].get<double>(), e["mpm_status"].get<std::string>().c_str());
     s += buf;
     if (!e.contains("relative_error")) continue;
     for (const auto& [name, err] : e["relative_error"].items()) {

@@ -101,21 +101,21 @@ class ChunkEvaluator {
       const int offset = source_[c].method == "empirical"    ? 0
                          : source_[c].method == "analytical" ? sweeps::closed_form_output_count
                                                              : -1;
-      if (offset < 0) continue;   // MPM columns are filled below
+      if (offset < 0) continue;  // MPM columns are filled below
       for (std::uint64_t i = 0; i < count; ++i) col[i] = out(i, offset + source_[c].output);
     }
     std::iota(t.index.begin(), t.index.end(), first);
     const bool mpm = study_.runs("mpm");
     bool any_invalid = false;
     for (std::uint64_t i = 0; i < count && !any_invalid; ++i) any_invalid = bad(i) >= 0;
-    if (!any_invalid && !mpm) return t;   // the common case: nothing more per sample
+    if (!any_invalid && !mpm) return t;  // the common case: nothing more per sample
     std::vector<double> x(dims);
     for (std::uint64_t i = 0; i < count; ++i) {
       if (bad(i) < 0 && !mpm) continue;
       for (int d = 0; d < dims; ++d) x[d] = in(i, d);
       if (bad(i) >= 0) {
         std::string reason = invalid_sample_reason(study_, x.data());
-        if (reason.empty())   // the kernel's range check and the scene parser disagree: a bug
+        if (reason.empty())  // the kernel's range check and the scene parser disagree: a bug
           reason = std::string("rejected by the sweep's range check at ") +
                    sweeps::scene_field_pointer[bad(i)] + " but accepted by the scene parser";
         fail_sample(t, i, SampleStatus::invalid_input, reason);
@@ -143,9 +143,9 @@ class ChunkEvaluator {
     try {
       const Scene scene = parse_scene(sample_scene_document(study_, x));
       const MpmOutcome o = run_mpm_case(impact_case(scene));
-      const double v[sweeps::closed_form_output_count] = {
-          o.result.peak_force, o.result.rise_time, o.result.impact_duration,
-          o.result.final_displacement};
+      const double v[sweeps::closed_form_output_count] = {o.result.peak_force, o.result.rise_time,
+                                                          o.result.impact_duration,
+                                                          o.result.final_displacement};
       for (std::size_t c = 0; c < source_.size(); ++c)
         if (source_[c].method == "mpm") t.outputs[c][i] = v[source_[c].output];
       if (!o.finished()) {
@@ -188,7 +188,8 @@ void collect_rule_values(const Study& s, const SweepTable& t, std::vector<double
   const int c = rule_column(s, t);
   if (c < 0) return;
   for (std::size_t i = 0; i < t.rows(); ++i)
-    if (t.status[i] == static_cast<std::int8_t>(SampleStatus::ok)) values.push_back(t.outputs[c][i]);
+    if (t.status[i] == static_cast<std::int8_t>(SampleStatus::ok))
+      values.push_back(t.outputs[c][i]);
 }
 
 SweepHeader header_of(const Study& s, int shard, int shard_count) {
@@ -216,15 +217,16 @@ void check_shard_rows(const Study& study, const std::string& file, const SweepHe
                      "again");
   };
   if (t.input_paths.size() != study.inputs.size())
-    throw InputError(file + ": " + std::to_string(t.input_paths.size()) + " input columns, the study has " +
-                     std::to_string(study.inputs.size()));
+    throw InputError(file + ": " + std::to_string(t.input_paths.size()) +
+                     " input columns, the study has " + std::to_string(study.inputs.size()));
   for (std::size_t d = 0; d < study.inputs.size(); ++d)
     if (t.input_paths[d] != study.inputs[d].path)
       throw InputError(file + ": input column " + std::to_string(d) + " is " + t.input_paths[d] +
                        ", the study's is " + study.inputs[d].path);
   for (std::size_t i = 0; i < t.rows(); ++i) {
     const std::uint64_t k = t.index[i];
-    if (k >= study.samples) fail(i, "lies beyond the study's " + std::to_string(study.samples) + " samples");
+    if (k >= study.samples)
+      fail(i, "lies beyond the study's " + std::to_string(study.samples) + " samples");
     if ((k / study.chunk_samples) % std::uint64_t(h.shard_count) != std::uint64_t(h.shard))
       fail(i, "belongs to another shard than " + std::to_string(h.shard) + "/" +
                   std::to_string(h.shard_count));
@@ -237,7 +239,8 @@ void check_shard_rows(const Study& study, const std::string& file, const SweepHe
   std::int64_t first_bad = std::numeric_limits<std::int64_t>::max();
   Kokkos::parallel_reduce(
       "lsi::check_shard_rows",
-      Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, static_cast<std::int64_t>(t.rows())),
+      Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0,
+                                                             static_cast<std::int64_t>(t.rows())),
       [&](const std::int64_t i, std::int64_t& bad) {
         double x[sweeps::Sampler<Kokkos::HostSpace>::max_dimensions];
         sampler.sample(t.index[i], x);
@@ -273,11 +276,12 @@ void check_sweep_fits(const Study& s, const SweepOptions& opt) {
   const std::string remedy = opt.shard_count > 1
                                  ? "more shards (--shard i/N) or fewer samples"
                                  : "fewer samples, or shards (--shard i/N) on several machines";
-  require_fits("samples", value, "the sweep table (" + json_fields::format_number(rows) + " rows of " +
-                                     json_fields::format_number(row_bytes) + " bytes, held twice)",
+  require_fits("samples", value,
+               "the sweep table (" + json_fields::format_number(rows) + " rows of " +
+                   json_fields::format_number(row_bytes) + " bytes, held twice)",
                2.0 * table + 8.0 * rows, available_memory_bytes(), "memory", remedy);
-  require_fits("samples", value, "the chunk files and the result file",
-               2.0 * table, free_disk_bytes(opt.out), "disk where --out goes", remedy + ", or another --out");
+  require_fits("samples", value, "the chunk files and the result file", 2.0 * table,
+               free_disk_bytes(opt.out), "disk where --out goes", remedy + ", or another --out");
 }
 
 }  // namespace
@@ -295,13 +299,13 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   const auto t0 = Clock::now();
   if (opt.out.empty()) throw InputError("--out: required (the HDF5 result file)");
   if (opt.shard_count > 1 && study.stop.has_interval_rule)
-    throw InputError("stop.interval: a sharded run cannot stop on a confidence interval (each "
-                     "shard sees only its samples); run unsharded or drop the rule");
+    throw InputError(
+        "stop.interval: a sharded run cannot stop on a confidence interval (each "
+        "shard sees only its samples); run unsharded or drop the rule");
   const fs::path parts = opt.out + ".parts";
   const fs::path marker = parts / "sweep.json";
-  const json identity = {{"fingerprint", study.fingerprint},
-                         {"shard", opt.shard},
-                         {"shard_count", opt.shard_count}};
+  const json identity = {
+      {"fingerprint", study.fingerprint}, {"shard", opt.shard}, {"shard_count", opt.shard_count}};
   SweepOutcome outcome;
   // A finished run renames its parts directory before removing it; a kill during the removal
   // leaves this, which is never needed again.
@@ -328,7 +332,8 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
 
   if (fs::exists(parts)) {
     if (!opt.resume)
-      throw InputError(parts.string() + ": an earlier run of this sweep did not finish; "
+      throw InputError(parts.string() +
+                       ": an earlier run of this sweep did not finish; "
                        "--resume continues it (or delete the directory to start again)");
     json found;
     try {
@@ -359,12 +364,13 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   std::vector<std::uint64_t> mine;
   for (std::uint64_t k = opt.shard; k < chunks; k += opt.shard_count) mine.push_back(k);
   std::uint64_t my_samples = 0, done_samples = 0;
-  for (std::uint64_t k : mine) my_samples += std::min(study.chunk_samples, study.samples - k * study.chunk_samples);
+  for (std::uint64_t k : mine)
+    my_samples += std::min(study.chunk_samples, study.samples - k * study.chunk_samples);
 
   // Chunks already done (a resumed run), and the values the interval rule has seen so far.
   std::vector<double> rule_values;
   std::vector<bool> done(mine.size(), false);
-  std::vector<std::optional<SweepTable>> fresh(mine.size());   // chunks run now, kept for the gather
+  std::vector<std::optional<SweepTable>> fresh(mine.size());  // chunks run now, kept for the gather
   for (std::size_t m = 0; m < mine.size(); ++m) {
     const std::string f = chunk_file(parts, mine[m]);
     if (!fs::exists(f)) continue;
@@ -390,7 +396,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     evaluate_s += seconds_since(ts);
     ts = Clock::now();
     SweepHeader h = header_of(study, opt.shard, opt.shard_count);
-    h.complete = true;   // the chunk itself
+    h.complete = true;  // the chunk itself
     write_sweep_file(chunk_file(parts, mine[m]), h, t);
     write_s += seconds_since(ts);
     done[m] = true;
@@ -449,7 +455,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   const double quantile_mpm_s = seconds_since(ts);
   ts = Clock::now();
   write_sweep_file(opt.out, h, all, outcome.statistics.is_null() ? nullptr : &outcome.statistics);
-  if (complete) {   // renamed first: a kill during the removal leaves no parts to resume
+  if (complete) {  // renamed first: a kill during the removal leaves no parts to resume
     fs::rename(parts, removed_parts);
     fs::remove_all(removed_parts);
   }
@@ -487,16 +493,19 @@ SweepOutcome merge_sweeps(const std::vector<std::string>& files, const std::stri
       throw InputError(files[k] + ": shard " + std::to_string(h.shard) + "/" +
                        std::to_string(h.shard_count) + ", but " + files[0] + " is of " +
                        std::to_string(h0.shard_count) + " shards");
-    if (seen[h.shard]) throw InputError(files[k] + ": shard " + std::to_string(h.shard) + " given twice");
+    if (seen[h.shard])
+      throw InputError(files[k] + ": shard " + std::to_string(h.shard) + " given twice");
     if (!h.complete)
       throw InputError(files[k] + ": shard " + std::to_string(h.shard) +
                        " is not complete (resume it first: lsi sweep ... --shard " +
-                       std::to_string(h.shard) + "/" + std::to_string(h.shard_count) + " --resume)");
+                       std::to_string(h.shard) + "/" + std::to_string(h.shard_count) +
+                       " --resume)");
     seen[h.shard] = true;
   }
   for (int s = 0; s < h0.shard_count; ++s)
-    if (!seen[s]) throw InputError("merge: shard " + std::to_string(s) + "/" +
-                                   std::to_string(h0.shard_count) + " is missing");
+    if (!seen[s])
+      throw InputError("merge: shard " + std::to_string(s) + "/" + std::to_string(h0.shard_count) +
+                       " is missing");
   SweepTable all = shards.front().table;
   for (std::size_t k = 1; k < shards.size(); ++k) all.append(shards[k].table);
   all.sort_by_index();
@@ -506,9 +515,10 @@ SweepOutcome merge_sweeps(const std::vector<std::string>& files, const std::stri
                              study.fingerprint + " vs " + h0.fingerprint + ")");
   for (std::size_t k = 0; k < shards.size(); ++k)
     check_shard_rows(study, files[k], shards[k].header, shards[k].table);
-  if (all.rows() != study.samples)   // each row is in its shard, none twice: a row is missing
-    throw InputError("merge: the shards hold " + std::to_string(all.rows()) + " samples, the study " +
-                     std::to_string(study.samples) + ": a shard file lost rows after it was written");
+  if (all.rows() != study.samples)  // each row is in its shard, none twice: a row is missing
+    throw InputError("merge: the shards hold " + std::to_string(all.rows()) +
+                     " samples, the study " + std::to_string(study.samples) +
+                     ": a shard file lost rows after it was written");
   SweepOutcome outcome;
   SweepHeader h = header_of(study, 0, 1);
   h.complete = true;

@@ -22,16 +22,16 @@
 namespace lsi {
 
 struct SweepOptions {
-  std::string out;            // the result file
-  bool resume = false;        // continue the run that left `<out>.parts`
+  std::string out;      // the result file
+  bool resume = false;  // continue the run that left `<out>.parts`
   int shard = 0, shard_count = 1;
-  bool progress = true;       // a progress line on standard error, when it is a terminal
+  bool progress = true;  // a progress line on standard error, when it is a terminal
 };
 
 struct SweepOutcome {
-  bool complete = false;      // every planned sample done (or the interval rule met)
-  std::string stopped_by;     // why it stopped early ("" if it ran every sample)
-  std::uint64_t samples_done = 0, samples_ok = 0, samples_run = 0;   // run: by this invocation
+  bool complete = false;   // every planned sample done (or the interval rule met)
+  std::string stopped_by;  // why it stopped early ("" if it ran every sample)
+  std::uint64_t samples_done = 0, samples_ok = 0, samples_run = 0;  // run: by this invocation
   double wall_seconds = 0.0;
   // Where the time went (s): evaluate (sampling and the methods), write_chunks (chunk files),
   // gather (reading them back and writing `out`), statistics.

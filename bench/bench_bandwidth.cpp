@@ -32,18 +32,14 @@
 #include <algorithm>
 #include <cstdint>
 #include <string>
-#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
+#include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 
 namespace {
-
-
 
 enum class Kind { Copy, Triad, Read, Write };
 
 // STREAM's bytes per element, and with the write-allocate read of every written element.
-constexpr int stream_bytes(Kind k) {
-  return k == Kind::Copy ? 16 : k == Kind::Triad ? 24 : 8;
-}
+constexpr int stream_bytes(Kind k) { return k == Kind::Copy ? 16 : k == Kind::Triad ? 24 : 8; }
 constexpr int true_bytes(Kind k) {
   return k == Kind::Copy ? 24 : k == Kind::Triad ? 32 : k == Kind::Read ? 8 : 16;
 }
@@ -63,7 +59,7 @@ void bm_stream(benchmark::State& state, Kind kind) {
   V a(Kokkos::view_alloc(Kokkos::WithoutInitializing, "a"), n);
   V b(Kokkos::view_alloc(Kokkos::WithoutInitializing, "b"), n);
   V c(Kokkos::view_alloc(Kokkos::WithoutInitializing, "c"), n);
-  V sums("sums", 8 * nt);   // one cache line per thread
+  V sums("sums", 8 * nt);  // one cache line per thread
   double* pa = a.data();
   double* pb = b.data();
   double* pc = c.data();
@@ -104,7 +100,8 @@ void bm_stream(benchmark::State& state, Kind kind) {
             for (; i + 8 <= i1; i += 8)
               for (int k = 0; k < 8; ++k) acc[k] += pa[i + k];
             for (; i < i1; ++i) acc[0] += pa[i];
-            ps[8 * t] += ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+            ps[8 * t] +=
+                ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
             break;
           }
           case Kind::Write:
@@ -129,7 +126,10 @@ void bm_stream(benchmark::State& state, Kind kind) {
 template <class Exec>
 void register_space() {
   const std::string ex = lsi::bench::exec_name<Exec>();
-  struct K { Kind k; const char* name; };
+  struct K {
+    Kind k;
+    const char* name;
+  };
   for (const K k : {K{Kind::Copy, "copy"}, K{Kind::Triad, "triad"}, K{Kind::Read, "read"},
                     K{Kind::Write, "write"}}) {
     const std::string name = "stream/" + ex + "/" + k.name;

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "kernels/closed_form/batch.hpp"
-#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
+#include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 
 namespace {
 using namespace lsi;
@@ -24,9 +24,16 @@ struct Batch {
     std::uniform_real_distribution<double> u(0, 1);
     for (int i = 0; i < n; ++i) {
       const double th = 1 + 2 * u(rng), L = 6 * th;
-      h(i, 0) = th;  h(i, 1) = 4 + 10 * u(rng);  h(i, 2) = 1800;  h(i, 3) = 1800 * L * th;
-      h(i, 4) = L;   h(i, 5) = 1e4 + 5e4 * u(rng); h(i, 6) = 0.5; h(i, 7) = 1.2 + 0.37 * u(rng);
-      h(i, 8) = 0.25; h(i, 9) = 0.41;
+      h(i, 0) = th;
+      h(i, 1) = 4 + 10 * u(rng);
+      h(i, 2) = 1800;
+      h(i, 3) = 1800 * L * th;
+      h(i, 4) = L;
+      h(i, 5) = 1e4 + 5e4 * u(rng);
+      h(i, 6) = 0.5;
+      h(i, 7) = 1.2 + 0.37 * u(rng);
+      h(i, 8) = 0.25;
+      h(i, 9) = 0.41;
     }
     Kokkos::deep_copy(in_data, h);
     auto col = [&](int k) { return Kokkos::subview(in_data, Kokkos::ALL, k); };
@@ -59,8 +66,8 @@ void empirical(benchmark::State& state) {
 }
 
 BENCHMARK_TEMPLATE(analytical, Kokkos::DefaultHostExecutionSpace)
-    ->Arg(1 << 20)   // 128 MB of inputs and outputs: from and to DRAM
-    ->Arg(1 << 16)   // 8 MB: in the L3
+    ->Arg(1 << 20)  // 128 MB of inputs and outputs: from and to DRAM
+    ->Arg(1 << 16)  // 8 MB: in the L3
     ->UseRealTime();
 BENCHMARK_TEMPLATE(empirical, Kokkos::DefaultHostExecutionSpace)->Arg(1 << 20)->UseRealTime();
 #if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)

@@ -78,7 +78,7 @@
 #include "kernels/mpm/solver.hpp"
 #include "kernels/mpm/two_phase/two_phase_builder.hpp"
 #include "kernels/mpm/two_phase/two_phase_solver.hpp"
-#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
+#include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 #include "io/scene_parser.hpp"
 
 namespace {
@@ -88,8 +88,6 @@ namespace tp = lsi::mpm::two_phase;
 
 constexpr double kG = 9.81;
 constexpr double kPi = 3.14159265358979323846;
-
-
 
 // ---------------------------------------------------------------------------------------------
 // 1. Whole impact runs through the driver.
@@ -102,10 +100,10 @@ struct ImpactVariant {
   bool explicit_drag = false;
   bool snapshots = false;
   double cell_size = 0.0625;
-  double end_time = 0.2;   // s
+  double end_time = 0.2;  // s
 };
 
-constexpr double kSnapshotInterval = 0.02;    // s
+constexpr double kSnapshotInterval = 0.02;  // s
 
 nlohmann::json impact_scene(const ImpactVariant& v) {
   nlohmann::json j = read_scene_document(LSI_SOURCE_DIR "/scenes/examples/impact-small.json");
@@ -198,7 +196,7 @@ void register_impact() {
 struct ColumnSetup {
   double L0 = 1.0, H0 = 2.0, dx = 0.0, x0 = 0.0, y0 = 0.0;
   double lo[2] = {0, 0}, hi[2] = {0, 0};
-  Material skeleton;       // density: grains (saturated) or the mixture (dry)
+  Material skeleton;  // density: grains (saturated) or the mixture (dry)
   tp::Liquid liquid;
   double porosity = 0.4, conductivity = 1e-4;
   Boundaries walls, liquid_walls;
@@ -223,7 +221,7 @@ struct ColumnSetup {
     walls.left = {true, x0, 0.0};
     walls.bottom = {true, y0, std::tan(skeleton.friction_angle)};
     walls.right = {true, x0 + 4 * L0 - 2 * dx, 0.0};
-    liquid_walls = walls;   // impermeable, frictionless for the liquid (as the driver)
+    liquid_walls = walls;  // impermeable, frictionless for the liquid (as the driver)
     liquid_walls.bottom.friction = 0.0;
   }
   std::vector<std::array<double, 2>> polygon() const {
@@ -311,18 +309,24 @@ void bm_column_step(benchmark::State& state, int n, Phases phases, bool atomic, 
 }
 
 enum class TpKernel {
-  P2G, P2GAtomic, GridUpdateSemiImplicit, GridUpdateExplicit, G2P, StressUpdate, PorePressure,
-  TimeStepLimits, G2PUpdate
+  P2G,
+  P2GAtomic,
+  GridUpdateSemiImplicit,
+  GridUpdateExplicit,
+  G2P,
+  StressUpdate,
+  PorePressure,
+  TimeStepLimits,
+  G2PUpdate
 };
 
 template <class Exec>
-void bm_twophase_kernel(benchmark::State& state, int n, TpKernel k, int tiles,
-                        bool contiguous) {
+void bm_twophase_kernel(benchmark::State& state, int n, TpKernel k, int tiles, bool contiguous) {
   using Mem = typename Exec::memory_space;
   WetColumn<Exec> c(n);
   {
     auto solver = c.solver(tp::Drag::SemiImplicit, false);
-    for (int i = 0; i < 5; ++i) solver.step();   // nonzero velocities, gradients, stresses
+    for (int i = 0; i < 5; ++i) solver.step();  // nonzero velocities, gradients, stresses
   }
   const auto& p = c.particles;
   const auto& g = c.grid;
@@ -335,14 +339,14 @@ void bm_twophase_kernel(benchmark::State& state, int n, TpKernel k, int tiles,
   // Per-thread copies only on host spaces (kHost); a device uses atomics.
   constexpr bool kHost = Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
   using Duplicated = tp::TwoPhaseScatter<Exec, !kHost>;
-  Duplicated duplicated;   // allocated once, as in the solver
+  Duplicated duplicated;  // allocated once, as in the solver
   tp::TwoPhaseScatter<Exec, true> atomic;
   if (k == TpKernel::P2G) duplicated = Duplicated(g.solid);
   if (k == TpKernel::P2GAtomic) atomic = tp::TwoPhaseScatter<Exec, true>(g.solid);
-  if (tiles >= 0) atomic.use_tiles(tiles);   // the variant asked for, at every size
+  if (tiles >= 0) atomic.use_tiles(tiles);  // the variant asked for, at every size
   if (contiguous) atomic.tile_spread = false;
   const double gravity[2] = {0.0, -kG};
-  tp::TwoPhasePointWork fused;   // as the solver: Mohr-Coulomb, pore pressure, next limits
+  tp::TwoPhasePointWork fused;  // as the solver: Mohr-Coulomb, pore pressure, next limits
   fused.plastic = true;
   fused.pore_pressure = true;
   fused.constants = {c.s.liquid.density, c.s.liquid.bulk_modulus, kG, 0.0, 0.0, g.dx()};
@@ -355,15 +359,19 @@ void bm_twophase_kernel(benchmark::State& state, int n, TpKernel k, int tiles,
         tp::two_phase_p2g(p, g, atomic, gravity, c.s.liquid.density, kG);
         break;
       case TpKernel::GridUpdateSemiImplicit:
-        benchmark::DoNotOptimize(tp::two_phase_grid_update<Exec>(
-            g, c.s.walls, c.s.liquid_walls, dt, gravity, tp::Drag::SemiImplicit));
+        benchmark::DoNotOptimize(tp::two_phase_grid_update<Exec>(g, c.s.walls, c.s.liquid_walls, dt,
+                                                                 gravity, tp::Drag::SemiImplicit));
         break;
       case TpKernel::GridUpdateExplicit:
-        benchmark::DoNotOptimize(tp::two_phase_grid_update<Exec>(
-            g, c.s.walls, c.s.liquid_walls, dt, gravity, tp::Drag::Explicit));
+        benchmark::DoNotOptimize(tp::two_phase_grid_update<Exec>(g, c.s.walls, c.s.liquid_walls, dt,
+                                                                 gravity, tp::Drag::Explicit));
         break;
-      case TpKernel::G2P: benchmark::DoNotOptimize(tp::two_phase_g2p<Exec>(p, g, dt)); break;
-      case TpKernel::StressUpdate: stress_update<Exec, true>(p.solid, materials, dt); break;
+      case TpKernel::G2P:
+        benchmark::DoNotOptimize(tp::two_phase_g2p<Exec>(p, g, dt));
+        break;
+      case TpKernel::StressUpdate:
+        stress_update<Exec, true>(p.solid, materials, dt);
+        break;
       case TpKernel::PorePressure:
         benchmark::DoNotOptimize(tp::pore_pressure_update<Exec>(p, g, c.s.liquid, dt, materials));
         break;
@@ -394,7 +402,10 @@ void register_column(Scatters scatters) {
   };
   for (const auto& [n, steps] : lsi::bench::column_sizes(scatters)) {
     const std::string size = "/particles:" + std::to_string(8 * n * n);
-    struct P { Phases p; const char* name; };
+    struct P {
+      Phases p;
+      const char* name;
+    };
     for (const P ph : {P{Phases::Dry, "dry"}, P{Phases::SemiImplicit, "saturated"},
                        P{Phases::Explicit, "saturated_explicit_drag"}}) {
       // On a device: the atomic scatter without tiles ("/atomic", the default) and with tiles
@@ -405,8 +416,7 @@ void register_column(Scatters scatters) {
         for (const int tiles : tilings) {
           const std::string name = "column_step/" + ex + "/" + ph.name + label(atomic) +
                                    (tiles > 0 ? "_tiles:" + std::to_string(tiles) : "") + size;
-          benchmark::RegisterBenchmark(name.c_str(), bm_column_step<Exec>, n, ph.p, atomic,
-                                       tiles)
+          benchmark::RegisterBenchmark(name.c_str(), bm_column_step<Exec>, n, ph.p, atomic, tiles)
               ->Iterations(steps)
               ->UseRealTime()
               ->MeasureProcessCPUTime()
@@ -414,7 +424,12 @@ void register_column(Scatters scatters) {
         }
       }
     }
-    struct K { TpKernel k; std::string name; int tiles = -1; bool contiguous = false; };
+    struct K {
+      TpKernel k;
+      std::string name;
+      int tiles = -1;
+      bool contiguous = false;
+    };
     std::vector<K> kernels;
     for (const bool atomic : atomics)
       kernels.push_back({atomic ? TpKernel::P2GAtomic : TpKernel::P2G,
@@ -423,16 +438,16 @@ void register_column(Scatters scatters) {
     if (scatters == Scatters::AtomicOnly)
       for (const int tiles : {64, 128, 256})
         for (const bool contiguous : {false, true})
-          kernels.push_back({TpKernel::P2GAtomic,
-                             "p2g_atomic_tiles:" + std::to_string(tiles) +
-                                 (contiguous ? "_contiguous" : ""),
-                             tiles, contiguous});
-    for (const K& k : {K{TpKernel::GridUpdateSemiImplicit, "grid_update_semi_implicit"},
-                       K{TpKernel::GridUpdateExplicit, "grid_update_explicit"},
-                       K{TpKernel::G2P, "g2p"}, K{TpKernel::StressUpdate, "stress_update_plastic"},
-                       K{TpKernel::PorePressure, "pore_pressure_update"},
-                       K{TpKernel::TimeStepLimits, "time_step_limits"},
-                       K{TpKernel::G2PUpdate, "g2p_update"}})
+          kernels.push_back(
+              {TpKernel::P2GAtomic,
+               "p2g_atomic_tiles:" + std::to_string(tiles) + (contiguous ? "_contiguous" : ""),
+               tiles, contiguous});
+    for (const K& k :
+         {K{TpKernel::GridUpdateSemiImplicit, "grid_update_semi_implicit"},
+          K{TpKernel::GridUpdateExplicit, "grid_update_explicit"}, K{TpKernel::G2P, "g2p"},
+          K{TpKernel::StressUpdate, "stress_update_plastic"},
+          K{TpKernel::PorePressure, "pore_pressure_update"},
+          K{TpKernel::TimeStepLimits, "time_step_limits"}, K{TpKernel::G2PUpdate, "g2p_update"}})
       kernels.push_back(k);
     for (const auto& k : kernels) {
       const std::string name = "twophase_kernel/" + ex + "/" + k.name + size;
@@ -465,8 +480,9 @@ int main(int argc, char** argv) {
   using Device = Kokkos::DefaultExecutionSpace;
   if constexpr (!std::is_same_v<Device, Host>) register_column<Device>(Scatters::AtomicOnly);
   lsi::bench::add_kokkos_context(LSI_GIT_REVISION);
-  benchmark::AddCustomContext("impact_scene", "scenes/examples/impact-small.json, cell 0.0625 m, "
-                                              "end_time_s 0.2");
+  benchmark::AddCustomContext("impact_scene",
+                              "scenes/examples/impact-small.json, cell 0.0625 m, "
+                              "end_time_s 0.2");
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -46,7 +46,7 @@
 
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
-#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
+#include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 
 namespace {
 using namespace lsi::mpm;
@@ -91,7 +91,6 @@ struct Column {
   }
 };
 
-
 void common_counters(benchmark::State& state, int count, int nodes, int threads) {
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(count));
   state.counters["particles"] = count;
@@ -111,7 +110,14 @@ void bm_step(benchmark::State& state, int n, bool plastic, bool atomic, int tile
 }
 
 enum class Kernel {
-  P2G, P2GAtomic, GridUpdate, G2P, G2PStressElastic, G2PStressPlastic, StressElastic, StressPlastic,
+  P2G,
+  P2GAtomic,
+  GridUpdate,
+  G2P,
+  G2PStressElastic,
+  G2PStressPlastic,
+  StressElastic,
+  StressPlastic,
   ForkJoin
 };
 
@@ -120,28 +126,34 @@ void bm_kernel(benchmark::State& state, int n, Kernel k, int tiles, bool contigu
   using Mem = typename Exec::memory_space;
   Column<Exec> c(n, true, k == Kernel::P2GAtomic);
   Solver<Exec> solver(c.grid, c.particles, {c.material}, c.walls, c.settings);
-  for (int i = 0; i < 5; ++i) solver.step();   // nonzero velocities, gradients, stresses
+  for (int i = 0; i < 5; ++i) solver.step();  // nonzero velocities, gradients, stresses
   const double dt = solver.time_step();
   Kokkos::View<PreparedMaterial*, Mem> table("materials", 1);
   auto host = Kokkos::create_mirror_view(table);
   host(0) = PreparedMaterial(c.material);
   Kokkos::deep_copy(table, host);
   const Kokkos::View<const PreparedMaterial*, Mem> materials = table;
-  P2GScatter<Exec, false> duplicated(c.grid);   // allocated once, as in the solver
+  P2GScatter<Exec, false> duplicated(c.grid);  // allocated once, as in the solver
   P2GScatter<Exec, true> atomic(c.grid);
-  if (tiles >= 0) atomic.use_tiles(tiles);   // the variant asked for, at every size
+  if (tiles >= 0) atomic.use_tiles(tiles);  // the variant asked for, at every size
   if (contiguous) atomic.tile_spread = false;
   const auto& p = c.particles;
   const auto& g = c.grid;
   double wall_force[2] = {0, 0};
   for (auto _ : state) {
     switch (k) {
-      case Kernel::P2G: p2g(p, g, duplicated, c.settings.gravity); break;
-      case Kernel::P2GAtomic: p2g(p, g, atomic, c.settings.gravity); break;
+      case Kernel::P2G:
+        p2g(p, g, duplicated, c.settings.gravity);
+        break;
+      case Kernel::P2GAtomic:
+        p2g(p, g, atomic, c.settings.gravity);
+        break;
       case Kernel::GridUpdate:
         benchmark::DoNotOptimize(grid_update<Exec>(g, c.walls, dt, wall_force));
         break;
-      case Kernel::G2P: benchmark::DoNotOptimize(g2p<Exec>(p, g, dt, c.settings.transfer, c.settings.flip_ratio)); break;
+      case Kernel::G2P:
+        benchmark::DoNotOptimize(g2p<Exec>(p, g, dt, c.settings.transfer, c.settings.flip_ratio));
+        break;
       case Kernel::G2PStressElastic:
         benchmark::DoNotOptimize(g2p_stress_update<Exec, false>(
             p, g, materials, dt, c.settings.transfer, c.settings.flip_ratio));
@@ -150,11 +162,15 @@ void bm_kernel(benchmark::State& state, int n, Kernel k, int tiles, bool contigu
         benchmark::DoNotOptimize(g2p_stress_update<Exec, true>(
             p, g, materials, dt, c.settings.transfer, c.settings.flip_ratio));
         break;
-      case Kernel::StressElastic: stress_update<Exec, false>(p, materials, dt); break;
-      case Kernel::StressPlastic: stress_update<Exec, true>(p, materials, dt); break;
-      case Kernel::ForkJoin:   // one empty parallel region: the cost of each kernel launch
+      case Kernel::StressElastic:
+        stress_update<Exec, false>(p, materials, dt);
+        break;
+      case Kernel::StressPlastic:
+        stress_update<Exec, true>(p, materials, dt);
+        break;
+      case Kernel::ForkJoin:  // one empty parallel region: the cost of each kernel launch
         Kokkos::parallel_for("fork_join", Kokkos::RangePolicy<Exec>(0, Exec().concurrency()),
-                             KOKKOS_LAMBDA(const int) {});
+                             KOKKOS_LAMBDA(const int){});
         break;
     }
     Exec().fence();
@@ -193,10 +209,9 @@ void register_space(Scatters scatters) {
         if (scatters == Scatters::AtomicOnly) tilings = {0, 128};
         if (scatters == Scatters::AtomicOnly && plastic) tilings = {0, 64, 128, 256};
         for (const int tiles : tilings) {
-          const std::string name =
-              "step/" + ex + (plastic ? "/mohr_coulomb" : "/elastic") +
-              (with_atomic ? (atomic ? "/atomic" : "/duplicated") : "") +
-              (tiles > 0 ? "_tiles:" + std::to_string(tiles) : "") + size;
+          const std::string name = "step/" + ex + (plastic ? "/mohr_coulomb" : "/elastic") +
+                                   (with_atomic ? (atomic ? "/atomic" : "/duplicated") : "") +
+                                   (tiles > 0 ? "_tiles:" + std::to_string(tiles) : "") + size;
           benchmark::RegisterBenchmark(name.c_str(), bm_step<Exec>, n, plastic, atomic, tiles)
               ->Iterations(steps)
               ->UseRealTime()
@@ -204,7 +219,12 @@ void register_space(Scatters scatters) {
         }
       }
     }
-    struct K { Kernel k; std::string name; int tiles = -1; bool contiguous = false; };
+    struct K {
+      Kernel k;
+      std::string name;
+      int tiles = -1;
+      bool contiguous = false;
+    };
     std::vector<K> kernels = {{Kernel::GridUpdate, "grid_update"},
                               {Kernel::G2P, "g2p"},
                               {Kernel::StressElastic, "stress_update_elastic"},
@@ -216,11 +236,10 @@ void register_space(Scatters scatters) {
     if (scatters == Scatters::AtomicOnly)
       for (const int tiles : {64, 128, 256})
         for (const bool contiguous : {false, true})
-          kernels.insert(kernels.begin() + 1,
-                         {Kernel::P2GAtomic,
-                          "p2g_atomic_tiles:" + std::to_string(tiles) +
-                              (contiguous ? "_contiguous" : ""),
-                          tiles, contiguous});
+          kernels.insert(kernels.begin() + 1, {Kernel::P2GAtomic,
+                                               "p2g_atomic_tiles:" + std::to_string(tiles) +
+                                                   (contiguous ? "_contiguous" : ""),
+                                               tiles, contiguous});
     if (scatters != Scatters::AtomicOnly)
       kernels.insert(kernels.begin(), {Kernel::P2G, with_atomic ? "p2g_duplicated" : "p2g"});
     for (const auto& k : kernels) {

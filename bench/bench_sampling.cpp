@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "sweeps/sampler.hpp"
-#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
+#include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 
 namespace {
 using namespace lsi::sweeps;

@@ -30,7 +30,7 @@
 #include "model/sweep_table.hpp"
 #include "kernels/closed_form/batch.hpp"
 #include "sweeps/closed_form_sweep.hpp"
-#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
+#include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 #include "io/study_parser.hpp"
 #include "io/sweep_file.hpp"
 
@@ -169,7 +169,13 @@ void BM_sweep_kernel(benchmark::State& state) {
   state.SetLabel(methods_label(methods));
   state.counters["threads"] = Exec().concurrency();
 }
-BENCHMARK(BM_sweep_kernel)->ArgName("methods")->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_sweep_kernel)
+    ->ArgName("methods")
+    ->Arg(1)
+    ->Arg(2)
+    ->Arg(3)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 void BM_models_only(benchmark::State& state) {
   const int methods = static_cast<int>(state.range(0));
@@ -184,7 +190,13 @@ void BM_models_only(benchmark::State& state) {
   state.SetLabel(methods_label(methods));
   state.counters["threads"] = Exec().concurrency();
 }
-BENCHMARK(BM_models_only)->ArgName("methods")->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_models_only)
+    ->ArgName("methods")
+    ->Arg(1)
+    ->Arg(2)
+    ->Arg(3)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 void BM_sweep_overhead(benchmark::State& state) {
   using Clock = std::chrono::steady_clock;
@@ -216,7 +228,13 @@ void BM_sweep_overhead(benchmark::State& state) {
   state.counters["overhead_ns_per_sample"] = (kernel_s - models_s) * per;
   state.SetLabel(methods_label(methods));
 }
-BENCHMARK(BM_sweep_overhead)->ArgName("methods")->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseManualTime();
+BENCHMARK(BM_sweep_overhead)
+    ->ArgName("methods")
+    ->Arg(1)
+    ->Arg(2)
+    ->Arg(3)
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime();
 
 // A chunk of kBatch rows as the sweep writes it: 5 inputs, 4 output columns, all samples ok.
 SweepTable chunk_table() {
@@ -245,7 +263,9 @@ SweepTable chunk_table() {
   return t;
 }
 
-std::string chunk_path() { return "/tmp/lsi_bench_sweep_chunk." + std::to_string(::getpid()) + ".h5"; }
+std::string chunk_path() {
+  return "/tmp/lsi_bench_sweep_chunk." + std::to_string(::getpid()) + ".h5";
+}
 
 SweepHeader chunk_header() {
   const Study& s = study();
@@ -265,8 +285,8 @@ void BM_chunk_write(benchmark::State& state) {
   for (auto _ : state) write_sweep_file(path, h, t);
   std::remove(path.c_str());
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
-  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * kBatch *
-                                                    (8 + 1 + 4 + 8 * (t.inputs.size() + t.outputs.size()))));
+  state.SetBytesProcessed(static_cast<std::int64_t>(
+      state.iterations() * kBatch * (8 + 1 + 4 + 8 * (t.inputs.size() + t.outputs.size()))));
 }
 BENCHMARK(BM_chunk_write)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -280,8 +300,8 @@ void BM_chunk_read(benchmark::State& state) {
   }
   std::remove(path.c_str());
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
-  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * kBatch *
-                                                    (8 + 1 + 4 + 8 * (t.inputs.size() + t.outputs.size()))));
+  state.SetBytesProcessed(static_cast<std::int64_t>(
+      state.iterations() * kBatch * (8 + 1 + 4 + 8 * (t.inputs.size() + t.outputs.size()))));
 }
 BENCHMARK(BM_chunk_read)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -11,8 +11,8 @@ namespace jf = json_fields;
 
 const std::vector<std::string>& convergence_outputs() {
   static const std::vector<std::string> names = {
-      "peak_force",         "peak_force_windowed",  "impulse",
-      "impact_duration",    "final_displacement",   "overtopped_volume_m2",
+      "peak_force",         "peak_force_windowed",      "impulse",
+      "impact_duration",    "final_displacement",       "overtopped_volume_m2",
       "retained_volume_m2", "face_pore_pressure_max_pa"};
   return names;
 }
@@ -25,8 +25,8 @@ ConvergenceStudy load_convergence_study(const std::string& path) {
   const nlohmann::json doc = read_scene_document(path, "convergence study");
   ConvergenceStudy st;
   st.source = path;
-  const jf::ObjectReader top(doc, "", {"about", "command", "base", "finer", "relative", "floors",
-                                       "cases"});
+  const jf::ObjectReader top(doc, "",
+                             {"about", "command", "base", "finer", "relative", "floors", "cases"});
   st.command = top.optional_string("command").value_or("");
   const jf::ObjectReader base = top.object("base", {"cells", "courant"});
   const jf::ObjectReader finer = top.object("finer", {"cells", "courant"});
@@ -49,9 +49,9 @@ ConvergenceStudy load_convergence_study(const std::string& path) {
     const nlohmann::json* outs = r.find("outputs");
     if (!outs || !outs->is_object()) r.fail_missing("outputs", "object of outputs");
     for (const auto& [key, o] : outs->items()) {
-      const jf::ObjectReader ro(o, r.path_of("outputs") + "." + key,
-                                {"value", "coarser", "finer_cells", "finer_courant", "spread",
-                                 "converged"});
+      const jf::ObjectReader ro(
+          o, r.path_of("outputs") + "." + key,
+          {"value", "coarser", "finer_cells", "finer_courant", "spread", "converged"});
       // An output the study could not measure (no final displacement, ...) has null values.
       const nlohmann::json* value = ro.find("value");
       const nlohmann::json* spread = ro.find("spread");
@@ -67,7 +67,8 @@ ConvergenceStudy load_convergence_study(const std::string& path) {
   return st;
 }
 
-std::string attach_convergence(const ConvergenceStudy& study, const Scene& scene, MethodResult& mpm) {
+std::string attach_convergence(const ConvergenceStudy& study, const Scene& scene,
+                               MethodResult& mpm) {
   const auto it = study.cases.find(scene.name);
   if (it == study.cases.end()) return "the study has no case of this name";
   const CaseConvergence& c = it->second;

@@ -16,20 +16,20 @@
 namespace lsi {
 
 struct OutputSpread {
-  double value = 0.0;    // at the base resolution (SI)
-  double spread = 0.0;   // the error bar (SI, >= 0)
+  double value = 0.0;   // at the base resolution (SI)
+  double spread = 0.0;  // the error bar (SI, >= 0)
   bool converged = false;
 };
 
 struct CaseConvergence {
-  nlohmann::json landslide, barrier;   // the scene's blocks as the study ran them
-  MpmSettings mpm;                     // the base resolution's settings
+  nlohmann::json landslide, barrier;  // the scene's blocks as the study ran them
+  MpmSettings mpm;                    // the base resolution's settings
   std::map<std::string, OutputSpread> outputs;
 };
 
 struct ConvergenceStudy {
-  std::string source;    // the file
-  std::string command;   // how it was made
+  std::string source;   // the file
+  std::string command;  // how it was made
   int base_cells = 0, finer_cells = 0;
   double base_courant = 0.0, finer_courant = 0.0;
   std::map<std::string, CaseConvergence> cases;
@@ -48,7 +48,8 @@ ConvergenceStudy load_convergence_study(const std::string& path);
 // `<output>_spread` (SI) and `<output>_converged` (1 or 0) per output. Returns "" when attached,
 // else why not (for a message).
 inline constexpr double kConvergenceStaleRelative = 0.02;
-std::string attach_convergence(const ConvergenceStudy& study, const Scene& scene, MethodResult& mpm);
+std::string attach_convergence(const ConvergenceStudy& study, const Scene& scene,
+                               MethodResult& mpm);
 
 // The value of an output of a result (a scalar or an extra), NaN if it has none.
 double output_value(const MethodResult& r, const std::string& output);

@@ -92,7 +92,8 @@ std::string read_string_attribute(hid_t obj, const std::string& name) {
   Handle file_type(H5Aget_type(attr), H5Tclose, "cannot get the type of attribute '" + name + "'");
   if (H5Tget_class(file_type) != H5T_STRING)
     throw std::runtime_error("attribute '" + name + "' is not a string");
-  Handle space(H5Aget_space(attr), H5Sclose, "cannot get the dataspace of attribute '" + name + "'");
+  Handle space(H5Aget_space(attr), H5Sclose,
+               "cannot get the dataspace of attribute '" + name + "'");
   if (H5Sget_simple_extent_npoints(space) != 1)
     throw std::runtime_error("attribute '" + name + "' is not a scalar string");
 
@@ -139,7 +140,8 @@ bool has_link(hid_t group, const std::string& name) {
 
 void fsync_file(const std::string& file) {
   const int fd = ::open(file.c_str(), O_RDONLY);
-  if (fd < 0) throw std::runtime_error(std::string("cannot open for fsync: ") + std::strerror(errno));
+  if (fd < 0)
+    throw std::runtime_error(std::string("cannot open for fsync: ") + std::strerror(errno));
   const int rc = ::fsync(fd);
   const int err = errno;
   ::close(fd);

@@ -12,7 +12,7 @@
 #include <set>
 #include <stdexcept>
 #include <utility>
-#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
+#include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 
 #ifndef LSI_VERSION
 #define LSI_VERSION "unknown"
@@ -30,10 +30,11 @@ using namespace hdf5;
 void write_dataset(hid_t group, const std::string& name, const std::vector<double>& data,
                    const std::string& units, const std::string& description) {
   const hsize_t dims[1] = {static_cast<hsize_t>(data.size())};
-  Handle space(H5Screate_simple(1, dims, nullptr), H5Sclose, "cannot create dataspace for '" + name + "'");
-  Handle dset(H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT,
-                         H5P_DEFAULT),
-              H5Dclose, "cannot create dataset '" + name + "'");
+  Handle space(H5Screate_simple(1, dims, nullptr), H5Sclose,
+               "cannot create dataspace for '" + name + "'");
+  Handle dset(
+      H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+      H5Dclose, "cannot create dataset '" + name + "'");
   check(H5Dwrite(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
         "cannot write dataset '" + name + "'");
   write_string_attribute(dset, "units", units);
@@ -117,8 +118,8 @@ void validate(const std::vector<MethodResult>& results) {
     for (const auto& h : kHistories) {
       const auto& v = r.*(h.member);
       if (!v.empty() && v.size() != n)
-        throw std::invalid_argument("write_results: method '" + r.method + "': dataset '" +
-                                    h.name + "' has " + std::to_string(v.size()) +
+        throw std::invalid_argument("write_results: method '" + r.method + "': dataset '" + h.name +
+                                    "' has " + std::to_string(v.size()) +
                                     " samples but 'time' has " + std::to_string(n));
     }
     for (const auto& [name, sr] : r.series) {
@@ -214,7 +215,7 @@ MethodResult read_group(hid_t file, const std::string& name) {
   }
   for (const auto& s : kScalars)
     r.*(s.member) = has_attribute(g, s.name) ? read_double_attribute(g, s.name)
-                                              : std::numeric_limits<double>::quiet_NaN();
+                                             : std::numeric_limits<double>::quiet_NaN();
 
   std::vector<std::string> attr_names;
   check(H5Aiterate2(
@@ -239,7 +240,8 @@ MethodResult read_group(hid_t file, const std::string& name) {
     }
   }
   if (has_attribute(g, "status")) r.status = read_string_attribute(g, "status");
-  if (has_attribute(g, "barrier_model")) r.barrier_model = read_string_attribute(g, "barrier_model");
+  if (has_attribute(g, "barrier_model"))
+    r.barrier_model = read_string_attribute(g, "barrier_model");
   for (const auto& a : attr_names) {
     if (is_reserved_attribute(a)) continue;
     Handle attr(H5Aopen(g, a.c_str(), H5P_DEFAULT), H5Aclose, "cannot open attribute '" + a + "'");

@@ -41,7 +41,7 @@ void write_results(const std::string& path, const nlohmann::json& scene,
 
 struct StoredResults {
   nlohmann::json scene;
-  std::vector<MethodResult> results;   // in the order they were written (name order if untracked)
+  std::vector<MethodResult> results;  // in the order they were written (name order if untracked)
   std::string lsi_version;
 };
 

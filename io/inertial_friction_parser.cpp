@@ -7,9 +7,9 @@ namespace lsi {
 std::optional<InertialFrictionInput> parse_inertial_friction(
     const json_fields::ObjectReader& material, double static_angle_deg) {
   namespace jf = json_fields;
-  const auto f = material.optional_object(
-      "inertial_friction", {"limit_friction_angle_deg", "reference_inertial_number",
-                            "grain_diameter_mm", "grain_density_kg_m3"});
+  const auto f = material.optional_object("inertial_friction",
+                                          {"limit_friction_angle_deg", "reference_inertial_number",
+                                           "grain_diameter_mm", "grain_density_kg_m3"});
   if (!f) return std::nullopt;
   InertialFrictionInput in;
   in.limit_friction_angle_deg =

@@ -102,7 +102,8 @@ double check_number(const json& v, const std::string& path, const Range& range) 
   const double d = v.get<double>();
   if (!std::isfinite(d)) fail(path + " = " + format_value(v) + ": must be finite");
   if (!range.contains(d)) {
-    fail(path + " = " + format_value(v) + ": must be " + range.describe() + unit_suffix(range.unit));
+    fail(path + " = " + format_value(v) + ": must be " + range.describe() +
+         unit_suffix(range.unit));
   }
   return d;
 }
@@ -123,7 +124,8 @@ long long check_integer(const json& v, const std::string& path, const Range& ran
 
 // ---- ObjectReader -----------------------------------------------------------------------------
 
-ObjectReader::ObjectReader(const nlohmann::json& j, std::string path, std::vector<std::string> allowed)
+ObjectReader::ObjectReader(const nlohmann::json& j, std::string path,
+                           std::vector<std::string> allowed)
     : j_(&j), path_(std::move(path)), allowed_(std::move(allowed)) {
   if (!j.is_object()) fail(display_path(path_) + " = " + format_value(j) + ": must be an object");
   for (const auto& item : j.items()) {
@@ -138,7 +140,8 @@ const nlohmann::json* ObjectReader::find(const std::string& key) const {
   return it == j_->end() ? nullptr : &*it;
 }
 
-const nlohmann::json& ObjectReader::require(const std::string& key, const std::string& requirement) const {
+const nlohmann::json& ObjectReader::require(const std::string& key,
+                                            const std::string& requirement) const {
   const nlohmann::json* v = find(key);
   if (!v) fail_missing(key, requirement);
   return *v;
@@ -201,7 +204,8 @@ std::string ObjectReader::choice(const std::string& key, const std::vector<std::
   }
   if (!v->is_string()) fail_at(key, "must be a string, " + allowed);
   std::string s = v->get<std::string>();
-  if (std::find(options.begin(), options.end(), s) == options.end()) fail_at(key, "must be " + allowed);
+  if (std::find(options.begin(), options.end(), s) == options.end())
+    fail_at(key, "must be " + allowed);
   return s;
 }
 
@@ -264,7 +268,7 @@ bool near_non_finite_literal(const std::string& text, std::size_t byte) {
 class PathTrackingBuilder : public nlohmann::json_sax<nlohmann::json> {
  public:
   nlohmann::json root;
-  std::string error;   // set when parsing stopped; already formatted (without the source prefix)
+  std::string error;  // set when parsing stopped; already formatted (without the source prefix)
   std::size_t error_byte = 0;
   bool error_has_position = false;
 
@@ -275,7 +279,7 @@ class PathTrackingBuilder : public nlohmann::json_sax<nlohmann::json> {
   bool number_integer(number_integer_t v) override { return add(v); }
   bool number_unsigned(number_unsigned_t v) override { return add(v); }
   bool number_float(number_float_t v, const string_t& literal) override {
-    if (!std::isfinite(v)) {   // nlohmann versions that map overflow to inf instead of failing
+    if (!std::isfinite(v)) {  // nlohmann versions that map overflow to inf instead of failing
       error = value_path() + " = " + literal + ": must be finite (the number overflows a double)";
       return false;
     }
@@ -301,7 +305,7 @@ class PathTrackingBuilder : public nlohmann::json_sax<nlohmann::json> {
                    const nlohmann::json::exception& ex) override {
     error_byte = position;
     error_has_position = true;
-    if (ex.id == 406) {   // out_of_range.406: number overflow, e.g. 1e999
+    if (ex.id == 406) {  // out_of_range.406: number overflow, e.g. 1e999
       error = line_column(text_, position) + ": " + value_path() + " = " + last_token +
               ": must be finite (the number overflows a double)";
       return false;
@@ -322,7 +326,7 @@ class PathTrackingBuilder : public nlohmann::json_sax<nlohmann::json> {
  private:
   struct Frame {
     nlohmann::json* container;
-    std::string key;   // objects: the key of the value being read
+    std::string key;  // objects: the key of the value being read
   };
 
   // Dotted path of the value being read (the next array element for an array on top).

@@ -16,12 +16,12 @@
 
 namespace lsi::json_fields {
 
-using lsi::format_number;   // model/messages.hpp
+using lsi::format_number;  // model/messages.hpp
 using lsi::format_value;
 // "parent.key"; a key that is not a plain identifier is written as parent["the key"].
 std::string join_path(std::string_view parent, std::string_view key);
 
-[[noreturn]] void fail(const std::string& message);   // throws InputError(message)
+[[noreturn]] void fail(const std::string& message);  // throws InputError(message)
 
 // A numeric interval with optional bounds and a unit for the messages. A bound may carry a label
 // (e.g. "base_width_m") when it comes from another field; messages then show "label = value".
@@ -33,9 +33,9 @@ struct Bound {
 struct Range {
   std::optional<Bound> lo;
   std::optional<Bound> hi;
-  std::string unit;                 // "m", "m/s", ... or empty for dimensionless
+  std::string unit;  // "m", "m/s", ... or empty for dimensionless
   bool contains(double v) const;
-  std::string describe() const;     // "> 0", ">= 0", "in (0, 1)", "in [0, 90)", "any number"
+  std::string describe() const;  // "> 0", ">= 0", "in (0, 1)", "in [0, 90)", "any number"
 };
 Range any_number(std::string unit = {});
 Range greater_than(double lo, std::string unit = {});
@@ -64,10 +64,10 @@ class ObjectReader {
   double number(const std::string& key, const Range& range) const;
   std::optional<double> optional_number(const std::string& key, const Range& range) const;
   double number_or(const std::string& key, double fallback, const Range& range) const;
-  long long integer(const std::string& key, const Range& range) const;   // required
+  long long integer(const std::string& key, const Range& range) const;  // required
 
-  std::string string(const std::string& key) const;   // required, non-empty, no control characters
-  std::optional<std::string> optional_string(const std::string& key) const;   // non-empty if set
+  std::string string(const std::string& key) const;  // required, non-empty, no control characters
+  std::optional<std::string> optional_string(const std::string& key) const;  // non-empty if set
   // A string out of `options`; `fallback` when absent (required when fallback is nullopt).
   std::string choice(const std::string& key, const std::vector<std::string>& options,
                      std::optional<std::string> fallback = std::nullopt) const;

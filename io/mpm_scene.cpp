@@ -19,40 +19,51 @@ namespace {
 // double (a Young's modulus of 1e308 MPa would be inf Pa).
 jf::Range pascal_range(double lo, bool lo_inclusive, double factor, const std::string& unit) {
   double hi = std::numeric_limits<double>::max() / factor;
-  while (!std::isfinite(hi * factor)) hi = std::nextafter(hi, 0.0);   // one step for 1e6
+  while (!std::isfinite(hi * factor)) hi = std::nextafter(hi, 0.0);  // one step for 1e6
   return jf::Range{jf::Bound{lo, lo_inclusive, {}}, jf::Bound{hi, true, {}}, unit};
 }
 }  // namespace
 
-MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& path,
-                               bool impact) {
-  std::vector<std::string> keys = {"cell_size_m", "particles_per_cell", "courant", "end_time_s",
-                                   "max_time_step_s", "output_interval_s", "transfer",
-                                   "flip_ratio", "scatter", "snapshot_interval_s",
-                                   "small_mass_fraction", "transfer_dissipation"};
+MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& path, bool impact) {
+  std::vector<std::string> keys = {"cell_size_m",
+                                   "particles_per_cell",
+                                   "courant",
+                                   "end_time_s",
+                                   "max_time_step_s",
+                                   "output_interval_s",
+                                   "transfer",
+                                   "flip_ratio",
+                                   "scatter",
+                                   "snapshot_interval_s",
+                                   "small_mass_fraction",
+                                   "transfer_dissipation"};
   if (impact)
-    keys.insert(keys.end(), {"phases", "drag", "pore_pressure", "pore_pressure_output",
-                             "peak_force_window_s"});
+    keys.insert(keys.end(),
+                {"phases", "drag", "pore_pressure", "pore_pressure_output", "peak_force_window_s"});
   if (impact && block.is_object() && block.contains("base_friction"))
-    jf::fail(jf::join_path(path, "base_friction") + " = " + jf::format_value(block["base_friction"]) +
+    jf::fail(jf::join_path(path, "base_friction") + " = " +
+             jf::format_value(block["base_friction"]) +
              ": moved to landslide.base_friction (the flow's friction on its base is the "
              "landslide's, read by the MPM and the momentum-consistent closed forms)");
   const jf::ObjectReader r(block, path, keys);
   MpmSettings s;
   s.cell_size_m = r.number("cell_size_m", jf::greater_than(0, "m"));
-  s.particles_per_cell = static_cast<int>(r.number_or("particles_per_cell", 4, jf::interval('[', 1, 64, ']')));
+  s.particles_per_cell =
+      static_cast<int>(r.number_or("particles_per_cell", 4, jf::interval('[', 1, 64, ']')));
   const int n = static_cast<int>(std::lround(std::sqrt(s.particles_per_cell)));
   if (n * n != s.particles_per_cell)
-    r.fail_at("particles_per_cell", "must be a perfect square (1, 4, 9, 16, ...): n x n points per cell");
+    r.fail_at("particles_per_cell",
+              "must be a perfect square (1, 4, 9, 16, ...): n x n points per cell");
   s.courant = r.number_or("courant", 0.5, jf::interval('(', 0, 10, ']'));
   if (impact) {
     const auto t = r.optional_number("end_time_s", jf::greater_than(0, "s"));
     s.end_time_given = t.has_value();
-    s.end_time_s = t.value_or(1.0);   // replaced by the impact scene's default
+    s.end_time_s = t.value_or(1.0);  // replaced by the impact scene's default
     s.saturated = r.choice("phases", {"saturated", "dry"}, std::string("saturated")) == "saturated";
-    s.semi_implicit_drag =
-        r.choice("drag", {"semi-implicit", "explicit"}, std::string("semi-implicit")) == "semi-implicit";
-    if (!s.saturated && r.has("drag")) r.fail_at("drag", "only used with \"phases\": \"saturated\"");
+    s.semi_implicit_drag = r.choice("drag", {"semi-implicit", "explicit"},
+                                    std::string("semi-implicit")) == "semi-implicit";
+    if (!s.saturated && r.has("drag"))
+      r.fail_at("drag", "only used with \"phases\": \"saturated\"");
     // The pore pressure per point (the paper's single-point formulation) or projected to its
     // cell's mean every step (removes the volumetric locking next to walls: docs/theory/two_phase.md,
     // "The face jet").
@@ -74,12 +85,13 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
       r.number_or("max_time_step_s", 1e300, jf::at_least(mpm::Settings{}.min_time_step, "s"));
   // Impact scenes get their default interval from the impact's time scale (impact_case): their
   // end time only bounds the run, which ends at rest.
-  s.output_interval_s = r.number_or("output_interval_s",
-                                    s.end_time_given && !impact ? s.end_time_s / 200 : 0.0,
-                                    jf::greater_than(0, "s"));
-  if (s.end_time_given && !(s.end_time_s / 200 > 0))   // the default interval underflows to 0
-    r.fail_at("end_time_s", "too small: the default output_interval_s = end_time_s / 200 is 0 "
-                            "(give output_interval_s > 0 s)");
+  s.output_interval_s =
+      r.number_or("output_interval_s", s.end_time_given && !impact ? s.end_time_s / 200 : 0.0,
+                  jf::greater_than(0, "s"));
+  if (s.end_time_given && !(s.end_time_s / 200 > 0))  // the default interval underflows to 0
+    r.fail_at("end_time_s",
+              "too small: the default output_interval_s = end_time_s / 200 is 0 "
+              "(give output_interval_s > 0 s)");
   const std::string transfer = r.choice("transfer", {"apic", "flip", "pic"}, std::string("apic"));
   s.apic = transfer == "apic";
   if (transfer == "flip") {
@@ -98,8 +110,10 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
   // scenes to exact momentum conservation.
   s.small_mass_fraction =
       r.number_or("small_mass_fraction", impact ? 1e-3 : 0.0, jf::interval('[', 0, 0.1, ']'));
-  s.atomic_scatter = r.choice("scatter", {"duplicated", "atomic"}, std::string("duplicated")) == "atomic";
-  s.snapshot_interval_s = r.optional_number("snapshot_interval_s", jf::greater_than(0, "s")).value_or(0.0);
+  s.atomic_scatter =
+      r.choice("scatter", {"duplicated", "atomic"}, std::string("duplicated")) == "atomic";
+  s.snapshot_interval_s =
+      r.optional_number("snapshot_interval_s", jf::greater_than(0, "s")).value_or(0.0);
   s.transfer_dissipation = r.boolean_or("transfer_dissipation", false);
   return s;
 }
@@ -139,7 +153,8 @@ MpmCase parse_mpm_case(const nlohmann::json& scene) {
   MpmCase c;
   c.source = scene;
   c.name = top.string("name");
-  const jf::ObjectReader m = top.object("mpm_case", {"domain_m", "gravity_m_s2", "walls", "materials", "bodies"});
+  const jf::ObjectReader m =
+      top.object("mpm_case", {"domain_m", "gravity_m_s2", "walls", "materials", "bodies"});
   const jf::ObjectReader d = m.object("domain_m", {"x", "y"});
   const auto x = pair_of(d, "x", jf::any_number("m")), y = pair_of(d, "y", jf::any_number("m"));
   if (!(x[1] > x[0])) d.fail_at("x", "must be increasing [x_min, x_max]");
@@ -148,7 +163,7 @@ MpmCase parse_mpm_case(const nlohmann::json& scene) {
   c.upper = {x[1], y[1]};
   if (m.has("gravity_m_s2")) {
     c.gravity = pair_of(m, "gravity_m_s2", jf::any_number("m/s^2"));
-    const double magnitude = std::hypot(c.gravity[0], c.gravity[1]);   // the bodies' geostatic g
+    const double magnitude = std::hypot(c.gravity[0], c.gravity[1]);  // the bodies' geostatic g
     if (!std::isfinite(magnitude))
       m.fail_at("gravity_m_s2", "its magnitude sqrt(gx^2 + gy^2) = " +
                                     jf::format_number(magnitude) + " m/s^2: must be finite");
@@ -161,13 +176,14 @@ MpmCase parse_mpm_case(const nlohmann::json& scene) {
   }
   const nlohmann::json* mats = m.find("materials");
   if (!mats) m.fail_missing("materials", "object of named materials");
-  if (!mats->is_object() || mats->empty()) m.fail_at("materials", "must be a non-empty object of named materials");
+  if (!mats->is_object() || mats->empty())
+    m.fail_at("materials", "must be a non-empty object of named materials");
   constexpr double deg = math::pi() / 180.0;
   for (const auto& [name, value] : mats->items()) {
-    const jf::ObjectReader r(value, m.path_of("materials") + "." + name,
-                             {"model", "density_kg_m3", "young_modulus_mpa", "poisson_ratio",
-                              "friction_angle_deg", "dilatancy_angle_deg", "cohesion_kpa",
-                              "tension_cutoff_kpa", "inertial_friction"});
+    const jf::ObjectReader r(
+        value, m.path_of("materials") + "." + name,
+        {"model", "density_kg_m3", "young_modulus_mpa", "poisson_ratio", "friction_angle_deg",
+         "dilatancy_angle_deg", "cohesion_kpa", "tension_cutoff_kpa", "inertial_friction"});
     mpm::Material mat;
     const std::string model = r.choice("model", {"linear-elastic", "mohr-coulomb"});
     mat.model = model == "mohr-coulomb" ? mpm::Material::Model::MohrCoulomb
@@ -176,9 +192,11 @@ MpmCase parse_mpm_case(const nlohmann::json& scene) {
     mat.young_modulus = 1e6 * r.number("young_modulus_mpa", pascal_range(0, false, 1e6, "MPa"));
     mat.poisson_ratio = r.number("poisson_ratio", jf::interval('(', -1, 0.5, ')'));
     if (mat.model == mpm::Material::Model::MohrCoulomb) {
-      const double friction_angle_deg = r.number("friction_angle_deg", jf::interval('[', 0, 90, ')'));
+      const double friction_angle_deg =
+          r.number("friction_angle_deg", jf::interval('[', 0, 90, ')'));
       mat.friction_angle = deg * friction_angle_deg;
-      mat.dilatancy_angle = deg * r.number_or("dilatancy_angle_deg", 0.0, jf::interval('[', 0, 90, ')'));
+      mat.dilatancy_angle =
+          deg * r.number_or("dilatancy_angle_deg", 0.0, jf::interval('[', 0, 90, ')'));
       if (mat.dilatancy_angle > mat.friction_angle)
         r.fail_at("dilatancy_angle_deg", "must not exceed friction_angle_deg");
       mat.cohesion = 1e3 * r.number_or("cohesion_kpa", 0.0, pascal_range(0, true, 1e3, "kPa"));
@@ -230,13 +248,17 @@ MpmCase parse_mpm_case(const nlohmann::json& scene) {
     body.material = static_cast<int>(it - c.material_names.begin());
     const nlohmann::json* poly = b.find("polygon_m");
     if (!poly) b.fail_missing("polygon_m", "array of >= 3 [x, y] vertices");
-    if (!poly->is_array() || poly->size() < 3) b.fail_at("polygon_m", "must be an array of >= 3 [x, y] vertices");
+    if (!poly->is_array() || poly->size() < 3)
+      b.fail_at("polygon_m", "must be an array of >= 3 [x, y] vertices");
     for (size_t k = 0; k < poly->size(); ++k) {
       const std::string p = b.path_of("polygon_m") + "[" + std::to_string(k) + "]";
       const auto& v = (*poly)[k];
-      if (!v.is_array() || v.size() != 2) jf::fail(p + " = " + jf::format_value(v) + ": must be [x, y]");
-      const double vx = jf::check_number(v[0], p + "[0]", jf::interval('[', c.lower[0] + pad, c.upper[0] - pad, ']', "m"));
-      const double vy = jf::check_number(v[1], p + "[1]", jf::interval('[', c.lower[1] + pad, c.upper[1] - pad, ']', "m"));
+      if (!v.is_array() || v.size() != 2)
+        jf::fail(p + " = " + jf::format_value(v) + ": must be [x, y]");
+      const double vx = jf::check_number(
+          v[0], p + "[0]", jf::interval('[', c.lower[0] + pad, c.upper[0] - pad, ']', "m"));
+      const double vy = jf::check_number(
+          v[1], p + "[1]", jf::interval('[', c.lower[1] + pad, c.upper[1] - pad, ']', "m"));
       body.polygon.push_back({vx, vy});
     }
     if (b.has("velocity_m_s")) body.velocity = pair_of(b, "velocity_m_s", jf::any_number("m/s"));

@@ -55,7 +55,8 @@ void double_attribute(hid_t obj, const char* name, double value) {
   Id space(H5Screate(H5S_SCALAR), H5Sclose, "cannot create a scalar dataspace");
   Id attr(H5Acreate2(obj, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
           std::string("cannot create attribute '") + name + "'");
-  check(H5Awrite(attr, H5T_NATIVE_DOUBLE, &value), std::string("cannot write attribute '") + name + "'");
+  check(H5Awrite(attr, H5T_NATIVE_DOUBLE, &value),
+        std::string("cannot write attribute '") + name + "'");
 }
 
 // An n (cols == 0) or n x cols double dataset from row-major `data`, with a `units` attribute and,
@@ -101,12 +102,23 @@ std::string xml_escape(const std::string& s) {
   std::string out;
   for (char ch : s) {
     switch (ch) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += ch;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += ch;
     }
   }
   return out;
@@ -146,7 +158,8 @@ std::string mpm_snapshots_xdmf_path(const std::string& h5_path) {
   return p.string();
 }
 
-void write_mpm_snapshots_xdmf(const std::string& h5_path, const std::vector<MpmSnapshot>& snapshots) {
+void write_mpm_snapshots_xdmf(const std::string& h5_path,
+                              const std::vector<MpmSnapshot>& snapshots) {
   const std::string path = mpm_snapshots_xdmf_path(h5_path);
   const std::string h5 = xml_escape(fs::path(h5_path).filename().string());
   std::ostringstream x;
@@ -161,7 +174,8 @@ void write_mpm_snapshots_xdmf(const std::string& h5_path, const std::vector<MpmS
     const std::string at = h5 + ":/mpm/snapshots/" + group_name(k) + "/";
     const auto item = [&](const std::string& dims, const std::string& dataset) {
       return "<DataItem Dimensions=\"" + dims +
-             "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + at + dataset + "</DataItem>";
+             "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + at + dataset +
+             "</DataItem>";
     };
     x << "      <Grid Name=\"particles_" << group_name(k) << "\" GridType=\"Uniform\">\n"
       << "        <Time Value=\"" << exact(s.time) << "\"/>\n"
@@ -187,7 +201,8 @@ void write_mpm_snapshots_xdmf(const std::string& h5_path, const std::vector<MpmS
     std::vector<const char*> scalars = {"deviatoric_strain", "plastic_work"};
     if (!snapshots[k].pore_pressure.empty()) scalars.push_back("pore_pressure");
     for (const char* scalar : scalars)
-      x << "        <Attribute Name=\"" << scalar << "\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+      x << "        <Attribute Name=\"" << scalar
+        << "\" AttributeType=\"Scalar\" Center=\"Node\">\n"
         << "          " << item(n, scalar) << "\n"
         << "        </Attribute>\n";
     x << "      </Grid>\n";

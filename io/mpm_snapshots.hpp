@@ -34,6 +34,7 @@ std::string mpm_snapshots_xdmf_path(const std::string& h5_path);
 // Writes the XDMF description of the snapshots written by write_mpm_snapshots into `h5_path`,
 // atomically (temporary file + rename), at mpm_snapshots_xdmf_path(h5_path). Throws
 // std::runtime_error (path + what failed); the temporary file is then removed.
-void write_mpm_snapshots_xdmf(const std::string& h5_path, const std::vector<MpmSnapshot>& snapshots);
+void write_mpm_snapshots_xdmf(const std::string& h5_path,
+                              const std::vector<MpmSnapshot>& snapshots);
 
 }  // namespace lsi

@@ -14,19 +14,25 @@ std::string shown(const std::string& s) { return json_fields::format_value(s); }
 
 const char* kind_of(fs::file_type t) {
   switch (t) {
-    case fs::file_type::directory: return "a directory";
-    case fs::file_type::character: return "a character device";
-    case fs::file_type::block: return "a block device";
-    case fs::file_type::fifo: return "a named pipe";
-    case fs::file_type::socket: return "a socket";
-    default: return "not a regular file";
+    case fs::file_type::directory:
+      return "a directory";
+    case fs::file_type::character:
+      return "a character device";
+    case fs::file_type::block:
+      return "a block device";
+    case fs::file_type::fifo:
+      return "a named pipe";
+    case fs::file_type::socket:
+      return "a socket";
+    default:
+      return "not a regular file";
   }
 }
 }  // namespace
 
 std::string unsafe_output_reason(const std::string& path) {
   std::error_code ec;
-  const fs::file_status st = fs::status(path, ec);   // follows links
+  const fs::file_status st = fs::status(path, ec);  // follows links
   if (ec || st.type() == fs::file_type::not_found || st.type() == fs::file_type::regular) return "";
   return std::string("it exists and is ") + kind_of(st.type()) +
          ", which the output would replace (only a regular file is replaced)";

@@ -133,10 +133,11 @@ const DesignCheck* check_of(const std::vector<DesignCheck>& checks, const std::s
 
 nlohmann::json check_json(const DesignCheck& c) {
   if (!c.skipped.empty()) return {{"skipped", c.skipped}};
-  nlohmann::json j = {{"barrier", {{"height", c.barrier.height_m},
-                                   {"base_width", c.barrier.base_width_m},
-                                   {"top_width", c.barrier.top_width_m},
-                                   {"mass", c.barrier.mass()}}},
+  nlohmann::json j = {{"barrier",
+                       {{"height", c.barrier.height_m},
+                        {"base_width", c.barrier.base_width_m},
+                        {"top_width", c.barrier.top_width_m},
+                        {"mass", c.barrier.mass()}}},
                       {"within_tolerance", c.within},
                       {"end_state", end_state_token(c.mpm.end_state)}};
   put(j, "final_displacement", c.mpm.final_displacement);
@@ -159,8 +160,8 @@ nlohmann::json design_json(const std::vector<MassDesign>& designs, double max_di
     put(m, "final_displacement", d.displacement_m);
     m["geometries"] = nlohmann::json::array();
     for (const auto& g : d.geometries) {
-      nlohmann::json gj = {{"height", g.height_m}, {"base_width", g.base_width_m},
-                           {"top_width", g.top_width_m}};
+      nlohmann::json gj = {
+          {"height", g.height_m}, {"base_width", g.base_width_m}, {"top_width", g.top_width_m}};
       put(gj, "min_overturning_safety", g.min_overturning_safety);
       m["geometries"].push_back(gj);
     }
@@ -173,9 +174,9 @@ nlohmann::json design_json(const std::vector<MassDesign>& designs, double max_di
 std::string design_table(const Scene& scene, const std::vector<MassDesign>& designs,
                          double max_displacement_m, const std::vector<DesignCheck>& checks) {
   std::ostringstream o;
-  o << "scene " << scene.name << ": minimum barrier mass for a final displacement <= "
-    << fmt(max_displacement_m) << " m (current barrier: " << fmt(scene.barrier.mass(), "%.0f")
-    << " kg/m)\n";
+  o << "scene " << scene.name
+    << ": minimum barrier mass for a final displacement <= " << fmt(max_displacement_m)
+    << " m (current barrier: " << fmt(scene.barrier.mass(), "%.0f") << " kg/m)\n";
   for (const auto& d : designs) {
     o << "  " << pad(d.method, 11);
     if (d.status == "found") {
@@ -183,16 +184,17 @@ std::string design_table(const Scene& scene, const std::vector<MassDesign>& desi
         << " m)\n";
       for (const auto& g : d.geometries)
         o << "      H = " << fmt(g.height_m, "%.2f") << " m, B = " << fmt(g.base_width_m, "%.2f")
-          << " m, b = " << fmt(g.top_width_m, "%.2f")
-          << " m; overturning safety factor " << fmt_safety(g.min_overturning_safety) << "\n";
+          << " m, b = " << fmt(g.top_width_m, "%.2f") << " m; overturning safety factor "
+          << fmt_safety(g.min_overturning_safety) << "\n";
       if (const DesignCheck* c = check_of(checks, d.method); c && !c->skipped.empty()) {
         o << "      MPM check not run: " << c->skipped << "\n";
       } else if (c) {
         const std::string note = end_note(c->mpm);
-        o << "      MPM check (H = " << fmt(c->barrier.height_m, "%.2f") << " m, B = "
-          << fmt(c->barrier.base_width_m, "%.2f") << " m, b = " << fmt(c->barrier.top_width_m, "%.2f")
-          << " m): displacement " << displacement_cell(c->mpm) << " m against "
-          << fmt(max_displacement_m) << " m: " << (c->within ? "within" : "NOT within")
+        o << "      MPM check (H = " << fmt(c->barrier.height_m, "%.2f")
+          << " m, B = " << fmt(c->barrier.base_width_m, "%.2f")
+          << " m, b = " << fmt(c->barrier.top_width_m, "%.2f") << " m): displacement "
+          << displacement_cell(c->mpm) << " m against " << fmt(max_displacement_m)
+          << " m: " << (c->within ? "within" : "NOT within")
           << " the tolerance; safety under the MPM's loads: sliding "
           << fmt_safety(scalar_or_nan(c->mpm.scalars.min_sliding_safety)) << ", overturning "
           << fmt_safety(scalar_or_nan(c->mpm.scalars.min_overturning_safety)) << " (resultant at "
@@ -208,11 +210,13 @@ std::string design_table(const Scene& scene, const std::vector<MassDesign>& desi
 
 namespace {
 const MethodResult* find(const std::vector<MethodResult>& rs, const std::string& m) {
-  for (const auto& r : rs) if (r.method == m) return &r;
+  for (const auto& r : rs)
+    if (r.method == m) return &r;
   return nullptr;
 }
 const MassDesign* find(const std::vector<MassDesign>& ds, const std::string& m) {
-  for (const auto& d : ds) if (d.method == m) return &d;
+  for (const auto& d : ds)
+    if (d.method == m) return &d;
   return nullptr;
 }
 }  // namespace
@@ -271,9 +275,9 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_
   const size_t group = 2 * w + (mpm ? wm : 0) + 2;
   auto width = [&](const char* m) { return std::string(m) == "mpm" ? wm : w; };
   std::ostringstream o;
-  o << "Comparison of the design methods (E: empirical, A: analytical"
-    << (mpm ? ", M: MPM" : "") << "); forces normal to the face\n";
-  std::vector<std::string> checked;   // methods whose designs the MPM checked, in table order
+  o << "Comparison of the design methods (E: empirical, A: analytical" << (mpm ? ", M: MPM" : "")
+    << "); forces normal to the face\n";
+  std::vector<std::string> checked;  // methods whose designs the MPM checked, in table order
   for (const char* m : {"empirical", "analytical"})
     for (const auto& row : rows)
       if (check_of(row.checks, m)) {
@@ -303,8 +307,10 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_
       << cols("impact_duration", "%.2f", 1) << cols("final_displacement", "%.3f", 1);
     for (const char* m : {"empirical", "analytical"}) {
       const MassDesign* d = find(row.designs, m);
-      o << pad(!d ? "-" : d->status == "found" ? fmt(d->mass_kg_per_m / 1e3, "%.1f")
-                        : d->status == "any mass works" ? "any" : "none",
+      o << pad(!d                              ? "-"
+               : d->status == "found"          ? fmt(d->mass_kg_per_m / 1e3, "%.1f")
+               : d->status == "any mass works" ? "any"
+                                               : "none",
                9);
     }
     for (const auto& m : checked) {
@@ -322,13 +328,15 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_
     return model;
   };
   auto described = [](const std::string& model, const char* paper) {
-    return model == "momentum" ? std::string("the barrier pushed by the flow at their relative "
-                                             "velocity (momentum-consistent)")
-           : model == "mixed"  ? std::string("paper and momentum-consistent, by scene")
-                               : std::string(paper);
+    return model == "momentum" ? std::string(
+                                     "the barrier pushed by the flow at their relative "
+                                     "velocity (momentum-consistent)")
+           : model == "mixed" ? std::string("paper and momentum-consistent, by scene")
+                              : std::string(paper);
   };
-  o << "E displacement: " << described(model_of("empirical"),
-                                       "rigid-block sliding under the empirical (fixed-barrier) pulse")
+  o << "E displacement: "
+    << described(model_of("empirical"),
+                 "rigid-block sliding under the empirical (fixed-barrier) pulse")
     << "; A: " << described(model_of("analytical"), "the two-body model")
     << "; M: the MPM (docs/theory/mpm.md). \"any\": no mass exceeds the tolerance (docs/theory/models.md).\n";
   if (!checked.empty())

@@ -30,7 +30,7 @@ struct ComparisonRow {
   std::string scene;
   std::vector<MethodResult> results;
   std::vector<MassDesign> designs;
-  std::vector<DesignCheck> checks;   // the MPM on designed barriers (compare --verify-design)
+  std::vector<DesignCheck> checks;  // the MPM on designed barriers (compare --verify-design)
 };
 std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_displacement_m);
 nlohmann::json comparison_json(const std::vector<ComparisonRow>& rows, double max_displacement_m);

@@ -17,7 +17,8 @@ Scene load_scene(const std::string& path);
 // Reads and parses a scene file as JSON (malformed JSON, missing file, more than
 // kMaxInputFileBytes: InputError with the path); the top level must be an object. No schema check.
 // `kind` names the file in messages ("scene", "study").
-nlohmann::json read_scene_document(const std::string& path,
-                                   const std::string& kind = "scene");   // also reports malformed JSON with line/column
+nlohmann::json read_scene_document(
+    const std::string& path,
+    const std::string& kind = "scene");  // also reports malformed JSON with line/column
 
 }  // namespace lsi

@@ -18,7 +18,8 @@ nlohmann::json read_scene_reference(const json_fields::ObjectReader& root,
   try {
     return read_scene_document(p.string());
   } catch (const InputError& e) {
-    json_fields::fail(std::string("scene = ") + json_fields::format_value(*scene) + ": " + e.what());
+    json_fields::fail(std::string("scene = ") + json_fields::format_value(*scene) + ": " +
+                      e.what());
   }
 }
 

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "io/hdf5_io.hpp"
-#include "lsi_git_revision.hpp"   // LSI_GIT_REVISION, generated at build time
+#include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 
 #ifndef LSI_VERSION
 #define LSI_VERSION "unknown"
@@ -36,7 +36,8 @@ void write_array(hid_t file, const std::string& name, hid_t file_type, hid_t mem
                  const std::vector<T>& data, int rank = 1, hsize_t columns = 1) {
   const hsize_t dims[2] = {static_cast<hsize_t>(rank == 1 ? data.size() : data.size() / columns),
                            columns};
-  Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose, "cannot create dataspace for '" + name + "'");
+  Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose,
+               "cannot create dataspace for '" + name + "'");
   Handle lcpl = intermediate_groups();
   Handle dset(H5Dcreate2(file, name.c_str(), file_type, space, lcpl, H5P_DEFAULT, H5P_DEFAULT),
               H5Dclose, "cannot create dataset '" + name + "'");
@@ -48,11 +49,13 @@ void write_array(hid_t file, const std::string& name, hid_t file_type, hid_t mem
 template <class T>
 std::vector<T> read_array(hid_t file, const std::string& name, hid_t mem_type,
                           hsize_t* columns = nullptr) {
-  Handle dset(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose, "cannot open dataset '" + name + "'");
+  Handle dset(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose,
+              "cannot open dataset '" + name + "'");
   Handle space(H5Dget_space(dset), H5Sclose, "cannot get the dataspace of '" + name + "'");
   hsize_t dims[2] = {0, 1};
   const int rank = H5Sget_simple_extent_ndims(space);
-  if (rank < 1 || rank > 2) throw std::runtime_error("dataset '" + name + "' has rank " + std::to_string(rank));
+  if (rank < 1 || rank > 2)
+    throw std::runtime_error("dataset '" + name + "' has rank " + std::to_string(rank));
   H5Sget_simple_extent_dims(space, dims, nullptr);
   if (columns) *columns = rank == 2 ? dims[1] : 1;
   std::vector<T> data(static_cast<std::size_t>(dims[0] * (rank == 2 ? dims[1] : 1)));
@@ -84,7 +87,8 @@ void write_file(const std::string& file, const SweepHeader& h, const SweepTable&
                 const nlohmann::json* statistics) {
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "cannot create a file-access property list");
   check(H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG), "cannot set the file close degree");
-  Handle f(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose, "cannot create the file");
+  Handle f(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose,
+           "cannot create the file");
   write_string_attribute(f, "kind", kKind);
   write_string_attribute(f, "study", h.study.dump(2));
   write_string_attribute(f, "fingerprint", h.fingerprint);
@@ -182,7 +186,8 @@ SweepFile read_sweep_file(const std::string& path) {
 
     SweepTable& t = out.table;
     {
-      Handle ds(H5Dopen2(f, "/samples/inputs", H5P_DEFAULT), H5Dclose, "cannot open /samples/inputs");
+      Handle ds(H5Dopen2(f, "/samples/inputs", H5P_DEFAULT), H5Dclose,
+                "cannot open /samples/inputs");
       t.input_paths = parse_json_attribute(ds, "paths").get<std::vector<std::string>>();
       Handle g(H5Gopen2(f, "/samples", H5P_DEFAULT), H5Gclose, "cannot open /samples");
       t.output_columns = parse_json_attribute(g, "output_columns").get<std::vector<std::string>>();
@@ -192,8 +197,10 @@ SweepFile read_sweep_file(const std::string& path) {
     t.wall_time = read_array<float>(f, "/samples/wall_time", H5T_NATIVE_FLOAT);
     const std::size_t n = t.index.size(), d = t.input_paths.size();
     hsize_t cols = 0;
-    const std::vector<double> rows = read_array<double>(f, "/samples/inputs", H5T_NATIVE_DOUBLE, &cols);
-    if (t.status.size() != n || t.wall_time.size() != n || (n > 0 && (cols != d || rows.size() != n * d)))
+    const std::vector<double> rows =
+        read_array<double>(f, "/samples/inputs", H5T_NATIVE_DOUBLE, &cols);
+    if (t.status.size() != n || t.wall_time.size() != n ||
+        (n > 0 && (cols != d || rows.size() != n * d)))
       throw std::runtime_error("the /samples datasets have different lengths");
     t.inputs.assign(d, std::vector<double>(n));
     for (std::size_t k = 0; k < d; ++k)
@@ -201,7 +208,8 @@ SweepFile read_sweep_file(const std::string& path) {
     for (const auto& c : t.output_columns) {
       t.outputs.push_back(read_array<double>(f, "/samples/" + c, H5T_NATIVE_DOUBLE));
       if (t.outputs.back().size() != n)
-        throw std::runtime_error("/samples/" + c + " has " + std::to_string(t.outputs.back().size()) +
+        throw std::runtime_error("/samples/" + c + " has " +
+                                 std::to_string(t.outputs.back().size()) +
                                  " rows, /samples/index " + std::to_string(n));
     }
     t.failure_index = read_array<std::uint64_t>(f, "/failures/index", H5T_NATIVE_UINT64);

@@ -43,7 +43,7 @@ void write_sweep_file(const std::string& path, const SweepHeader& header, const 
 struct SweepFile {
   SweepHeader header;
   SweepTable table;
-  nlohmann::json statistics;   // null if the file has none
+  nlohmann::json statistics;  // null if the file has none
 };
 // Throws std::runtime_error naming the path and what is wrong (not a sweep file, unreadable...).
 SweepFile read_sweep_file(const std::string& path);

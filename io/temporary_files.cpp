@@ -37,7 +37,7 @@ extern "C" void remove_temporaries_and_reraise(int sig) {
   sigaddset(&unblock, sig);
   ::pthread_sigmask(SIG_UNBLOCK, &unblock, nullptr);
   ::raise(sig);
-  errno = saved;   // reached only if the default action does not end the process
+  errno = saved;  // reached only if the default action does not end the process
 }
 
 // Installs the handler for each signal whose disposition is still the default: a signal the user
@@ -103,7 +103,8 @@ int remove_stale_temporaries(const std::string& path) noexcept {
       if (!all_digits(pid_text)) continue;
       const long pid = std::stol(pid_text);
       if (pid <= 0 || pid == ::getpid()) continue;
-      if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;   // alive, or not ours to judge
+      if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)
+        continue;  // alive, or not ours to judge
       std::error_code e2;
       if (!fs::is_regular_file(it->symlink_status(e2)) || e2) continue;
       if (fs::remove(it->path(), e2)) ++removed;

@@ -54,8 +54,8 @@ void fill_histories(MethodResult& r, const Scene& scene, const ForcePulse& pulse
   BarrierMotion motion;
   if (!b.fixed) motion = barrier_motion(pulse, block_of(b, barrier_mass, face));
   const double stop = motion.moves ? motion.stop_time : 0.0;
-  const double t_end = 1.1 * (std::isfinite(stop) ? std::max(pulse.duration, stop)
-                                                  : 2.0 * pulse.duration);
+  const double t_end =
+      1.1 * (std::isfinite(stop) ? std::max(pulse.duration, stop) : 2.0 * pulse.duration);
   r.time = time_grid(t_end, {pulse.rise_time, pulse.duration, motion.start_time, stop});
   for (double t : r.time) {
     const double F = pulse.force(t);
@@ -78,10 +78,9 @@ void fill_histories(MethodResult& r, const Scene& scene, const ForcePulse& pulse
   }
   // Static safety under this history (the resultant at half the flow thickness).
   const double mass = std::isfinite(barrier_mass) ? barrier_mass : scene.barrier.mass();
-  const StabilityCheck s =
-      barrier_stability(r.time.data(), r.force.data(), static_cast<int>(r.time.size()),
-                        geometry_of(b), face, mass, b.base_friction,
-                        0.5 * scene.landslide.thickness_m);
+  const StabilityCheck s = barrier_stability(
+      r.time.data(), r.force.data(), static_cast<int>(r.time.size()), geometry_of(b), face, mass,
+      b.base_friction, 0.5 * scene.landslide.thickness_m);
   r.scalars.min_sliding_safety = s.min_sliding_safety;
   r.scalars.min_overturning_safety = s.min_overturning_safety;
   r.scalars.overturning_resultant_height = s.resultant_height;
@@ -98,7 +97,8 @@ MomentumBarrierSetup momentum_setup(const Scene& scene, const ForcePulse& fixed_
   s.base_friction = scene.barrier.base_friction;
   s.face = resolve_face_force(math::degrees_to_radians(scene.barrier.face_angle_deg),
                               scene.barrier.face_friction);
-  s.fixed_pulse = momentum_capped_pulse(fixed_pulse, s.landslide_mass, s.velocity, s.face.horizontal);
+  s.fixed_pulse =
+      momentum_capped_pulse(fixed_pulse, s.landslide_mass, s.velocity, s.face.horizontal);
   s.flow_friction = flow_friction_deceleration(scene);
   return s;
 }
@@ -108,14 +108,16 @@ MomentumBarrierSetup momentum_setup(const Scene& scene, const ForcePulse& fixed_
 void fill_momentum_histories(MethodResult& r, const Scene& scene, const MomentumBarrierSetup& s) {
   const MomentumBarrierResult first = momentum_barrier(s);
   if (!first.ok)
-    throw InputError("the momentum-consistent barrier could not be integrated for this scene "
-                     "(a non-finite model input)");
+    throw InputError(
+        "the momentum-consistent barrier could not be integrated for this scene "
+        "(a non-finite model input)");
   const double end = std::isfinite(first.stop_time) ? std::max(first.contact_end, first.stop_time)
                                                     : 2.0 * first.contact_end;
-  r.time = time_grid(1.1 * end, {first.rise_time, first.contact_end, first.start_time,
-                                 first.stop_time});
+  r.time =
+      time_grid(1.1 * end, {first.rise_time, first.contact_end, first.start_time, first.stop_time});
   std::vector<MomentumBarrierState> st(r.time.size());
-  const MomentumBarrierResult res = momentum_barrier(s, r.time.data(), int(r.time.size()), st.data());
+  const MomentumBarrierResult res =
+      momentum_barrier(s, r.time.data(), int(r.time.size()), st.data());
   const double m1 = s.landslide_mass;
   for (const MomentumBarrierState& x : st) {
     r.force.push_back(x.force);
@@ -131,7 +133,7 @@ void fill_momentum_histories(MethodResult& r, const Scene& scene, const Momentum
   r.final_displacement = scene.barrier.fixed ? 0.0 : res.final_displacement;
   r.barrier_model = "momentum";
   r.scalars.peak_force_horizontal = res.peak_force * s.face.horizontal;
-  double impulse = 0.0;   // the barrier's, from the force it received
+  double impulse = 0.0;  // the barrier's, from the force it received
   for (size_t i = 1; i < r.time.size(); ++i)
     impulse += 0.5 * (r.force[i] + r.force[i - 1]) * (r.time[i] - r.time[i - 1]);
   r.scalars.impulse = impulse;
@@ -142,10 +144,9 @@ void fill_momentum_histories(MethodResult& r, const Scene& scene, const Momentum
     r.scalars.barrier_stop_time = res.stop_time;
   }
   const double mass = scene.barrier.mass();
-  const StabilityCheck stab =
-      barrier_stability(r.time.data(), r.force.data(), static_cast<int>(r.time.size()),
-                        geometry_of(scene.barrier), s.face, mass, scene.barrier.base_friction,
-                        0.5 * scene.landslide.thickness_m);
+  const StabilityCheck stab = barrier_stability(
+      r.time.data(), r.force.data(), static_cast<int>(r.time.size()), geometry_of(scene.barrier),
+      s.face, mass, scene.barrier.base_friction, 0.5 * scene.landslide.thickness_m);
   r.scalars.min_sliding_safety = stab.min_sliding_safety;
   r.scalars.min_overturning_safety = stab.min_overturning_safety;
   r.scalars.overturning_resultant_height = stab.resultant_height;
@@ -171,7 +172,8 @@ bool momentum(const std::optional<AnalyticalParameters>& p) {
 
 TwoBodyCoefficients two_body_coefficients(const Scene& scene, bool fixed) {
   // The momentum-consistent variant's pulse is the fixed barrier's, free barrier or not.
-  TwoBodyCoefficients c = default_two_body_coefficients(fixed || momentum(scene.methods.analytical));
+  TwoBodyCoefficients c =
+      default_two_body_coefficients(fixed || momentum(scene.methods.analytical));
   if (scene.methods.analytical) {
     if (scene.methods.analytical->lambda) c.lambda = *scene.methods.analytical->lambda;
     if (scene.methods.analytical->tau) c.tau = *scene.methods.analytical->tau;
@@ -223,11 +225,10 @@ MethodResult analytical_with_mass(const Scene& scene, double barrier_mass) {
   r.method = "analytical";
   if (momentum(scene.methods.analytical)) {
     const SceneLandslide& l = scene.landslide;
-    const FaceResolution face =
-        resolve_face_force(face_angle(scene), scene.barrier.face_friction);
-    const ForcePulse pulse = momentum_two_body_pulse(l.mass_kg_per_m(), l.velocity_m_s,
-                                                     l.equivalent_length_m(), c.lambda, c.tau,
-                                                     face.horizontal);
+    const FaceResolution face = resolve_face_force(face_angle(scene), scene.barrier.face_friction);
+    const ForcePulse pulse =
+        momentum_two_body_pulse(l.mass_kg_per_m(), l.velocity_m_s, l.equivalent_length_m(),
+                                c.lambda, c.tau, face.horizontal);
     fill_momentum_histories(r, scene, momentum_setup(scene, pulse, m2));
     r.scalars.lambda = c.lambda;
     r.scalars.tau = c.tau;
@@ -263,15 +264,14 @@ void require_computable(const MethodResult& r, const Scene& scene) {
     const nlohmann::json block = src.contains("methods") && src["methods"].contains(r.method)
                                      ? src["methods"][r.method]
                                      : nlohmann::json::object();
-    throw InputError("methods." + r.method + ": " + what + " = " + format_number(v) +
-                     " for this scene: its inputs lie outside the range in which the " + r.method +
-                     " model can be computed (landslide thickness_m = " +
-                     format_number(l.thickness_m) + ", velocity_m_s = " +
-                     format_number(l.velocity_m_s) + ", density_kg_m3 = " +
-                     format_number(l.density_kg_m3) + "; barrier mass " +
-                     format_number(scene.barrier.mass()) + " kg/m, base_friction = " +
-                     format_number(scene.barrier.base_friction) + "; methods." +
-                     r.method + " = " + block.dump() + ")");
+    throw InputError(
+        "methods." + r.method + ": " + what + " = " + format_number(v) +
+        " for this scene: its inputs lie outside the range in which the " + r.method +
+        " model can be computed (landslide thickness_m = " + format_number(l.thickness_m) +
+        ", velocity_m_s = " + format_number(l.velocity_m_s) + ", density_kg_m3 = " +
+        format_number(l.density_kg_m3) + "; barrier mass " + format_number(scene.barrier.mass()) +
+        " kg/m, base_friction = " + format_number(scene.barrier.base_friction) + "; methods." +
+        r.method + " = " + block.dump() + ")");
   };
   const bool durations = r.method != "literature";
   const std::pair<const char*, double> scalars[] = {{"peak_force", r.peak_force},
@@ -283,7 +283,7 @@ void require_computable(const MethodResult& r, const Scene& scene) {
     fail("final_displacement", r.final_displacement);
   for (const ScalarField& f : scalar_fields()) {
     const std::optional<double>& v = r.scalars.*(f.member);
-    if (!v) continue;   // not given (a barrier that never moves has no start or stop time)
+    if (!v) continue;  // not given (a barrier that never moves has no start or stop time)
     const std::string key = f.name;
     const bool may_be_infinite = key == "barrier_stop_time" || key == "min_sliding_safety" ||
                                  key == "min_overturning_safety";
@@ -359,8 +359,9 @@ std::vector<MethodResult> run_closed_form_methods(const Scene& scene,
     out.push_back(run_analytical(scene));
   if (wanted("literature", scene.methods.literature.has_value())) {
     if (!scene.methods.literature)
-      throw InputError("--methods literature: the scene has no methods.literature block "
-                       "(it needs the family and its coefficients)");
+      throw InputError(
+          "--methods literature: the scene has no methods.literature block "
+          "(it needs the family and its coefficients)");
     out.push_back(run_literature(scene));
   }
   for (const auto& r : out) require_computable(r, scene);
@@ -373,8 +374,9 @@ std::vector<MassDesign> design_barrier_mass(const Scene& scene, double max_displ
     throw InputError("--max-displacement = " + std::to_string(max_displacement_m) +
                      ": must be a finite number > 0 (m)");
   if (scene.barrier.fixed)
-    throw InputError("barrier.fixed = true: a fixed barrier does not move; set it to false to "
-                     "size the mass of a free barrier");
+    throw InputError(
+        "barrier.fixed = true: a fixed barrier does not move; set it to false to "
+        "size the mass of a free barrier");
   std::vector<MassDesign> out;
   for (const char* method : {"empirical", "analytical"}) {
     const bool in_scene = std::string(method) == "empirical" ? scene.methods.empirical.has_value()
@@ -387,11 +389,11 @@ std::vector<MassDesign> design_barrier_mass(const Scene& scene, double max_displ
     };
     // The search needs only the final displacement: no histories, no stability check per mass.
     const bool empirical = std::string(method) == "empirical";
-    const bool by_momentum = empirical ? momentum(scene.methods.empirical)
-                                       : momentum(scene.methods.analytical);
-    const ForcePulse empirical_pulse = empirical_impact_of(scene).pulse;   // independent of m2
+    const bool by_momentum =
+        empirical ? momentum(scene.methods.empirical) : momentum(scene.methods.analytical);
+    const ForcePulse empirical_pulse = empirical_impact_of(scene).pulse;  // independent of m2
     const double beta = face_angle(scene), mu_b = scene.barrier.base_friction;
-    ForcePulse fixed_pulse = empirical_pulse;   // the momentum variant's, independent of m2
+    ForcePulse fixed_pulse = empirical_pulse;  // the momentum variant's, independent of m2
     if (by_momentum && !empirical) {
       const SceneLandslide& l = scene.landslide;
       const TwoBodyCoefficients c = two_body_coefficients(scene, true);
@@ -401,7 +403,8 @@ std::vector<MassDesign> design_barrier_mass(const Scene& scene, double max_displ
     }
     const auto found = minimum_barrier_mass(
         [&](double m) {
-          if (by_momentum) return momentum_barrier(momentum_setup(scene, fixed_pulse, m)).final_displacement;
+          if (by_momentum)
+            return momentum_barrier(momentum_setup(scene, fixed_pulse, m)).final_displacement;
           const ForcePulse p = empirical ? empirical_pulse : two_body_impact_of(scene, m).pulse;
           return final_displacement_under(p, m, mu_b, beta);
         },
@@ -411,7 +414,7 @@ std::vector<MassDesign> design_barrier_mass(const Scene& scene, double max_displ
     d.mass_kg_per_m = found.mass;
     d.displacement_m = found.displacement;
     using S = MassForDisplacement::Status;
-    d.status = found.status == S::Found         ? "found"
+    d.status = found.status == S::Found          ? "found"
                : found.status == S::AnyMassWorks ? "any mass works"
                                                  : "no mass up to 1e9 kg/m";
     if (found.status == S::Found && scene.barrier.density_kg_m3) {
@@ -423,7 +426,7 @@ std::vector<MassDesign> design_barrier_mass(const Scene& scene, double max_displ
         s.barrier.height_m = f * scene.barrier.height_m;
         s.barrier.base_width_m = 2.0 * found.mass / (rho * s.barrier.height_m) - b;
         const BarrierGeometry g = geometry_of(s.barrier);
-        if (!(g.downstream_run_out() >= -1e-9)) continue;   // face angle does not fit
+        if (!(g.downstream_run_out() >= -1e-9)) continue;  // face angle does not fit
         const StabilityCheck st = barrier_stability(
             at_mass.time.data(), at_mass.force.data(), static_cast<int>(at_mass.time.size()), g,
             by_momentum ? resolve_face_force(g.face_angle, s.barrier.face_friction)

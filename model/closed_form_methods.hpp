@@ -31,14 +31,14 @@ std::vector<MethodResult> run_closed_form_methods(const Scene& scene,
 // displacement, by each displacement-giving method, with trapezoid geometries providing it.
 struct GeometryOption {
   double height_m, base_width_m, top_width_m;
-  double min_overturning_safety;   // under that method's force history
+  double min_overturning_safety;  // under that method's force history
 };
 struct MassDesign {
   std::string method;
-  std::string status;              // "found", "any mass works", "no mass up to 1e9 kg/m"
+  std::string status;  // "found", "any mass works", "no mass up to 1e9 kg/m"
   double mass_kg_per_m = 0.0;
   double displacement_m = 0.0;
-  std::vector<GeometryOption> geometries;   // only when the barrier density is known
+  std::vector<GeometryOption> geometries;  // only when the barrier density is known
 };
 std::vector<MassDesign> design_barrier_mass(const Scene& scene, double max_displacement_m,
                                             const std::vector<std::string>& only = {});

@@ -28,15 +28,15 @@ SceneBarrier barrier_with_mass(const SceneBarrier& b, double m) {
   throw InputError("barrier: no trapezoid of face angle " + format_number(b.face_angle_deg) +
                    " deg and top width " + format_number(b.top_width_m) +
                    " m holds the designed mass " + std::to_string(std::llround(m)) +
-                   " kg/m at a height of 0.5 to 2 times " + format_number(b.height_m) +
-                   " m");
+                   " kg/m at a height of 0.5 to 2 times " + format_number(b.height_m) + " m");
 }
 
 std::vector<DesignCheck> verify_designs(const Scene& scene, const std::vector<MassDesign>& designs,
                                         double max_displacement_m,
                                         const std::vector<std::string>& methods) {
   if (!scene.methods.mpm)
-    throw InputError("methods.mpm: missing: checking a design runs the MPM (docs/reference/scene_schema.md)");
+    throw InputError(
+        "methods.mpm: missing: checking a design runs the MPM (docs/reference/scene_schema.md)");
   std::vector<DesignCheck> out;
   for (const MassDesign& d : designs) {
     if (d.status != "found") continue;
@@ -57,8 +57,8 @@ std::vector<DesignCheck> verify_designs(const Scene& scene, const std::vector<Ma
     s.name = scene.name + "-" + d.method + "-design";
     MpmOutcome o = run_mpm_case(impact_case(s));
     c.mpm = std::move(o.result);
-    c.within = has_final_displacement(c.mpm.end_state) &&
-               c.mpm.final_displacement <= max_displacement_m;
+    c.within =
+        has_final_displacement(c.mpm.end_state) && c.mpm.final_displacement <= max_displacement_m;
     out.push_back(std::move(c));
   }
   return out;

@@ -12,12 +12,12 @@
 namespace lsi {
 
 struct DesignCheck {
-  std::string method;            // the closed form whose design is checked
-  double mass_kg_per_m = 0.0;    // its minimum mass
-  SceneBarrier barrier;          // the barrier the MPM ran
-  MethodResult mpm;              // the MPM's result for it
-  bool within = false;           // the MPM's final displacement within the tolerance
-  std::string skipped;           // why the MPM did not run (no trapezoid of the kind holds it)
+  std::string method;          // the closed form whose design is checked
+  double mass_kg_per_m = 0.0;  // its minimum mass
+  SceneBarrier barrier;        // the barrier the MPM ran
+  MethodResult mpm;            // the MPM's result for it
+  bool within = false;         // the MPM's final displacement within the tolerance
+  std::string skipped;         // why the MPM did not run (no trapezoid of the kind holds it)
 };
 
 // The barrier of `scene` with mass m (kg/m): the scene's height, top width and face angle with

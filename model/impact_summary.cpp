@@ -36,7 +36,7 @@ WindowedPeak windowed_peak(const std::vector<double>& time, const std::vector<do
   };
   best.force = -1e300;
   auto consider = [&](double start) {
-    start = std::max(t0, std::min(start, t1 - w));   // t1 - w may round below t0
+    start = std::max(t0, std::min(start, t1 - w));  // t1 - w may round below t0
     const double mean = (J_at(start + w) - J_at(start)) / w;
     if (mean > best.force) {
       best.force = mean;

@@ -13,8 +13,8 @@ namespace lsi {
 // centre. A window at least as long as the history gives the mean over the whole history; a
 // window shorter than every interval gives the largest sample.
 struct WindowedPeak {
-  double force = 0.0;   // N/m
-  double time = 0.0;    // s, centre of the window
+  double force = 0.0;  // N/m
+  double time = 0.0;   // s, centre of the window
 };
 WindowedPeak windowed_peak(const std::vector<double>& time, const std::vector<double>& force,
                            double window);
@@ -26,8 +26,8 @@ double impulse_until(const std::vector<double>& time, const std::vector<double>&
 // 5 % of the samples: the static load of what the barrier retains) by more than 10 % of the peak;
 // the time of the peak if it never does after it. Also the final value.
 struct ImpactDuration {
-  double duration = 0.0;      // s
-  double final_force = 0.0;   // N/m
+  double duration = 0.0;     // s
+  double final_force = 0.0;  // N/m
 };
 ImpactDuration impact_duration(const std::vector<double>& time, const std::vector<double>& force);
 

@@ -8,10 +8,10 @@
 namespace lsi {
 
 struct InertialFrictionInput {
-  double limit_friction_angle_deg = 0.0;    // phi_2, reached at large inertial numbers
-  double reference_inertial_number = 0.0;   // I0
-  double grain_diameter_mm = 0.0;           // d
-  double grain_density_kg_m3 = 0.0;         // rho_s, of the grains (not the bulk)
+  double limit_friction_angle_deg = 0.0;   // phi_2, reached at large inertial numbers
+  double reference_inertial_number = 0.0;  // I0
+  double grain_diameter_mm = 0.0;          // d
+  double grain_density_kg_m3 = 0.0;        // rho_s, of the grains (not the bulk)
 };
 
 }  // namespace lsi

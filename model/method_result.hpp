@@ -14,12 +14,12 @@ namespace lsi {
 // How a simulated run ended (the MPM; the closed forms have no end state). A final displacement
 // is a result only for AtRest and EndTimeLandslideMoving (the barrier at rest at the end).
 enum class EndState {
-  None,                      // not a run that can end in several ways (closed forms)
-  AtRest,                    // the landslide and the barrier came to rest
-  EndTimeLandslideMoving,    // end time reached, the barrier at rest, the landslide still moving
-  EndTimeBarrierSliding,     // end time reached with the barrier still sliding
-  BarrierLeftDomain,         // the barrier slid to the downstream end of the modelled domain
-  Unstable,                  // the run stopped unstable (MethodResult::status says why)
+  None,                    // not a run that can end in several ways (closed forms)
+  AtRest,                  // the landslide and the barrier came to rest
+  EndTimeLandslideMoving,  // end time reached, the barrier at rest, the landslide still moving
+  EndTimeBarrierSliding,   // end time reached with the barrier still sliding
+  BarrierLeftDomain,       // the barrier slid to the downstream end of the modelled domain
+  Unstable,                // the run stopped unstable (MethodResult::status says why)
 };
 
 // The token written to result files ("at_rest", ...), and back; "" for None. Throws
@@ -32,22 +32,22 @@ inline bool has_final_displacement(EndState s) {
 }
 
 struct MethodResult {
-  std::string method;                               // "empirical", "analytical", "mpm", ...
+  std::string method;  // "empirical", "analytical", "mpm", ...
   // Time histories (all the same length as `time`).
-  std::vector<double> time;                         // s
-  std::vector<double> force;                        // N/m, normal to the impacted face
-  std::vector<double> force_horizontal;             // N/m
-  std::vector<double> force_vertical;               // N/m, positive downwards on the barrier
-  std::vector<double> landslide_kinetic_energy;     // J/m
-  std::vector<double> barrier_velocity;             // m/s
-  std::vector<double> barrier_displacement;         // m
+  std::vector<double> time;                      // s
+  std::vector<double> force;                     // N/m, normal to the impacted face
+  std::vector<double> force_horizontal;          // N/m
+  std::vector<double> force_vertical;            // N/m, positive downwards on the barrier
+  std::vector<double> landslide_kinetic_energy;  // J/m
+  std::vector<double> barrier_velocity;          // m/s
+  std::vector<double> barrier_displacement;      // m
   // Scalars.
-  double peak_force = 0.0;                          // N/m (normal to the face)
-  double rise_time = 0.0;                           // s, T1
-  double impact_duration = 0.0;                     // s, T2
-  double final_displacement = 0.0;                  // m; +infinity if the barrier never stops
-                                                    // (closed forms), NaN if a run was cut
-                                                    // short before it stopped (end_state)
+  double peak_force = 0.0;          // N/m (normal to the face)
+  double rise_time = 0.0;           // s, T1
+  double impact_duration = 0.0;     // s, T2
+  double final_displacement = 0.0;  // m; +infinity if the barrier never stops
+                                    // (closed forms), NaN if a run was cut
+                                    // short before it stopped (end_state)
   // Runs (the MPM): how the run ended, and the solver's status ("finished" or why it stopped).
   EndState end_state = EndState::None;
   std::string status;

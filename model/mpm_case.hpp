@@ -23,7 +23,7 @@ namespace lsi {
 
 struct MpmCase {
   std::string name;
-  std::array<double, 2> lower{}, upper{};   // grid extent, m
+  std::array<double, 2> lower{}, upper{};  // grid extent, m
   std::array<double, 2> gravity{0.0, -lsi::gravity};
   mpm::Boundaries walls;
   std::vector<std::string> material_names;
@@ -37,11 +37,11 @@ struct MpmCase {
   struct TwoPhase {
     mpm::two_phase::Liquid liquid;
     double porosity = 0.5;
-    double conductivity = 1e-4;   // k, m/s
+    double conductivity = 1e-4;  // k, m/s
     mpm::two_phase::Drag drag = mpm::two_phase::Drag::SemiImplicit;
   };
   std::optional<TwoPhase> two_phase;
-  double landslide_initial_kinetic_energy = 0.0;   // J/m
+  double landslide_initial_kinetic_energy = 0.0;  // J/m
 };
 
 // Switches mu(I) on in a Mohr-Coulomb material (SI units; its friction angle is the static one).

@@ -77,14 +77,15 @@ MpmFootprint estimate_footprint(const MpmCase& c) {
             (std::floor((c.upper[1] - c.lower[1]) / dx + 0.5) + 1.0);
   const bool saturated = c.two_phase.has_value();
   const double copies = s.atomic_scatter ? 0.0 : host_threads();
-  f.state_bytes = f.points * (saturated ? kSaturatedPointBytes : kDryPointBytes) +
-                  f.nodes * ((saturated ? kSaturatedNodeBytes : kDryNodeBytes) +
-                             copies * (saturated ? kSaturatedScatterNodeBytes : kDryScatterNodeBytes));
+  f.state_bytes =
+      f.points * (saturated ? kSaturatedPointBytes : kDryPointBytes) +
+      f.nodes * ((saturated ? kSaturatedNodeBytes : kDryNodeBytes) +
+                 copies * (saturated ? kSaturatedScatterNodeBytes : kDryScatterNodeBytes));
   f.history_bytes = (s.end_time_s / s.output_interval_s + 1.0) * kOutputBytes;
   if (s.snapshot_interval_s > 0.0)
-    f.snapshot_bytes = (s.end_time_s / s.snapshot_interval_s + 2.0) * f.points * kSnapshotPointBytes;
-  f.first_time_step =
-      std::min(s.courant * dx / (wave_speed + speed), s.max_time_step_s);
+    f.snapshot_bytes =
+        (s.end_time_s / s.snapshot_interval_s + 2.0) * f.points * kSnapshotPointBytes;
+  f.first_time_step = std::min(s.courant * dx / (wave_speed + speed), s.max_time_step_s);
   f.max_steps = s.end_time_s / f.first_time_step;
   return f;
 }
@@ -109,12 +110,12 @@ void check_mpm_fits(const MpmCase& c) {
   if (state + f.snapshot_bytes > room) {
     const double fit = (room - state) / (f.points * kSnapshotPointBytes) - 2.0;
     require_fits("methods.mpm.snapshot_interval_s", number(s.snapshot_interval_s),
-                 "snapshots of " + approx(f.points) + " points to end_time_s = " +
-                     number(s.end_time_s) + " s",
+                 "snapshots of " + approx(f.points) +
+                     " points to end_time_s = " + number(s.end_time_s) + " s",
                  state + f.snapshot_bytes, have, "memory",
-                 fit >= 1.0 ? "a snapshot_interval_s of at least " + approx(s.end_time_s / fit) +
-                                  " s fits"
-                            : "the state leaves no room for snapshots: leave them out");
+                 fit >= 1.0
+                     ? "a snapshot_interval_s of at least " + approx(s.end_time_s / fit) + " s fits"
+                     : "the state leaves no room for snapshots: leave them out");
   }
   if (state + f.snapshot_bytes + f.history_bytes > room) {
     const double outputs = (room - state - f.snapshot_bytes) / kOutputBytes - 1.0;
@@ -122,7 +123,8 @@ void check_mpm_fits(const MpmCase& c) {
                  "the histories of a run to end_time_s (one output every output_interval_s = " +
                      approx(s.output_interval_s) + " s)",
                  state + f.snapshot_bytes + f.history_bytes, have, "memory",
-                 "an end_time_s of at most " + approx(std::max(outputs, 1.0) * s.output_interval_s) +
+                 "an end_time_s of at most " +
+                     approx(std::max(outputs, 1.0) * s.output_interval_s) +
                      " s or a longer output_interval_s fits; an impact run ends at rest before it");
   }
 }

@@ -32,23 +32,23 @@ void check_grid_size(const MpmCase& c, double thickness) {
   const double nx = std::floor((c.upper[0] - c.lower[0]) / dx + 0.5) + 1;
   const double ny = std::floor((c.upper[1] - c.lower[1]) / dx + 0.5) + 1;
   const double most = double(INT_MAX) / c.settings.particles_per_cell;
-  if (nx * ny <= most) return;   // false for NaN too
+  if (nx * ny <= most) return;  // false for NaN too
   const double width = c.upper[0] - c.lower[0], height = c.upper[1] - c.lower[1];
-  const double least = std::sqrt(width * height / most);   // cell size that would fit
+  const double least = std::sqrt(width * height / most);  // cell size that would fit
   char domain[64], remedy[96];
   std::snprintf(domain, sizeof domain, "%.3g m x %.3g m", width, height);
-  if (least <= thickness / 4)   // false for NaN and inf too
+  if (least <= thickness / 4)  // false for NaN and inf too
     std::snprintf(remedy, sizeof remedy, "needs cell_size_m >= about %.3g m", least);
   else if (std::isfinite(width * height))
     std::snprintf(remedy, sizeof remedy,
                   "too large for any cell_size_m <= landslide.thickness_m / 4");
-  else   // a subnormal cell size: the domain snapped to it overflows
+  else  // a subnormal cell size: the domain snapped to it overflows
     std::snprintf(remedy, sizeof remedy, "use a larger cell_size_m");
   throw InputError("methods.mpm.cell_size_m = " + format_number(dx) +
                    ": the MPM grid over this scene's domain (" + domain +
                    ": the flow's length and run-up v0^2 / 2g, the barrier) would have " +
-                   format_number(nx) + " x " + format_number(ny) +
-                   " nodes, more than " + format_number(std::floor(most)) +
+                   format_number(nx) + " x " + format_number(ny) + " nodes, more than " +
+                   format_number(std::floor(most)) +
                    " (the solver's int indices / particles_per_cell): " + remedy);
 }
 
@@ -70,11 +70,14 @@ std::vector<std::array<double, 2>> landslide_polygon(const SceneLandslide& l, do
   const double h = l.thickness_m;
   if (l.shape.kind == LandslideShape::Kind::Rectangle) {
     const double L = l.shape.length_m;
-    return {{front_x - L, base_y}, {front_x, base_y}, {front_x, base_y + h}, {front_x - L, base_y + h}};
+    return {
+        {front_x - L, base_y}, {front_x, base_y}, {front_x, base_y + h}, {front_x - L, base_y + h}};
   }
   // Front: 45 deg over h; body: i squares; tail: slope down over 3h. Area h^2 (1/2 + i + 3/2).
   const double body_end = front_x - h - l.shape.body_squares * h;
-  return {{body_end - 3.0 * h, base_y}, {front_x, base_y}, {front_x - h, base_y + h},
+  return {{body_end - 3.0 * h, base_y},
+          {front_x, base_y},
+          {front_x - h, base_y + h},
           {body_end, base_y + h}};
 }
 
@@ -90,21 +93,21 @@ MpmCase impact_case(const Scene& scene) {
   const double g = lsi::gravity;
   const double length = l.shape.kind == LandslideShape::Kind::Rectangle
                             ? l.shape.length_m
-                            : (4.0 + l.shape.body_squares) * h;   // front h + body + tail 3h
+                            : (4.0 + l.shape.body_squares) * h;  // front h + body + tail 3h
   // At least 4 cells through the thickness, or the flow is not resolved at all.
   if (h < 4.0 * dx)
     throw InputError("methods.mpm.cell_size_m = " + format_value(dx) +
-                     ": must be <= landslide.thickness_m / 4 = " +
-                     format_value(h / 4) + " m (at least 4 cells through the flow)");
+                     ": must be <= landslide.thickness_m / 4 = " + format_value(h / 4) +
+                     " m (at least 4 cells through the flow)");
   // The run ends once the flow has lost all but 1e-3 of its kinetic energy, which must therefore
   // be finite and positive: v0 = 1e-300 m/s underflows it to 0, v0 = 1e200 m/s overflows it.
   const double kinetic_energy = 0.5 * l.mass_kg_per_m() * v0 * v0;
   if (!(std::isfinite(kinetic_energy) && kinetic_energy > 0))
-    throw InputError("landslide.velocity_m_s = " + format_number(v0) +
-                     ": the landslide's kinetic energy m1 v0^2 / 2 = " +
-                     format_number(kinetic_energy) + " J/m (m1 = " +
-                     format_number(l.mass_kg_per_m()) +
-                     " kg/m): must be finite and > 0 for the MPM impact");
+    throw InputError(
+        "landslide.velocity_m_s = " + format_number(v0) +
+        ": the landslide's kinetic energy m1 v0^2 / 2 = " + format_number(kinetic_energy) +
+        " J/m (m1 = " + format_number(l.mass_kg_per_m()) +
+        " kg/m): must be finite and > 0 for the MPM impact");
   // The time scale of the impact: the landslide passes in L / v0; twice that, plus the fall of
   // the flow from the height of the barrier. The run ends once the landslide and the barrier are
   // at rest; the end time only bounds it, at kEndTimeScales of these (the retained flow may slump
@@ -113,11 +116,10 @@ MpmCase impact_case(const Scene& scene) {
   if (!c.settings.end_time_given) {
     c.settings.end_time_s = kEndTimeScales * impact_time;
     if (!std::isfinite(c.settings.end_time_s))
-      throw InputError("landslide.velocity_m_s = " + format_number(v0) +
-                       ": the MPM's default end time " + std::to_string(int(kEndTimeScales)) +
-                       " (2 L / v0 + 2 sqrt(2 max(H, h) / g)) = " +
-                       format_number(c.settings.end_time_s) +
-                       " s is not finite: give methods.mpm.end_time_s");
+      throw InputError(
+          "landslide.velocity_m_s = " + format_number(v0) + ": the MPM's default end time " +
+          std::to_string(int(kEndTimeScales)) + " (2 L / v0 + 2 sqrt(2 max(H, h) / g)) = " +
+          format_number(c.settings.end_time_s) + " s is not finite: give methods.mpm.end_time_s");
   }
   // The histories' default interval: 1/400 of the impact time scale, or 1/200 of a given end
   // time when that is shorter (a bound far beyond the impact keeps the impact's resolution, and
@@ -129,7 +131,7 @@ MpmCase impact_case(const Scene& scene) {
 
   // Geometry: base y = 0, barrier toe x = 0, landslide front toe touching it.
   const double beta = math::degrees_to_radians(b.face_angle_deg);
-  const double run_up = v0 * v0 / (2.0 * g);   // height a frictionless jet could climb
+  const double run_up = v0 * v0 / (2.0 * g);  // height a frictionless jet could climb
   const double pad = 3.0 * dx;
   const double x_left = -length - std::max(length, 4.0 * h) - pad;
   // Downstream: room for the barrier to slide (up to the landslide's length) and for what
@@ -152,7 +154,7 @@ MpmCase impact_case(const Scene& scene) {
 
   mpm::Material m;
   m.model = mpm::Material::Model::MohrCoulomb;
-  m.density = l.density_kg_m3;   // dry: the mixture's density; saturated: the grains' (below)
+  m.density = l.density_kg_m3;  // dry: the mixture's density; saturated: the grains' (below)
   if (c.settings.saturated) {
     // Saturated mixture rho_m = (1 - n) rho_S + n rho_L with water (rho_L = 1000 kg/m^3).
     CaseTwoPhase tp;
@@ -172,27 +174,25 @@ MpmCase impact_case(const Scene& scene) {
       throw InputError("landslide.density_kg_m3 = " + format_value(l.density_kg_m3) +
                        ": must exceed " + format_value(tp.liquid.density) +
                        " kg/m^3 (water) for a saturated MPM landslide (grain density " +
-                       format_value(rho_s) + " kg/m^3 from porosity " +
-                       format_value(n) + ")");
+                       format_value(rho_s) + " kg/m^3 from porosity " + format_value(n) + ")");
     m.density = rho_s;
     c.two_phase = tp;
     if (!c.settings.semi_implicit_drag) {
       // The explicit drag's permeability limit alone fixes the number of steps. Beyond 1e8 steps
       // (days of run time at ~1e6 particle-updates/s) the run would look like a hang: refuse it
       // with the numbers and the remedy (docs/vv/stability.md, k = 1e-8 m/s needs 1.5e-9 s steps).
-      const double dt_k = c.settings.courant *
-                          mpm::two_phase::permeability_time_step(tp.conductivity, rho_s, n,
-                                                                 tp.liquid.density, g);
+      const double dt_k = c.settings.courant * mpm::two_phase::permeability_time_step(
+                                                   tp.conductivity, rho_s, n, tp.liquid.density, g);
       const double steps = c.settings.end_time_s / std::min(dt_k, c.settings.max_time_step_s);
       if (!(steps <= kMaxExplicitDragSteps))
-        throw InputError("methods.mpm.drag = \"explicit\": the permeability limit of "
-                         "landslide.material.hydraulic_conductivity_m_s = " +
-                         format_number(tp.conductivity) + " gives time steps of " +
-                         format_number(dt_k) + " s, " +
-                         format_number(std::ceil(steps)) + " steps for end_time_s = " +
-                         format_number(c.settings.end_time_s) +
-                         " s (allowed: at most 1e8): use \"drag\": \"semi-implicit\" (no "
-                         "permeability limit) or a shorter end_time_s");
+        throw InputError(
+            "methods.mpm.drag = \"explicit\": the permeability limit of "
+            "landslide.material.hydraulic_conductivity_m_s = " +
+            format_number(tp.conductivity) + " gives time steps of " + format_number(dt_k) +
+            " s, " + format_number(std::ceil(steps)) +
+            " steps for end_time_s = " + format_number(c.settings.end_time_s) +
+            " s (allowed: at most 1e8): use \"drag\": \"semi-implicit\" (no "
+            "permeability limit) or a shorter end_time_s");
     }
   }
   m.young_modulus = in_pascal(l.material.young_modulus_mpa, 1e6, "young_modulus_mpa", "MPa");
@@ -211,7 +211,7 @@ MpmCase impact_case(const Scene& scene) {
   body.velocity = {v0, 0.0};
   body.points_per_cell_direction =
       static_cast<int>(std::lround(std::sqrt(c.settings.particles_per_cell)));
-  body.geostatic_k0 = 1.0 - std::sin(m.friction_angle);   // Jaky, normally consolidated
+  body.geostatic_k0 = 1.0 - std::sin(m.friction_angle);  // Jaky, normally consolidated
   body.surface_from_polygon = true;
   body.gravity = g;
   c.bodies = {body};

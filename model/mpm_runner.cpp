@@ -41,7 +41,7 @@ MpmSnapshot take_snapshot(const mpm::Particles<Mem>& p, double time) {
   s.stress.resize(4 * n);
   s.deviatoric_strain.resize(n);
   s.plastic_work.resize(n);
-  for (size_t i = 0; i < n; ++i) {   // element access: correct whatever the views' layout
+  for (size_t i = 0; i < n; ++i) {  // element access: correct whatever the views' layout
     for (size_t k = 0; k < 2; ++k) {
       s.position[2 * i + k] = pos(i, k);
       s.velocity[2 * i + k] = vel(i, k);
@@ -157,7 +157,8 @@ double add_energies(const SaturatedSolver& sv, const AddSeries& add) {
   const mpm::two_phase::TwoPhaseEnergyReport e = sv.energy();
   add("kinetic_energy", "J/m", "kinetic energy of both phases of all material points", e.kinetic());
   add("kinetic_energy_liquid", "J/m", "kinetic energy of the pore liquid", e.kinetic_liquid);
-  add("elastic_energy", "J/m", "elastic strain energy of the skeleton (effective stress)", e.elastic);
+  add("elastic_energy", "J/m", "elastic strain energy of the skeleton (effective stress)",
+      e.elastic);
   add("liquid_energy", "J/m", "energy stored in the compressed pore liquid", e.liquid);
   add("potential_energy", "J/m", "gravitational potential energy -m g.x", e.potential);
   add("plastic_dissipation", "J/m", "work dissipated by plastic flow (accumulated)", e.plastic);
@@ -183,8 +184,9 @@ class ReportedPorePressure {
  public:
   ReportedPorePressure(const SaturatedSolver& sv, bool cell_mean)
       : cell_mean_(cell_mean),
-        field_(cell_mean ? Kokkos::View<double*, Mem>("reported_pore_pressure", sv.particles().count)
-                         : sv.particles().pore_pressure) {}
+        field_(cell_mean
+                   ? Kokkos::View<double*, Mem>("reported_pore_pressure", sv.particles().count)
+                   : sv.particles().pore_pressure) {}
   Kokkos::View<const double*, Mem> of(const SaturatedSolver& sv) const {
     if (cell_mean_)
       mpm::two_phase::cell_mean_pore_pressure<Exec>(sv.particles(), sv.grid(), field_);
@@ -243,8 +245,8 @@ void add_face_outputs(const SaturatedSolver& sv, const SaturatedOutputs& o, cons
           ? "largest pore pressure (cell mean) of the points within one cell in front of the "
             "upstream face"
           : "largest pore pressure of the points within one cell in front of the upstream face",
-      mpm::two_phase::face_pore_pressure<Exec>(sv.particles(), o.pressure.of(sv),
-                                               c.barrier->shape, sv.barrier().motion.displacement,
+      mpm::two_phase::face_pore_pressure<Exec>(sv.particles(), o.pressure.of(sv), c.barrier->shape,
+                                               sv.barrier().motion.displacement,
                                                c.settings.cell_size_m));
 }
 
@@ -261,7 +263,7 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
     sr.values.push_back(v);
   };
   const double snap_dt = c.settings.snapshot_interval_s;
-  long next_snap = 0;   // index of the next snapshot time, next_snap * snap_dt
+  long next_snap = 0;  // index of the next snapshot time, next_snap * snap_dt
   // Output times overshoot their targets by a step; this only absorbs the solver's rounding.
   const double snap_tol = 1e-9 * std::min(snap_dt, c.settings.output_interval_s);
   const double min_dt = solver.settings().min_time_step;
@@ -293,7 +295,8 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
     // (F_x, F_y) gives that moment, z F_x - (z / tan(beta) - B) F_y = M (0 without a load).
     const auto& sh = c.barrier->shape;
     const double fx0 = imp[0][0] * inv, fy0 = imp[0][1] * inv;
-    const double cot = std::fabs(sh.face_angle - 0.5 * math::pi()) < 1e-12 ? 0.0 : 1.0 / std::tan(sh.face_angle);
+    const double cot =
+        std::fabs(sh.face_angle - 0.5 * math::pi()) < 1e-12 ? 0.0 : 1.0 / std::tan(sh.face_angle);
     const double denominator = fx0 - fy0 * cot;
     add("face_resultant_height", "m",
         "height above the base of the resultant of the upstream face's load (0 without a load)",
@@ -357,7 +360,7 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
         const auto& motion = sv.barrier().motion;
         if (c.barrier->shape.toe[0] + c.barrier->shape.base_width + motion.displacement >
             c.walls.right.position - 2.0 * c.settings.cell_size_m) {
-          barrier_left = true;   // it would push into the downstream wall
+          barrier_left = true;  // it would push into the downstream wall
           return true;
         }
         return r.landslide_kinetic_energy.back() < 1e-3 * c.landslide_initial_kinetic_energy &&
@@ -382,12 +385,12 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
     // At rest: the landslide's kinetic energy below 1e-3 of its initial value and the barrier
     // not sliding (the test that ends the run early); else the run was cut short.
     const bool sliding = solver.barrier().motion.sliding();
-    const bool landslide_rest = !r.landslide_kinetic_energy.empty() &&
-                                r.landslide_kinetic_energy.back() <
-                                    1e-3 * c.landslide_initial_kinetic_energy;
-    r.end_state = !run.finished   ? EndState::Unstable
-                  : barrier_left  ? EndState::BarrierLeftDomain
-                  : sliding       ? EndState::EndTimeBarrierSliding
+    const bool landslide_rest =
+        !r.landslide_kinetic_energy.empty() &&
+        r.landslide_kinetic_energy.back() < 1e-3 * c.landslide_initial_kinetic_energy;
+    r.end_state = !run.finished    ? EndState::Unstable
+                  : barrier_left   ? EndState::BarrierLeftDomain
+                  : sliding        ? EndState::EndTimeBarrierSliding
                   : landslide_rest ? EndState::AtRest
                                    : EndState::EndTimeLandslideMoving;
   }
@@ -399,7 +402,7 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
       run.solver_seconds > 0 ? double(particle_count) * solver.steps() / run.solver_seconds : 0.0;
   run.saturated = c.two_phase.has_value();
   r.peak_force = r.rise_time = r.impact_duration = r.final_displacement =
-      std::numeric_limits<double>::quiet_NaN();   // not an impact: not given
+      std::numeric_limits<double>::quiet_NaN();  // not an impact: not given
   // A run that stopped unstable keeps its histories up to the stop; its summary would look like
   // a result, so it is not given.
   if (c.barrier && !r.force.empty() && run.finished)
@@ -434,7 +437,6 @@ void ensure_kokkos() {
   });
 }
 
-
 namespace {
 // The settings both solvers read (kernels/mpm/solver_settings.hpp), from the case's.
 template <class SettingsT>
@@ -458,7 +460,7 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
   MpmOutcome out;
   const double lo[2] = {c.lower[0], c.lower[1]}, hi[2] = {c.upper[0], c.upper[1]};
   const double dx = c.settings.cell_size_m;
-  if (!c.two_phase) {   // dry: the single-phase path, no liquid field allocated
+  if (!c.two_phase) {  // dry: the single-phase path, no liquid field allocated
     mpm::Grid<Mem> grid(lo, hi, dx);
     auto particles = mpm::build_particles<Mem>(c.bodies, c.materials, lo, dx);
     auto s = solver_settings<mpm::Settings>(c);
@@ -478,17 +480,20 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
     t.hydraulic_conductivity = c.two_phase->conductivity;
     bodies.push_back(t);
   }
-  auto particles = tp::build_two_phase_particles<Mem>(bodies, c.materials, c.two_phase->liquid, lo, dx);
+  auto particles =
+      tp::build_two_phase_particles<Mem>(bodies, c.materials, c.two_phase->liquid, lo, dx);
   auto s = solver_settings<tp::TwoPhaseSettings>(c);
   s.drag = c.two_phase->drag;
   s.cell_pore_pressure = c.settings.cell_pore_pressure;
   // The pore liquid does not penetrate the walls (impermeable) and slides along them freely.
   mpm::Boundaries liquid_walls = c.walls;
-  for (mpm::Wall* w : {&liquid_walls.left, &liquid_walls.right, &liquid_walls.bottom, &liquid_walls.top}) {
+  for (mpm::Wall* w :
+       {&liquid_walls.left, &liquid_walls.right, &liquid_walls.bottom, &liquid_walls.top}) {
     w->friction = 0.0;
     w->no_slip = false;
   }
-  SaturatedSolver solver(grid, particles, c.materials, c.two_phase->liquid, c.walls, liquid_walls, s);
+  SaturatedSolver solver(grid, particles, c.materials, c.two_phase->liquid, c.walls, liquid_walls,
+                         s);
   if (c.barrier) solver.attach_barrier(*c.barrier);
   drive(c, solver, particles.count, out);
   return out;

@@ -12,14 +12,14 @@ namespace lsi {
 
 // The material points at one time, copied to the host; arrays are row-major, n = `count` rows.
 struct MpmSnapshot {
-  double time = 0.0;                       // s, the solver time of the output it was taken at
+  double time = 0.0;  // s, the solver time of the output it was taken at
   int count = 0;
-  std::vector<double> position;            // n x 2, m
-  std::vector<double> velocity;            // n x 2, m/s
-  std::vector<double> stress;              // n x 4 (xx, yy, xy, zz), Pa, tension positive
-  std::vector<double> deviatoric_strain;   // n, accumulated equivalent shear strain
-  std::vector<double> plastic_work;        // n, J/m dissipated (accumulated)
-  std::vector<double> pore_pressure;       // n, Pa, compression positive (saturated runs only)
+  std::vector<double> position;           // n x 2, m
+  std::vector<double> velocity;           // n x 2, m/s
+  std::vector<double> stress;             // n x 4 (xx, yy, xy, zz), Pa, tension positive
+  std::vector<double> deviatoric_strain;  // n, accumulated equivalent shear strain
+  std::vector<double> plastic_work;       // n, J/m dissipated (accumulated)
+  std::vector<double> pore_pressure;      // n, Pa, compression positive (saturated runs only)
 };
 
 struct MpmOutcome {

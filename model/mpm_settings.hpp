@@ -12,7 +12,7 @@ inline constexpr double kDefaultPeakForceWindow = 0.2;
 
 struct MpmSettings {
   double cell_size_m = 0.1;
-  int particles_per_cell = 4;         // a perfect square: n x n points per cell
+  int particles_per_cell = 4;  // a perfect square: n x n points per cell
   double courant = 0.5;
   double end_time_s = 1.0;
   double max_time_step_s = 1e300;
@@ -25,16 +25,16 @@ struct MpmSettings {
   bool transfer_dissipation = false;  // account the energy lost in the grid transfers
   // Impact scenes only (a landslide scene with `methods.mpm`; the flow's base friction is the
   // landslide's, SceneLandslide::base_friction):
-  bool saturated = true;              // "phases": "saturated" (two-phase, the paper) or "dry"
-  bool semi_implicit_drag = true;     // "drag": "semi-implicit" or "explicit" (saturated only)
-  bool cell_pore_pressure = false;    // "pore_pressure": "point" or "cell" (saturated only)
+  bool saturated = true;            // "phases": "saturated" (two-phase, the paper) or "dry"
+  bool semi_implicit_drag = true;   // "drag": "semi-implicit" or "explicit" (saturated only)
+  bool cell_pore_pressure = false;  // "pore_pressure": "point" or "cell" (saturated only)
   // "pore_pressure_output": the pore pressure of snapshots and of the face as its cell's mean
   // ("cell", the default: the per-point field rings from point to point) or per point ("point").
   bool cell_mean_pore_pressure_output = true;
   // The peak force is also reported as the largest mean over any window of this length (s);
   // impact scenes: kDefaultPeakForceWindow unless the scene gives it.
   double peak_force_window_s = 0.0;
-  bool end_time_given = true;         // false: end_time_s is the impact scene's default
+  bool end_time_given = true;  // false: end_time_s is the impact scene's default
 
   bool operator==(const MpmSettings&) const = default;
 };

@@ -13,8 +13,7 @@ double seconds_between(std::chrono::steady_clock::time_point a,
 }
 }  // namespace
 
-StatusLine::StatusLine(bool enabled)
-    : enabled_(enabled), last_(std::chrono::steady_clock::now()) {}
+StatusLine::StatusLine(bool enabled) : enabled_(enabled), last_(std::chrono::steady_clock::now()) {}
 
 bool StatusLine::due() {
   const auto now = std::chrono::steady_clock::now();
@@ -44,7 +43,9 @@ Progress::Progress(std::string label, double end_time)
     : Progress(std::move(label), end_time, isatty(STDERR_FILENO) == 1) {}
 
 Progress::Progress(std::string label, double end_time, bool enabled)
-    : label_(std::move(label)), end_time_(end_time), status_(enabled),
+    : label_(std::move(label)),
+      end_time_(end_time),
+      status_(enabled),
       start_(std::chrono::steady_clock::now()) {}
 
 std::string Progress::line(const std::string& label, double time, double end_time, long steps,
@@ -69,9 +70,12 @@ std::string Progress::estimate(const std::string& label, double time, double end
   const double total = seconds * end_time / time;
   if (!(total > kLongRunSeconds)) return "";
   char took[64], buf[384];
-  if (total < 2 * 3600.0) std::snprintf(took, sizeof took, "%.0f min", total / 60.0);
-  else if (total < 2 * 86400.0) std::snprintf(took, sizeof took, "%.1f h", total / 3600.0);
-  else std::snprintf(took, sizeof took, "%.3g days", total / 86400.0);
+  if (total < 2 * 3600.0)
+    std::snprintf(took, sizeof took, "%.0f min", total / 60.0);
+  else if (total < 2 * 86400.0)
+    std::snprintf(took, sizeof took, "%.1f h", total / 3600.0);
+  else
+    std::snprintf(took, sizeof took, "%.3g days", total / 86400.0);
   std::snprintf(buf, sizeof buf,
                 "%s: at the rate of the first %.0f s, end_time_s = %.6g s takes about %s of run "
                 "time (an impact run ends earlier, once at rest)",
@@ -94,7 +98,9 @@ void Progress::update(double time, long steps) {
 void Progress::finish() { status_.clear(); }
 
 SampleProgress::SampleProgress(std::string label, std::uint64_t total, bool enabled)
-    : label_(std::move(label)), total_(total), status_(enabled && isatty(STDERR_FILENO) == 1),
+    : label_(std::move(label)),
+      total_(total),
+      status_(enabled && isatty(STDERR_FILENO) == 1),
       start_(std::chrono::steady_clock::now()) {}
 
 std::string SampleProgress::line(const std::string& label, std::uint64_t done, std::uint64_t total,
@@ -111,8 +117,8 @@ std::string SampleProgress::line(const std::string& label, std::uint64_t done, s
 
 void SampleProgress::update(std::uint64_t done, std::uint64_t done_here) {
   if (!status_.enabled()) return;
-  status_.show(
-      line(label_, done, total_, done_here, seconds_between(start_, std::chrono::steady_clock::now())));
+  status_.show(line(label_, done, total_, done_here,
+                    seconds_between(start_, std::chrono::steady_clock::now())));
 }
 
 }  // namespace lsi

@@ -15,7 +15,7 @@ namespace lsi {
 // The line both progress kinds rewrite.
 class StatusLine {
  public:
-  explicit StatusLine(bool enabled);   // disabled: shows nothing
+  explicit StatusLine(bool enabled);  // disabled: shows nothing
   ~StatusLine() { clear(); }
   bool enabled() const { return enabled_; }
   // True at most twice a second (the first call after construction is not due).
@@ -23,7 +23,7 @@ class StatusLine {
   void show(const std::string& text);
   // A line that stays (the status line is cleared first, and shown again by the next show()).
   void print_above(const std::string& text);
-  void clear();   // removes the status line (if one was shown)
+  void clear();  // removes the status line (if one was shown)
 
  private:
   bool enabled_, shown_ = false;
@@ -32,10 +32,10 @@ class StatusLine {
 
 class Progress {
  public:
-  Progress(std::string label, double end_time);   // enabled iff stderr is a terminal
+  Progress(std::string label, double end_time);  // enabled iff stderr is a terminal
   Progress(std::string label, double end_time, bool enabled);
   void update(double time, long steps);
-  void finish();   // ends the line (if anything was printed)
+  void finish();  // ends the line (if anything was printed)
   // The line update() prints, for the given state (exposed for tests).
   static std::string line(const std::string& label, double time, double end_time, long steps,
                           double seconds);

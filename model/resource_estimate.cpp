@@ -50,7 +50,7 @@ std::uint64_t cgroup_room() {
     } catch (...) {
       return 0;
     }
-    if (limit >= (std::uint64_t(1) << 60)) return 0;   // v1 writes "unlimited" as a huge number
+    if (limit >= (std::uint64_t(1) << 60)) return 0;  // v1 writes "unlimited" as a huge number
     return limit > used ? limit - used : 1;
   }
   return 0;
@@ -70,7 +70,7 @@ std::uint64_t address_space_room() {
 }  // namespace
 
 std::uint64_t available_memory_bytes() {
-  std::uint64_t room = 0;   // 0: no bound known yet
+  std::uint64_t room = 0;  // 0: no bound known yet
   for (const std::uint64_t bound :
        {meminfo_kib("MemAvailable:") * 1024, cgroup_room(), address_space_room()})
     if (bound != 0) room = room == 0 ? bound : std::min(room, bound);
@@ -107,9 +107,9 @@ void require_fits(const std::string& field, const std::string& value, const std:
                   double need, std::uint64_t have, const std::string& kind,
                   const std::string& remedy) {
   if (have == 0 || need <= static_cast<double>(have)) return;
-  throw InputError(field + " = " + value + ": " + what + " would take about " +
-                    format_bytes(need) + " of " + kind + ", " +
-                    format_bytes(static_cast<double>(have)) + " available (" + remedy + ")");
+  throw InputError(field + " = " + value + ": " + what + " would take about " + format_bytes(need) +
+                   " of " + kind + ", " + format_bytes(static_cast<double>(have)) + " available (" +
+                   remedy + ")");
 }
 
 }  // namespace lsi

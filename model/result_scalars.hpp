@@ -18,48 +18,48 @@ struct ResultScalars {
   using Value = std::optional<double>;
 
   // The load (every method).
-  Value peak_force_horizontal;          // N/m, horizontal component of the peak
-  Value impulse;                        // N s/m, the force's impulse during the impact
+  Value peak_force_horizontal;  // N/m, horizontal component of the peak
+  Value impulse;                // N s/m, the force's impulse during the impact
   // The barrier's motion (closed forms with a free barrier).
-  Value barrier_start_time;             // s, when it starts sliding; empty if it never does
-  Value barrier_stop_time;              // s, when it stops; +inf if it never does
-  Value largest_barrier_velocity;       // m/s (momentum-consistent barrier)
-  Value flow_friction_deceleration;     // m/s^2, of the flow on its base (momentum-consistent)
+  Value barrier_start_time;          // s, when it starts sliding; empty if it never does
+  Value barrier_stop_time;           // s, when it stops; +inf if it never does
+  Value largest_barrier_velocity;    // m/s (momentum-consistent barrier)
+  Value flow_friction_deceleration;  // m/s^2, of the flow on its base (momentum-consistent)
   // The barrier's safety under the load history.
-  Value min_sliding_safety;             // -, +inf for a load that cannot make it slide
-  Value min_overturning_safety;         // -, +inf for a load that cannot tip it
-  Value overturning_resultant_height;   // m, of the face load at the largest moment
-  Value overturning_moment_max;         // N m/m, about the downstream toe (MPM)
+  Value min_sliding_safety;            // -, +inf for a load that cannot make it slide
+  Value min_overturning_safety;        // -, +inf for a load that cannot tip it
+  Value overturning_resultant_height;  // m, of the face load at the largest moment
+  Value overturning_moment_max;        // N m/m, about the downstream toe (MPM)
   // The empirical model.
-  Value froude_number;                  // -
-  Value alpha;                          // -, dynamic coefficient a1 Fr^a2
-  Value normal_velocity;                // m/s, the flow's velocity normal to the face
-  Value peak_force_dynamic;             // N/m
-  Value peak_force_static;              // N/m
-  Value landslide_mass;                 // kg/m
+  Value froude_number;       // -
+  Value alpha;               // -, dynamic coefficient a1 Fr^a2
+  Value normal_velocity;     // m/s, the flow's velocity normal to the face
+  Value peak_force_dynamic;  // N/m
+  Value peak_force_static;   // N/m
+  Value landslide_mass;      // kg/m
   // The two-body model.
-  Value lambda;                         // -, s1,max / L1,0
-  Value tau;                            // -, T1 / T2
-  Value reduced_mass;                   // kg/m
-  Value max_shortening;                 // m, s1,max
-  Value K1;                             // N/m^2
-  Value q1;                             // 1/s
-  Value common_velocity;                // m/s
+  Value lambda;           // -, s1,max / L1,0
+  Value tau;              // -, T1 / T2
+  Value reduced_mass;     // kg/m
+  Value max_shortening;   // m, s1,max
+  Value K1;               // N/m^2
+  Value q1;               // 1/s
+  Value common_velocity;  // m/s
   // Literature peak-force families.
-  Value hydrostatic_k;                  // -
-  Value hydrodynamic_alpha;             // -
+  Value hydrostatic_k;       // -
+  Value hydrodynamic_alpha;  // -
   // An MPM impact.
-  Value peak_force_windowed;            // N/m, the largest mean over the averaging window
-  Value peak_force_windowed_time;       // s, the window's centre
-  Value peak_force_window;              // s, the window
-  Value final_force;                    // N/m, the force left after the impact
-  Value displacement_at_end;            // m, the barrier's displacement when the run ended
-  Value overtopped_volume_m2;           // m^2/m, landslide beyond the barrier's crest at the end
-  Value overtopped_inside_barrier_m2;   // m^2/m, of it inside the barrier (the contact's leak)
-  Value retained_volume_m2;             // m^2/m, upstream of the barrier at the end
-  Value face_pore_pressure_max_pa;      // Pa, largest pore pressure on the face
-  Value barrier_interior_volume_max_m2; // m^2/m, largest landslide volume inside the barrier
-  Value transfer_dissipation_j_per_m;   // J/m, kinetic energy lost in the grid transfers
+  Value peak_force_windowed;              // N/m, the largest mean over the averaging window
+  Value peak_force_windowed_time;         // s, the window's centre
+  Value peak_force_window;                // s, the window
+  Value final_force;                      // N/m, the force left after the impact
+  Value displacement_at_end;              // m, the barrier's displacement when the run ended
+  Value overtopped_volume_m2;             // m^2/m, landslide beyond the barrier's crest at the end
+  Value overtopped_inside_barrier_m2;     // m^2/m, of it inside the barrier (the contact's leak)
+  Value retained_volume_m2;               // m^2/m, upstream of the barrier at the end
+  Value face_pore_pressure_max_pa;        // Pa, largest pore pressure on the face
+  Value barrier_interior_volume_max_m2;   // m^2/m, largest landslide volume inside the barrier
+  Value transfer_dissipation_j_per_m;     // J/m, kinetic energy lost in the grid transfers
   Value energy_residual_unexplained_min;  // -, of the energy balance, relative
   Value energy_residual_unexplained_max;  // -
 };
@@ -68,11 +68,11 @@ struct ResultScalars {
 struct RunStatistics {
   std::int64_t particles = 0;
   std::int64_t steps = 0;
-  double end_time = 0.0;                    // s, simulated time reached
-  bool finished = false;                    // false: stopped unstable
-  double solver_seconds = 0.0;              // s, wall time without output
+  double end_time = 0.0;        // s, simulated time reached
+  bool finished = false;        // false: stopped unstable
+  double solver_seconds = 0.0;  // s, wall time without output
   double particle_updates_per_second = 0.0;
-  bool saturated = false;                   // two-phase
+  bool saturated = false;  // two-phase
 };
 
 // The error bars a grid-convergence study gives the MPM's outputs: for each output (named as in
@@ -82,14 +82,14 @@ struct ErrorBar {
   bool converged = false;
 };
 struct ConvergenceBars {
-  int finer_cells = 0;          // cells through the thickness of the finer runs
-  double finer_courant = 0.0;   // Courant number of the finer-step runs
+  int finer_cells = 0;         // cells through the thickness of the finer runs
+  double finer_courant = 0.0;  // Courant number of the finer-step runs
   std::map<std::string, ErrorBar> outputs;
 };
 
 // One row of the table that names the scalars.
 struct ScalarField {
-  const char* name;    // in result files and summaries
+  const char* name;  // in result files and summaries
   const char* units;
   std::optional<double> ResultScalars::*member;
 };

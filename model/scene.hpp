@@ -17,8 +17,8 @@ namespace lsi {
 struct LandslideShape {
   enum class Kind { FrontBodyTail, Rectangle };
   Kind kind = Kind::FrontBodyTail;
-  int body_squares = 4;    // front-body-tail: number i of h x h squares between front and tail
-  double length_m = 0.0;   // rectangle: its length
+  int body_squares = 4;   // front-body-tail: number i of h x h squares between front and tail
+  double length_m = 0.0;  // rectangle: its length
 };
 
 // Material of the landslide mixture; only the MPM uses it. Defaults: the paper's section 4.1.
@@ -36,9 +36,9 @@ struct LandslideMaterial {
 };
 
 struct SceneLandslide {
-  double thickness_m = 0.0;      // h
-  double velocity_m_s = 0.0;     // v0 = v1,0, horizontal approach velocity
-  double density_kg_m3 = 0.0;    // rho_m, mixture density
+  double thickness_m = 0.0;    // h
+  double velocity_m_s = 0.0;   // v0 = v1,0, horizontal approach velocity
+  double density_kg_m3 = 0.0;  // rho_m, mixture density
   LandslideShape shape;
   LandslideMaterial material;
   // tan(phi_b): Coulomb friction of the flow on its base (the paper's F1, Fig. 1); 0 is the
@@ -52,14 +52,15 @@ struct SceneLandslide {
 };
 
 struct SceneBarrier {
-  double height_m = 0.0;         // H
-  double base_width_m = 0.0;     // B
-  double top_width_m = 0.0;      // b
-  double face_angle_deg = 90.0;  // beta, inclination of the impacted (upstream) face from horizontal
-  std::optional<double> density_kg_m3;   // exactly one of density and mass_kg_per_m is given
+  double height_m = 0.0;      // H
+  double base_width_m = 0.0;  // B
+  double top_width_m = 0.0;   // b
+  double face_angle_deg =
+      90.0;  // beta, inclination of the impacted (upstream) face from horizontal
+  std::optional<double> density_kg_m3;  // exactly one of density and mass_kg_per_m is given
   std::optional<double> mass_kg_per_m;
-  double base_friction = 0.5;    // tan(delta_b)
-  double face_friction = 0.3;    // tan(delta)
+  double base_friction = 0.5;  // tan(delta_b)
+  double face_friction = 0.3;  // tan(delta)
   bool fixed = false;
   double area_m2() const { return 0.5 * (base_width_m + top_width_m) * height_m; }
   double mass() const { return mass_kg_per_m ? *mass_kg_per_m : *density_kg_m3 * area_m2(); }
@@ -90,7 +91,7 @@ struct AnalyticalParameters {
 // Literature peak-force families with user-given coefficients (docs/theory/models.md, "Literature
 // peak-force families").
 struct LiteratureParameters {
-  std::string family = "mixed";   // "hydrostatic" | "hydrodynamic" | "mixed"
+  std::string family = "mixed";  // "hydrostatic" | "hydrodynamic" | "mixed"
   std::optional<double> hydrostatic_k;
   std::optional<double> hydrodynamic_alpha;
 };
@@ -99,7 +100,7 @@ struct SceneMethods {
   std::optional<EmpiricalParameters> empirical;
   std::optional<AnalyticalParameters> analytical;
   std::optional<LiteratureParameters> literature;
-  std::optional<MpmSettings> mpm;     // the `methods.mpm` block, parsed
+  std::optional<MpmSettings> mpm;  // the `methods.mpm` block, parsed
 };
 
 struct Scene {
@@ -107,7 +108,7 @@ struct Scene {
   SceneLandslide landslide;
   SceneBarrier barrier;
   SceneMethods methods;
-  nlohmann::json source;   // the scene as read (stored in the HDF5 root attribute `scene`)
+  nlohmann::json source;  // the scene as read (stored in the HDF5 root attribute `scene`)
 };
 
 }  // namespace lsi

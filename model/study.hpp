@@ -18,15 +18,15 @@
 namespace lsi {
 
 struct StudyInput {
-  std::string path;                 // JSON pointer into the scene, e.g. /landslide/thickness_m
-  int field = -1;                   // sweeps::SceneField, or -1 for an MPM-only key (/methods/mpm/...)
+  std::string path;  // JSON pointer into the scene, e.g. /landslide/thickness_m
+  int field = -1;    // sweeps::SceneField, or -1 for an MPM-only key (/methods/mpm/...)
   sweeps::DistributionSpec distribution;
 };
 
 // P(output > above) is estimated for each method that gives the output (or only `method`).
 struct StudyThreshold {
-  std::string method;               // empty: every method of the study
-  std::string output;               // peak_force, rise_time, impact_duration, final_displacement
+  std::string method;  // empty: every method of the study
+  std::string output;  // peak_force, rise_time, impact_duration, final_displacement
   double above = 0.0;
 };
 
@@ -37,39 +37,39 @@ struct StudyStop {
   // enough: for "mean", half-width <= relative_half_width * |mean|; for "exceedance",
   // half-width <= half_width (an absolute probability).
   bool has_interval_rule = false;
-  std::string method, output, statistic;   // statistic: "mean" or "exceedance"
-  double threshold = 0.0;                  // exceedance: P(output > threshold)
+  std::string method, output, statistic;  // statistic: "mean" or "exceedance"
+  double threshold = 0.0;                 // exceedance: P(output > threshold)
   double relative_half_width = 0.0, half_width = 0.0;
-  std::uint64_t min_samples = 1000;        // never stop on the interval before this many
+  std::uint64_t min_samples = 1000;  // never stop on the interval before this many
 };
 
 // Study key `mpm_at_quantiles`: run the MPM on the samples at these quantiles of method/output.
 struct StudyQuantileMpm {
   std::string method, output;
-  std::vector<double> quantiles;   // each in (0, 1)
+  std::vector<double> quantiles;  // each in (0, 1)
 };
 
 struct Study {
   std::string name;
-  std::string path;                        // the study file ("" if not read from a file)
-  nlohmann::json scene_document;           // the base scene as JSON
-  Scene base;                              // ... parsed
-  sweeps::SceneValues base_values;         // ... as the closed-form sweep kernel sees it
+  std::string path;                 // the study file ("" if not read from a file)
+  nlohmann::json scene_document;    // the base scene as JSON
+  Scene base;                       // ... parsed
+  sweeps::SceneValues base_values;  // ... as the closed-form sweep kernel sees it
   std::vector<StudyInput> inputs;
-  std::vector<std::vector<double>> correlation;   // empty, or inputs x inputs
+  std::vector<std::vector<double>> correlation;  // empty, or inputs x inputs
   sweeps::Design design = sweeps::Design::MonteCarlo;
   std::uint64_t seed = 0;
   std::uint64_t samples = 0;
-  std::vector<std::string> methods;        // out of empirical, analytical, mpm (in this order)
-  std::vector<std::string> outputs;        // out of peak_force, rise_time, impact_duration,
-                                           // final_displacement (in this order)
+  std::vector<std::string> methods;  // out of empirical, analytical, mpm (in this order)
+  std::vector<std::string> outputs;  // out of peak_force, rise_time, impact_duration,
+                                     // final_displacement (in this order)
   std::vector<StudyThreshold> thresholds;
   double confidence = 0.95;
   StudyStop stop;
   std::optional<StudyQuantileMpm> mpm_at_quantiles;
-  std::uint64_t chunk_samples = 0;         // samples per chunk (the unit of work and of resume)
-  nlohmann::json source;                   // the study with its scene inlined (stored in results)
-  std::string fingerprint;                 // hash of `source`: results of other studies are refused
+  std::uint64_t chunk_samples = 0;  // samples per chunk (the unit of work and of resume)
+  nlohmann::json source;            // the study with its scene inlined (stored in results)
+  std::string fingerprint;          // hash of `source`: results of other studies are refused
 
   bool runs(const std::string& method) const;
   // The study's sampler: counter-based, sample i's inputs depend on i alone (every sampler of

@@ -16,7 +16,6 @@ namespace {
 
 using nlohmann::json;
 
-
 double as_double(const json& v) {
   if (v.is_number()) return v.get<double>();
   const std::string s = v.get<std::string>();
@@ -25,14 +24,20 @@ double as_double(const json& v) {
   return NAN;
 }
 
-json interval(const sweeps::Interval& i) { return json::array({json_number(i.low), json_number(i.high)}); }
+json interval(const sweeps::Interval& i) {
+  return json::array({json_number(i.low), json_number(i.high)});
+}
 
 const char* design_name(sweeps::Design d) {
   switch (d) {
-    case sweeps::Design::MonteCarlo: return "monte-carlo";
-    case sweeps::Design::LatinHypercube: return "latin-hypercube";
-    case sweeps::Design::Sobol: return "sobol";
-    case sweeps::Design::Grid: return "grid";
+    case sweeps::Design::MonteCarlo:
+      return "monte-carlo";
+    case sweeps::Design::LatinHypercube:
+      return "latin-hypercube";
+    case sweeps::Design::Sobol:
+      return "sobol";
+    case sweeps::Design::Grid:
+      return "grid";
   }
   return "?";
 }
@@ -62,8 +67,10 @@ json sweep_statistics(const Study& study, const SweepTable& table) {
   std::vector<std::size_t> ok;
   std::map<std::string, std::size_t> failed;
   for (std::size_t i = 0; i < n; ++i) {
-    if (table.status[i] == static_cast<std::int8_t>(SampleStatus::ok)) ok.push_back(i);
-    else ++failed[describe(static_cast<SampleStatus>(table.status[i]))];
+    if (table.status[i] == static_cast<std::int8_t>(SampleStatus::ok))
+      ok.push_back(i);
+    else
+      ++failed[describe(static_cast<SampleStatus>(table.status[i]))];
   }
   j["design"] = design_name(study.design);
   j["samples_planned"] = study.samples;
@@ -72,8 +79,9 @@ json sweep_statistics(const Study& study, const SweepTable& table) {
   j["samples_failed"] = failed;
   j["confidence"] = study.confidence;
   if (study.design != sweeps::Design::MonteCarlo)
-    j["note"] = "confidence intervals assume independent samples; for Latin-hypercube, Sobol "
-                "and grid designs they are indicative only";
+    j["note"] =
+        "confidence intervals assume independent samples; for Latin-hypercube, Sobol "
+        "and grid designs they are indicative only";
   // Each column is described on its own (a sort of its ok values, then the sums in sorted
   // order), so the columns run in parallel and the results do not depend on the thread count.
   const std::size_t columns = table.output_columns.size();
@@ -202,7 +210,7 @@ bool interval_rule_met(const Study& study, const std::vector<double>& values, st
   char buf[256];
   if (r.statistic == "mean") {
     for (double v : values)
-      if (!std::isfinite(v)) return false;   // an infinite mean has no interval
+      if (!std::isfinite(v)) return false;  // an infinite mean has no interval
     const sweeps::OutputStatistics s = sweeps::describe(values, study.confidence);
     const double half = 0.5 * (s.mean_ci.high - s.mean_ci.low);
     if (!(half <= r.relative_half_width * std::fabs(s.mean))) return false;
@@ -215,10 +223,11 @@ bool interval_rule_met(const Study& study, const std::vector<double>& values, st
     const sweeps::ExceedanceEstimate e = sweeps::exceedance(values, r.threshold, study.confidence);
     const double half = 0.5 * (e.ci.high - e.ci.low);
     if (!(half <= r.half_width)) return false;
-    std::snprintf(buf, sizeof buf,
-                  "confidence interval: P(%s/%s > %g) = %.6g +- %.3g (<= %.3g) after %zu ok samples",
-                  r.method.c_str(), r.output.c_str(), r.threshold, e.probability, half,
-                  r.half_width, values.size());
+    std::snprintf(
+        buf, sizeof buf,
+        "confidence interval: P(%s/%s > %g) = %.6g +- %.3g (<= %.3g) after %zu ok samples",
+        r.method.c_str(), r.output.c_str(), r.threshold, e.probability, half, r.half_width,
+        values.size());
   }
   why = buf;
   return true;

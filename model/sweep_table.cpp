@@ -8,11 +8,16 @@ namespace lsi {
 
 const char* describe(SampleStatus s) {
   switch (s) {
-    case SampleStatus::ok: return "ok";
-    case SampleStatus::invalid_input: return "invalid input";
-    case SampleStatus::unstable: return "MPM unstable";
-    case SampleStatus::failed: return "failed";
-    case SampleStatus::truncated: return "MPM cut short";
+    case SampleStatus::ok:
+      return "ok";
+    case SampleStatus::invalid_input:
+      return "invalid input";
+    case SampleStatus::unstable:
+      return "MPM unstable";
+    case SampleStatus::failed:
+      return "failed";
+    case SampleStatus::truncated:
+      return "MPM cut short";
   }
   return "unknown";
 }
@@ -54,7 +59,8 @@ void SweepTable::sort_by_index() {
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
   if (!std::is_sorted(index.begin(), index.end())) {
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return index[a] < index[b]; });
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return index[a] < index[b]; });
     auto permute = [&](auto& v) {
       auto copy = v;
       for (std::size_t i = 0; i < n; ++i) v[i] = copy[order[i]];
@@ -70,7 +76,8 @@ void SweepTable::sort_by_index() {
       throw std::runtime_error("sample " + std::to_string(index[i]) + " appears twice");
   std::vector<std::size_t> f(failure_index.size());
   std::iota(f.begin(), f.end(), 0);
-  std::sort(f.begin(), f.end(), [&](std::size_t a, std::size_t b) { return failure_index[a] < failure_index[b]; });
+  std::sort(f.begin(), f.end(),
+            [&](std::size_t a, std::size_t b) { return failure_index[a] < failure_index[b]; });
   std::vector<std::uint64_t> fi;
   std::vector<std::string> fr;
   for (std::size_t k : f) {

@@ -11,17 +11,22 @@ namespace lsi {
 // truncated: an MPM run that reached its end time with the barrier still sliding (or at the end
 // of the domain): its final displacement is not known (NaN), the sample is not an ok one.
 enum class SampleStatus : std::int8_t {
-  ok = 0, invalid_input = 1, unstable = 2, failed = 3, truncated = 4 };
+  ok = 0,
+  invalid_input = 1,
+  unstable = 2,
+  failed = 3,
+  truncated = 4
+};
 const char* describe(SampleStatus s);
 
 struct SweepTable {
   std::vector<std::string> input_paths;
-  std::vector<std::string> output_columns;        // "<method>/<output>"
+  std::vector<std::string> output_columns;  // "<method>/<output>"
   std::vector<std::uint64_t> index;
   std::vector<std::int8_t> status;
   std::vector<float> wall_time;
-  std::vector<std::vector<double>> inputs;        // [input][row]
-  std::vector<std::vector<double>> outputs;       // [column][row]
+  std::vector<std::vector<double>> inputs;   // [input][row]
+  std::vector<std::vector<double>> outputs;  // [column][row]
   std::vector<std::uint64_t> failure_index;
   std::vector<std::string> failure_reason;
 

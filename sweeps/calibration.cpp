@@ -137,14 +137,16 @@ void validate(const CalibrationOptions& o) {
     throw std::invalid_argument("max_iterations = " + std::to_string(o.max_iterations) +
                                 ": must be >= 0");
   if (!(o.profile_tolerance >= 0.0))
-    throw std::invalid_argument("profile_tolerance = " + num(o.profile_tolerance) + ": must be >= 0");
+    throw std::invalid_argument("profile_tolerance = " + num(o.profile_tolerance) +
+                                ": must be >= 0");
 }
 
 void validate(const CalibrationCase& c) {
   const ImpactInputs& in = c.inputs;
   auto positive = [&](const char* what, double v) {
     if (!(v > 0.0) || !std::isfinite(v))
-      throw std::invalid_argument(c.name + ": " + what + " = " + num(v) + ": must be finite and > 0");
+      throw std::invalid_argument(c.name + ": " + what + " = " + num(v) +
+                                  ": must be finite and > 0");
   };
   positive("landslide_mass", in.landslide_mass);
   positive("velocity", in.velocity);
@@ -169,12 +171,13 @@ void validate(const CalibrationCase& c) {
       throw std::invalid_argument(c.name + ": MPM history sample " + std::to_string(i) +
                                   " is not finite");
     if (i > 0 && !(c.time[i] > c.time[i - 1]))
-      throw std::invalid_argument(c.name + ": MPM time must increase (sample " +
-                                  std::to_string(i) + ")");
+      throw std::invalid_argument(c.name + ": MPM time must increase (sample " + std::to_string(i) +
+                                  ")");
   }
   const ImpactSummary s = mpm_summary_of(c);
   if (!(s.peak_force > 0.0))
-    throw std::invalid_argument(c.name + ": MPM peak force = " + num(s.peak_force) + ": must be > 0");
+    throw std::invalid_argument(c.name + ": MPM peak force = " + num(s.peak_force) +
+                                ": must be > 0");
   if (!(s.impact_duration > 0.0))
     throw std::invalid_argument(c.name + ": MPM impact duration = " + num(s.impact_duration) +
                                 ": must be > 0");
@@ -201,11 +204,12 @@ ForcePulse two_body_pulse(const ImpactInputs& in, double lambda, double tau) {
 
 ForcePulse empirical_pulse(const ImpactInputs& in, double alpha, double tau) {
   EmpiricalCoefficients c;
-  c.a1 = alpha;   // alpha = a1 Fr^0
+  c.a1 = alpha;  // alpha = a1 Fr^0
   c.a2 = 0.0;
   c.tau = tau;
   c.kappa = in.kappa;
-  return empirical_impact(in.thickness, in.velocity, in.density, in.landslide_mass, in.face_angle, c)
+  return empirical_impact(in.thickness, in.velocity, in.density, in.landslide_mass, in.face_angle,
+                          c)
       .pulse;
 }
 
@@ -275,8 +279,8 @@ std::vector<double> residuals(const CalibrationCase& c, const ImpactSummary& mpm
           (h.rise_time - mpm.rise_time) / mpm.impact_duration};
 }
 
-std::vector<double> residuals(const CalibrationCase& c, const ImpactSummary& mpm, const ForcePulse& p,
-                              Objective o) {
+std::vector<double> residuals(const CalibrationCase& c, const ImpactSummary& mpm,
+                              const ForcePulse& p, Objective o) {
   ModelHistory h;
   h.force.resize(o == Objective::NormalisedRms ? compared_samples(c, mpm) : 0);
   for (size_t i = 0; i < h.force.size(); ++i) h.force[i] = p.force(c.time[i]);
@@ -286,7 +290,8 @@ std::vector<double> residuals(const CalibrationCase& c, const ImpactSummary& mpm
   return residuals(c, mpm, h, o);
 }
 
-double misfit(const CalibrationCase& c, const ImpactSummary& mpm, const ForcePulse& p, Objective o) {
+double misfit(const CalibrationCase& c, const ImpactSummary& mpm, const ForcePulse& p,
+              Objective o) {
   double s = 0.0;
   for (double r : residuals(c, mpm, p, o)) s += r * r;
   return std::sqrt(s);
@@ -337,7 +342,7 @@ TwoBodyFit fit_two_body(const CalibrationCase& c, const CalibrationOptions& o) {
   f.lambda = logistic(res.x[0]);
   f.tau = logistic(res.x[1]);
   f.misfit = std::sqrt(res.cost);
-  if (f.grid_misfit <= f.misfit) {   // logit/logistic round-off can make LM's start a hair worse
+  if (f.grid_misfit <= f.misfit) {  // logit/logistic round-off can make LM's start a hair worse
     f.lambda = f.grid_lambda;
     f.tau = f.grid_tau;
     f.misfit = f.grid_misfit;
@@ -396,16 +401,18 @@ EmpiricalFit fit_empirical(const CalibrationCase& c, const CalibrationOptions& o
   auto r_of_tau = [&](const Eigen::VectorXd& t) {
     return to_eigen(residuals(c, mpm, empirical_pulse(in, f.alpha, t[0]), o.objective));
   };
-  auto r_of_u = [&](const Eigen::VectorXd& u) { return r_of_tau(Eigen::VectorXd::Constant(1, logistic(u[0]))); };
+  auto r_of_u = [&](const Eigen::VectorXd& u) {
+    return r_of_tau(Eigen::VectorXd::Constant(1, logistic(u[0])));
+  };
   const LmResult res =
       levenberg_marquardt(r_of_u, Eigen::VectorXd::Constant(1, logit(f.grid_tau)), lm_options(o));
   f.tau = logistic(res.x[0]);
   f.misfit = std::sqrt(res.cost);
   f.iterations = res.iterations;
   f.converged = res.converged;
-  const Eigen::MatrixXd cov = covariance(r_of_tau, Eigen::VectorXd::Constant(1, f.tau),
-                                         Eigen::VectorXd::Constant(1, 1e-9),
-                                         Eigen::VectorXd::Constant(1, 1.0 - 1e-9));
+  const Eigen::MatrixXd cov =
+      covariance(r_of_tau, Eigen::VectorXd::Constant(1, f.tau), Eigen::VectorXd::Constant(1, 1e-9),
+                 Eigen::VectorXd::Constant(1, 1.0 - 1e-9));
   f.sigma_tau = std::sqrt(cov(0, 0));
   const double threshold = (1.0 + o.profile_tolerance) * std::min(f.misfit, f.grid_misfit);
   f.tau_range = {f.tau, f.tau};
@@ -433,7 +440,8 @@ GroupStatistic pooled_mean(const std::vector<double>& v, double confidence) {
   double ss = 0.0;
   for (double x : v) ss += (x - s.mean) * (x - s.mean);
   s.stddev = std::sqrt(ss / (s.n - 1));
-  const double half = stats::student_t_quantile(0.5 * (1.0 + confidence), s.n - 1) * s.stddev / std::sqrt(s.n);
+  const double half =
+      stats::student_t_quantile(0.5 * (1.0 + confidence), s.n - 1) * s.stddev / std::sqrt(s.n);
   s.ci = {s.mean - half, s.mean + half};
   return s;
 }
@@ -462,7 +470,7 @@ PowerLawFit fit_power_law(const std::vector<double>& froude, const std::vector<d
   const Eigen::MatrixXd A = X.transpose() * X;
   Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
   lu.setThreshold(1e-12);
-  if (!lu.isInvertible()) return f;   // all Froude numbers equal: a2 undetermined
+  if (!lu.isInvertible()) return f;  // all Froude numbers equal: a2 undetermined
   const Eigen::VectorXd b = lu.solve(X.transpose() * y);
   f.a1 = std::exp(b[0]);
   f.a2 = b[1];
@@ -490,7 +498,8 @@ GroupSummary summarize_group(bool fixed, const std::vector<std::string>& names,
   if (two_body.size() != names.size() || empirical.size() != names.size())
     throw std::invalid_argument("summarize_group: " + std::to_string(names.size()) + " names, " +
                                 std::to_string(two_body.size()) + " two-body and " +
-                                std::to_string(empirical.size()) + " empirical fits: must be equal");
+                                std::to_string(empirical.size()) +
+                                " empirical fits: must be equal");
   GroupSummary g;
   g.fixed = fixed;
   g.cases = names;

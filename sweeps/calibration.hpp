@@ -34,23 +34,23 @@
 namespace lsi::sweeps {
 
 enum class Objective { NormalisedRms, PeakDuration };
-const char* objective_name(Objective o);   // "nrms", "peak-duration"
+const char* objective_name(Objective o);  // "nrms", "peak-duration"
 
 // The model inputs of one case (SI; per metre of barrier width).
 struct ImpactInputs {
-  double landslide_mass = 0.0;     // m1, kg/m
-  double velocity = 0.0;           // v0 = v1,0, m/s (horizontal)
-  double equivalent_length = 0.0;  // L1,0, m
-  double barrier_mass = std::numeric_limits<double>::infinity();   // m2, kg/m (+inf: fixed)
-  double thickness = 0.0;          // h, m
-  double density = 0.0;            // rho_m, kg/m^3
-  double face_angle = 0.0;         // beta, rad
-  double kappa = 0.0;              // static coefficient of the empirical model (eq. 5)
+  double landslide_mass = 0.0;                                    // m1, kg/m
+  double velocity = 0.0;                                          // v0 = v1,0, m/s (horizontal)
+  double equivalent_length = 0.0;                                 // L1,0, m
+  double barrier_mass = std::numeric_limits<double>::infinity();  // m2, kg/m (+inf: fixed)
+  double thickness = 0.0;                                         // h, m
+  double density = 0.0;                                           // rho_m, kg/m^3
+  double face_angle = 0.0;                                        // beta, rad
+  double kappa = 0.0;  // static coefficient of the empirical model (eq. 5)
   bool fixed = true;
   // The momentum-consistent barrier (kernels/closed_form/momentum_barrier.hpp) only:
-  double base_friction = 0.0;      // tan(delta_b)
-  double face_friction = 0.0;      // tan(delta) on the face
-  double flow_friction = 0.0;      // F1 / m1, m/s^2
+  double base_friction = 0.0;  // tan(delta_b)
+  double face_friction = 0.0;  // tan(delta) on the face
+  double flow_friction = 0.0;  // F1 / m1, m/s^2
 };
 
 // One MPM history and its inputs. peak_force / rise_time / impact_duration are the MPM's own
@@ -59,8 +59,8 @@ struct ImpactInputs {
 struct CalibrationCase {
   std::string name;
   ImpactInputs inputs;
-  std::vector<double> time;    // s, increasing, from first contact
-  std::vector<double> force;   // N/m, normal to the face
+  std::vector<double> time;   // s, increasing, from first contact
+  std::vector<double> force;  // N/m, normal to the face
   double peak_force = std::numeric_limits<double>::quiet_NaN();
   double rise_time = std::numeric_limits<double>::quiet_NaN();
   double impact_duration = std::numeric_limits<double>::quiet_NaN();
@@ -79,10 +79,10 @@ struct CalibrationOptions {
   // barrier under the fixed-barrier two-body pulse (true), whose force on a free barrier is not
   // a triangle (docs/theory/models.md).
   bool momentum = false;
-  int lambda_cells = 41;          // N: lambda axis (i+1)/N, i = 0..N-1
-  int tau_cells = 41;             // M: tau axis (j+1)/(M+1), j = 0..M-1
-  int max_iterations = 200;       // LM
-  double profile_tolerance = 0.10;   // profile range: misfit <= (1 + tol) * best misfit
+  int lambda_cells = 41;            // N: lambda axis (i+1)/N, i = 0..N-1
+  int tau_cells = 41;               // M: tau axis (j+1)/(M+1), j = 0..M-1
+  int max_iterations = 200;         // LM
+  double profile_tolerance = 0.10;  // profile range: misfit <= (1 + tol) * best misfit
 };
 
 // Throws std::invalid_argument naming the field and the allowed range.
@@ -96,8 +96,8 @@ std::vector<double> tau_axis(int m);
 ForcePulse two_body_pulse(const ImpactInputs& in, double lambda, double tau);
 // Empirical pulse with a given alpha (a1 = alpha, a2 = 0 in eq. 2) and tau.
 ForcePulse empirical_pulse(const ImpactInputs& in, double alpha, double tau);
-double froude_number(const ImpactInputs& in);        // eq. 1, Fr = v_n / sqrt(g h)
-double mpm_alpha(const ImpactInputs& in, double mpm_peak_force);   // eqs. 3-5 solved for alpha
+double froude_number(const ImpactInputs& in);                     // eq. 1, Fr = v_n / sqrt(g h)
+double mpm_alpha(const ImpactInputs& in, double mpm_peak_force);  // eqs. 3-5 solved for alpha
 
 // A model's force at the first `force.size()` MPM output times and its summaries.
 struct ModelHistory {
@@ -112,16 +112,16 @@ ModelHistory two_body_history(const CalibrationCase& c, size_t samples, double l
                               bool momentum);
 
 // The objective's residual vector and misfit for one pulse (or model history) against one case.
-std::vector<double> residuals(const CalibrationCase& c, const ImpactSummary& mpm, const ForcePulse& p,
-                              Objective o);
+std::vector<double> residuals(const CalibrationCase& c, const ImpactSummary& mpm,
+                              const ForcePulse& p, Objective o);
 std::vector<double> residuals(const CalibrationCase& c, const ImpactSummary& mpm,
                               const ModelHistory& h, Objective o);
 double misfit(const CalibrationCase& c, const ImpactSummary& mpm, const ForcePulse& p, Objective o);
 
 struct MisfitMap {
-  std::vector<double> lambda;   // N
-  std::vector<double> tau;      // M
-  std::vector<double> misfit;   // N x M, row-major: misfit[i * M + j] at (lambda[i], tau[j])
+  std::vector<double> lambda;  // N
+  std::vector<double> tau;     // M
+  std::vector<double> misfit;  // N x M, row-major: misfit[i * M + j] at (lambda[i], tau[j])
   double at(int i, int j) const { return misfit[static_cast<size_t>(i) * tau.size() + j]; }
 };
 
@@ -131,9 +131,9 @@ struct Range {
 };
 
 struct TwoBodyFit {
-  double lambda = 0.0, tau = 0.0;        // best fit (after LM)
-  double misfit = 0.0;                   // objective at the best fit
-  double grid_lambda = 0.0, grid_tau = 0.0, grid_misfit = 0.0;   // best node of the map
+  double lambda = 0.0, tau = 0.0;                               // best fit (after LM)
+  double misfit = 0.0;                                          // objective at the best fit
+  double grid_lambda = 0.0, grid_tau = 0.0, grid_misfit = 0.0;  // best node of the map
   // Linearised standard errors: covariance s^2 (J^T J)^-1, s^2 = sum r^2 / (n - 2). NaN when
   // n <= 2 or J^T J is singular. Optimistic for time series: see calibration.cpp.
   double sigma_lambda = 0.0, sigma_tau = 0.0, correlation = 0.0;
@@ -142,22 +142,22 @@ struct TwoBodyFit {
   // region at the map's resolution even when it is narrower than a cell; clipped to [0, 1].
   Range lambda_range, tau_range;
   int residual_count = 0;
-  int iterations = 0;                    // LM Jacobian evaluations
+  int iterations = 0;  // LM Jacobian evaluations
   bool converged = false;
   std::string stop_reason;
   MisfitMap map;
-  ImpactSummary mpm{};                   // the MPM summaries the fit used
+  ImpactSummary mpm{};  // the MPM summaries the fit used
 };
 TwoBodyFit fit_two_body(const CalibrationCase& c, const CalibrationOptions& o);
 
 struct EmpiricalFit {
-  double froude = 0.0, alpha = 0.0;      // Fr and alpha_MPM of the case
+  double froude = 0.0, alpha = 0.0;  // Fr and alpha_MPM of the case
   double tau = 0.0, misfit = 0.0, grid_tau = 0.0, grid_misfit = 0.0;
   double sigma_tau = 0.0;
-  Range tau_range;                       // as TwoBodyFit's, on the 1-D scan
+  Range tau_range;  // as TwoBodyFit's, on the 1-D scan
   int iterations = 0;
   bool converged = false;
-  std::vector<double> tau_axis, misfit_profile;   // the 1-D scan
+  std::vector<double> tau_axis, misfit_profile;  // the 1-D scan
 };
 // Throws std::invalid_argument if alpha_MPM <= 0 (MPM peak not above the static part).
 EmpiricalFit fit_empirical(const CalibrationCase& c, const CalibrationOptions& o);
@@ -167,7 +167,7 @@ EmpiricalFit fit_empirical(const CalibrationCase& c, const CalibrationOptions& o
 struct GroupStatistic {
   int n = 0;
   double mean = std::numeric_limits<double>::quiet_NaN();
-  double stddev = std::numeric_limits<double>::quiet_NaN();   // sample (n - 1)
+  double stddev = std::numeric_limits<double>::quiet_NaN();  // sample (n - 1)
   Range ci;
   double confidence = 0.95;
 };
@@ -180,7 +180,7 @@ struct PowerLawFit {
   int n = 0;
   double a1 = std::numeric_limits<double>::quiet_NaN();
   double a2 = std::numeric_limits<double>::quiet_NaN();
-  Range a1_ci, a2_ci;           // Student-t with n - 2 degrees of freedom (NaN when n <= 2)
+  Range a1_ci, a2_ci;  // Student-t with n - 2 degrees of freedom (NaN when n <= 2)
   double rms_log_residual = std::numeric_limits<double>::quiet_NaN();
   double confidence = 0.95;
 };

@@ -17,7 +17,7 @@ struct ClosedFormSweep {
   explicit ClosedFormSweep(Sampler<MemorySpace> s) : sampler(std::move(s)) {}
   Sampler<MemorySpace> sampler;
   SceneValues base;
-  int target[max_inputs] = {};   // scene field set by each input (-1: read only by the MPM)
+  int target[max_inputs] = {};  // scene field set by each input (-1: read only by the MPM)
   bool empirical = false, analytical = false;
 };
 
@@ -52,8 +52,7 @@ void evaluate_closed_form_chunk(
         if (sweep.analytical) {
           if (bad < 0) evaluate_analytical(s, out);
           for (int o = 0; o < closed_form_output_count; ++o)
-            outputs(i, closed_form_output_count + o) =
-                bad < 0 ? out[o] : math::quiet_nan();
+            outputs(i, closed_form_output_count + o) = bad < 0 ? out[o] : math::quiet_nan();
         }
       });
 }

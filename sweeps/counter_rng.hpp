@@ -41,10 +41,11 @@ KOKKOS_INLINE_FUNCTION void philox_mulhilo(std::uint32_t a, std::uint32_t b, std
 
 // One Philox-4x32 block with `rounds` rounds (10 for Philox-4x32-10; other counts only for the
 // known-answer tests of the round structure).
-KOKKOS_INLINE_FUNCTION Philox4x32Block philox4x32(Philox4x32Block ctr, std::uint32_t k0, std::uint32_t k1,
-                                                  int rounds = 10) {
+KOKKOS_INLINE_FUNCTION Philox4x32Block philox4x32(Philox4x32Block ctr, std::uint32_t k0,
+                                                  std::uint32_t k1, int rounds = 10) {
   constexpr std::uint32_t M0 = 0xD2511F53u, M1 = 0xCD9E8D57u;  // round multipliers
-  constexpr std::uint32_t W0 = 0x9E3779B9u, W1 = 0xBB67AE85u;  // key schedule (golden ratio, sqrt(3)-1)
+  constexpr std::uint32_t W0 = 0x9E3779B9u,
+                          W1 = 0xBB67AE85u;  // key schedule (golden ratio, sqrt(3)-1)
   for (int r = 0; r < rounds; ++r) {
     if (r > 0) {
       k0 += W0;
@@ -62,8 +63,8 @@ KOKKOS_INLINE_FUNCTION Philox4x32Block philox4x32(Philox4x32Block ctr, std::uint
 // 64 random bits: the first two words of Philox-4x32-10 at counter (sample, stream, domain), key seed.
 KOKKOS_INLINE_FUNCTION std::uint64_t random_bits64(std::uint64_t seed, std::uint64_t sample,
                                                    std::uint32_t stream, std::uint32_t domain = 0) {
-  const Philox4x32Block ctr{{static_cast<std::uint32_t>(sample), static_cast<std::uint32_t>(sample >> 32),
-                             stream, domain}};
+  const Philox4x32Block ctr{{static_cast<std::uint32_t>(sample),
+                             static_cast<std::uint32_t>(sample >> 32), stream, domain}};
   const Philox4x32Block out =
       philox4x32(ctr, static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32));
   return (static_cast<std::uint64_t>(out.v[0]) << 32) | out.v[1];
@@ -81,7 +82,8 @@ KOKKOS_INLINE_FUNCTION double bits_to_open01(std::uint64_t bits) {
 
 // Uniform in the OPEN interval (0,1), 53-bit resolution, a pure function of its arguments:
 // Philox-4x32-10 at counter (sample, stream, domain 0), key seed, through bits_to_open01.
-KOKKOS_INLINE_FUNCTION double uniform_open01(std::uint64_t seed, std::uint64_t sample, std::uint32_t stream) {
+KOKKOS_INLINE_FUNCTION double uniform_open01(std::uint64_t seed, std::uint64_t sample,
+                                             std::uint32_t stream) {
   return bits_to_open01(random_bits64(seed, sample, stream, 0));
 }
 

@@ -33,7 +33,14 @@
 
 namespace lsi::sweeps {
 
-enum class DistributionKind : int { Constant, Uniform, Normal, Lognormal, TruncatedNormal, Discrete };
+enum class DistributionKind : int {
+  Constant,
+  Uniform,
+  Normal,
+  Lognormal,
+  TruncatedNormal,
+  Discrete
+};
 
 // Host-side description, built by the study parser.
 struct DistributionSpec {
@@ -41,17 +48,24 @@ struct DistributionSpec {
   // Constant: value. Uniform: min,max. Normal: mean,sd. Lognormal: mean,sd of the variable itself
   // (not of its log; converted inside). TruncatedNormal: mean,sd of the parent normal and min,max.
   double value = 0, min = 0, max = 0, mean = 0, sd = 0;
-  std::vector<double> values, weights;  // Discrete (weights empty = equal); also the grid points of the Grid design
+  std::vector<double> values,
+      weights;  // Discrete (weights empty = equal); also the grid points of the Grid design
 };
 
 inline const char* to_string(DistributionKind k) {
   switch (k) {
-    case DistributionKind::Constant: return "constant";
-    case DistributionKind::Uniform: return "uniform";
-    case DistributionKind::Normal: return "normal";
-    case DistributionKind::Lognormal: return "lognormal";
-    case DistributionKind::TruncatedNormal: return "truncated_normal";
-    case DistributionKind::Discrete: return "discrete";
+    case DistributionKind::Constant:
+      return "constant";
+    case DistributionKind::Uniform:
+      return "uniform";
+    case DistributionKind::Normal:
+      return "normal";
+    case DistributionKind::Lognormal:
+      return "lognormal";
+    case DistributionKind::TruncatedNormal:
+      return "truncated_normal";
+    case DistributionKind::Discrete:
+      return "discrete";
   }
   return "unknown";
 }
@@ -86,7 +100,8 @@ inline void require_positive(const char* name, double x) {
 }
 inline void require_ordered(double lo, double hi) {
   if (!(lo < hi))
-    invalid("min = " + format_number(lo) + " >= max = " + format_number(hi) + ": must be min < max");
+    invalid("min = " + format_number(lo) + " >= max = " + format_number(hi) +
+            ": must be min < max");
 }
 
 // The probabilities that bound a truncated normal's quantile: (p_lo, p_hi) of the lower tail, or of
@@ -110,9 +125,12 @@ inline void validate(const DistributionSpec& s) {
   using detail::invalid;
   for (std::size_t i = 0; i < s.values.size(); ++i)
     if (!std::isfinite(s.values[i]))
-      invalid("values[" + std::to_string(i) + "] = " + format_number(s.values[i]) + ": must be finite");
+      invalid("values[" + std::to_string(i) + "] = " + format_number(s.values[i]) +
+              ": must be finite");
   switch (s.kind) {
-    case DistributionKind::Constant: detail::require_finite("value", s.value); break;
+    case DistributionKind::Constant:
+      detail::require_finite("value", s.value);
+      break;
     case DistributionKind::Uniform:
       detail::require_finite("min", s.min);
       detail::require_finite("max", s.max);
@@ -125,7 +143,8 @@ inline void validate(const DistributionSpec& s) {
     case DistributionKind::Lognormal:
       detail::require_finite("mean", s.mean);
       if (!(s.mean > 0))
-        invalid("mean = " + format_number(s.mean) + ": must be > 0 (a lognormal variable is positive)");
+        invalid("mean = " + format_number(s.mean) +
+                ": must be > 0 (a lognormal variable is positive)");
       detail::require_positive("sd", s.sd);
       break;
     case DistributionKind::TruncatedNormal: {
@@ -143,11 +162,12 @@ inline void validate(const DistributionSpec& s) {
       break;
     }
     case DistributionKind::Discrete: {
-      if (s.values.empty()) invalid("values: none given: a discrete distribution needs at least one value");
+      if (s.values.empty())
+        invalid("values: none given: a discrete distribution needs at least one value");
       if (!s.weights.empty()) {
         if (s.weights.size() != s.values.size())
-          invalid("weights: " + std::to_string(s.weights.size()) + " given for " + std::to_string(s.values.size()) +
-                  " values");
+          invalid("weights: " + std::to_string(s.weights.size()) + " given for " +
+                  std::to_string(s.values.size()) + " values");
         double sum = 0;
         for (std::size_t i = 0; i < s.weights.size(); ++i) {
           if (!(std::isfinite(s.weights[i]) && s.weights[i] >= 0))
@@ -159,7 +179,8 @@ inline void validate(const DistributionSpec& s) {
       }
       break;
     }
-    default: invalid("kind = " + std::to_string(static_cast<int>(s.kind)) + ": not a distribution kind");
+    default:
+      invalid("kind = " + std::to_string(static_cast<int>(s.kind)) + ": not a distribution kind");
   }
 }
 
@@ -167,22 +188,27 @@ inline void validate(const DistributionSpec& s) {
 // (values and cumulative probabilities) lives in the sampler's Views, at [offset, offset + count).
 struct Marginal {
   DistributionKind kind = DistributionKind::Constant;
-  double a = 0, b = 0;       // Constant: value. Uniform: min, width. Normal: mean, sd. Lognormal: mu, sigma.
-                             // TruncatedNormal: mean, sd.
-  double p_lo = 0, p_hi = 0;  // TruncatedNormal: the bounding probabilities (complements if upper_tail)
-  double lo = 0, hi = 0;     // TruncatedNormal: min, max (the clamp)
+  double a = 0,
+         b = 0;  // Constant: value. Uniform: min, width. Normal: mean, sd. Lognormal: mu, sigma.
+                 // TruncatedNormal: mean, sd.
+  double p_lo = 0,
+         p_hi = 0;        // TruncatedNormal: the bounding probabilities (complements if upper_tail)
+  double lo = 0, hi = 0;  // TruncatedNormal: min, max (the clamp)
   int upper_tail = 0;
   std::uint32_t offset = 0, count = 0;  // Discrete
 };
 
 // Prepares the device form of a validated spec; a Discrete spec appends its table to `values` and
 // `cdf` (host vectors that the sampler copies to its memory space).
-inline Marginal prepare_marginal(const DistributionSpec& s, std::vector<double>& values, std::vector<double>& cdf) {
+inline Marginal prepare_marginal(const DistributionSpec& s, std::vector<double>& values,
+                                 std::vector<double>& cdf) {
   validate(s);
   Marginal m;
   m.kind = s.kind;
   switch (s.kind) {
-    case DistributionKind::Constant: m.a = s.value; break;
+    case DistributionKind::Constant:
+      m.a = s.value;
+      break;
     case DistributionKind::Uniform:
       m.a = s.min;
       m.b = s.max - s.min;
@@ -215,7 +241,8 @@ inline Marginal prepare_marginal(const DistributionSpec& s, std::vector<double>&
       m.offset = static_cast<std::uint32_t>(values.size());
       m.count = static_cast<std::uint32_t>(s.values.size());
       double total = 0;
-      for (std::size_t i = 0; i < s.values.size(); ++i) total += s.weights.empty() ? 1.0 : s.weights[i];
+      for (std::size_t i = 0; i < s.values.size(); ++i)
+        total += s.weights.empty() ? 1.0 : s.weights[i];
       double running = 0;
       for (std::size_t i = 0; i < s.values.size(); ++i) {
         running += s.weights.empty() ? 1.0 : s.weights[i];
@@ -239,13 +266,16 @@ inline Marginal prepare_marginal(const DistributionSpec& s, std::vector<double>&
 KOKKOS_INLINE_FUNCTION double marginal_quantile(const Marginal& m, double u, double z, bool has_z,
                                                 const double* values, const double* cdf) {
   switch (m.kind) {
-    case DistributionKind::Constant: return m.a;
+    case DistributionKind::Constant:
+      return m.a;
     case DistributionKind::Uniform: {
       const double x = m.a + u * m.b;
       return x < m.lo ? m.lo : (x > m.hi ? m.hi : x);
     }
-    case DistributionKind::Normal: return m.a + m.b * (has_z ? z : normal_quantile(u));
-    case DistributionKind::Lognormal: return detail::exp(m.a + m.b * (has_z ? z : normal_quantile(u)));
+    case DistributionKind::Normal:
+      return m.a + m.b * (has_z ? z : normal_quantile(u));
+    case DistributionKind::Lognormal:
+      return detail::exp(m.a + m.b * (has_z ? z : normal_quantile(u)));
     case DistributionKind::TruncatedNormal: {
       const double x = m.upper_tail ? m.a - m.b * normal_quantile(m.p_lo - u * (m.p_lo - m.p_hi))
                                     : m.a + m.b * normal_quantile(m.p_lo + u * (m.p_hi - m.p_lo));

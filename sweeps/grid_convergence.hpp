@@ -19,30 +19,35 @@
 namespace lsi::sweeps {
 
 enum class Convergence {
-  Monotonic,     // e32/e21 > 0 and |e32| > |e21|: converging without oscillation
-  Oscillatory,   // e32/e21 < 0: the order and the extrapolation are not trustworthy
-  Diverging,     // e32/e21 > 0 but the differences grow with refinement
-  Converged,     // e21 = 0 (or both differences below round-off): nothing to extrapolate
+  Monotonic,    // e32/e21 > 0 and |e32| > |e21|: converging without oscillation
+  Oscillatory,  // e32/e21 < 0: the order and the extrapolation are not trustworthy
+  Diverging,    // e32/e21 > 0 but the differences grow with refinement
+  Converged,    // e21 = 0 (or both differences below round-off): nothing to extrapolate
 };
 
 inline const char* describe(Convergence c) {
   switch (c) {
-    case Convergence::Monotonic: return "monotonic";
-    case Convergence::Oscillatory: return "oscillatory";
-    case Convergence::Diverging: return "diverging";
-    case Convergence::Converged: return "converged";
+    case Convergence::Monotonic:
+      return "monotonic";
+    case Convergence::Oscillatory:
+      return "oscillatory";
+    case Convergence::Diverging:
+      return "diverging";
+    case Convergence::Converged:
+      return "converged";
   }
   return "?";
 }
 
 struct GridConvergence {
   Convergence kind = Convergence::Converged;
-  double order = std::numeric_limits<double>::quiet_NaN();          // observed p
-  double extrapolated = std::numeric_limits<double>::quiet_NaN();   // phi_ext^21
-  double relative_change = 0.0;      // e_a^21 = |(phi1 - phi2) / phi1|
-  double extrapolated_error = std::numeric_limits<double>::quiet_NaN();   // |(phi_ext - phi1)/phi_ext|
-  double gci_fine = std::numeric_limits<double>::quiet_NaN();       // GCI^21, relative to phi1
-  double gci_coarse = std::numeric_limits<double>::quiet_NaN();     // GCI^32, relative to phi2
+  double order = std::numeric_limits<double>::quiet_NaN();         // observed p
+  double extrapolated = std::numeric_limits<double>::quiet_NaN();  // phi_ext^21
+  double relative_change = 0.0;  // e_a^21 = |(phi1 - phi2) / phi1|
+  double extrapolated_error =
+      std::numeric_limits<double>::quiet_NaN();                  // |(phi_ext - phi1)/phi_ext|
+  double gci_fine = std::numeric_limits<double>::quiet_NaN();    // GCI^21, relative to phi1
+  double gci_coarse = std::numeric_limits<double>::quiet_NaN();  // GCI^32, relative to phi2
   // Roache's asymptotic-range check GCI^32 / (r21^p GCI^21), with the GCIs relative to phi2 and
   // phi1. With the order observed from these same three runs the absolute GCIs satisfy
   // GCI^32 = r21^p GCI^21 exactly, so the ratio reduces to |phi1 / phi2|: ~1 by construction, and
@@ -70,7 +75,7 @@ inline GridConvergence grid_convergence(const std::array<double, 3>& h,
     g.gci_fine = g.gci_coarse = 0.0;
     return g;
   }
-  if (std::abs(e21) <= roundoff) {   // the two finest agree, the coarse one does not
+  if (std::abs(e21) <= roundoff) {  // the two finest agree, the coarse one does not
     g.kind = Convergence::Converged;
     g.extrapolated = phi[0];
     g.extrapolated_error = 0.0;
@@ -79,14 +84,16 @@ inline GridConvergence grid_convergence(const std::array<double, 3>& h,
   }
   const double ratio = e32 / e21;
   const double s = ratio >= 0 ? 1.0 : -1.0;
-  if (s < 0) g.kind = Convergence::Oscillatory;
-  else g.kind = std::abs(e32) > std::abs(e21) ? Convergence::Monotonic : Convergence::Diverging;
+  if (s < 0)
+    g.kind = Convergence::Oscillatory;
+  else
+    g.kind = std::abs(e32) > std::abs(e21) ? Convergence::Monotonic : Convergence::Diverging;
   // Fixed-point iteration of Celik's eq. (3a)-(3c) from the equal-ratio value.
   const double lr = std::log(std::abs(ratio));
   double p = std::abs(lr) / std::log(r21);
   for (g.iterations = 0; g.iterations < 200; ++g.iterations) {
     const double num = std::pow(r21, p) - s, den = std::pow(r32, p) - s;
-    if (!(num > 0 && den > 0)) break;   // the log's argument left its domain: keep p
+    if (!(num > 0 && den > 0)) break;  // the log's argument left its domain: keep p
     const double next = std::abs(lr + std::log(num / den)) / std::log(r21);
     if (!std::isfinite(next)) break;
     const bool done = std::abs(next - p) <= 1e-12 * std::max(1.0, p);

@@ -40,7 +40,8 @@ inline PermutationDomain make_permutation_domain(std::uint64_t n) {
 }
 
 // One pass of the keyed bijection of [0, mask].
-KOKKOS_INLINE_FUNCTION std::uint64_t permutation_hash(std::uint64_t x, std::uint64_t key, const PermutationDomain& p) {
+KOKKOS_INLINE_FUNCTION std::uint64_t permutation_hash(std::uint64_t x, std::uint64_t key,
+                                                      const PermutationDomain& p) {
   const std::uint64_t m = p.mask;
   for (std::uint64_t r = 0; r < 4; ++r) {
     const std::uint64_t k = mix64(key + r * 0x9E3779B97F4A7C15ull);
@@ -54,7 +55,8 @@ KOKKOS_INLINE_FUNCTION std::uint64_t permutation_hash(std::uint64_t x, std::uint
 }
 
 // pi(i): a keyed permutation of [0, n) evaluated at i < n.
-KOKKOS_INLINE_FUNCTION std::uint64_t permute_index(std::uint64_t i, std::uint64_t key, const PermutationDomain& p) {
+KOKKOS_INLINE_FUNCTION std::uint64_t permute_index(std::uint64_t i, std::uint64_t key,
+                                                   const PermutationDomain& p) {
   if (p.n <= 1) return 0;
   std::uint64_t x = i;
   do {
@@ -69,7 +71,8 @@ KOKKOS_INLINE_FUNCTION std::uint64_t latin_hypercube_key(std::uint64_t seed, int
 }
 
 // Coordinate `dim` of Latin-hypercube sample `index` (< n) in the open interval (0,1).
-KOKKOS_INLINE_FUNCTION double latin_hypercube_uniform(std::uint64_t seed, std::uint64_t key, const PermutationDomain& p,
+KOKKOS_INLINE_FUNCTION double latin_hypercube_uniform(std::uint64_t seed, std::uint64_t key,
+                                                      const PermutationDomain& p,
                                                       std::uint64_t index, int dim) {
   const std::uint64_t stratum = permute_index(index % p.n, key, p);
   const double jitter = uniform_open01(seed, index, static_cast<std::uint32_t>(dim));

@@ -31,12 +31,12 @@ struct LmOptions {
 
 struct LmResult {
   Eigen::VectorXd x;
-  double cost = 0.0;        // S(x) = sum r^2 at the result
+  double cost = 0.0;  // S(x) = sum r^2 at the result
   double initial_cost = 0.0;
-  int iterations = 0;       // Jacobian evaluations
-  int evaluations = 0;      // residual evaluations
+  int iterations = 0;   // Jacobian evaluations
+  int evaluations = 0;  // residual evaluations
   bool converged = false;
-  std::string reason;       // which stopping rule fired
+  std::string reason;  // which stopping rule fired
 };
 
 // Central-difference Jacobian of r at x (m residuals x n parameters).
@@ -100,7 +100,7 @@ LmResult levenberg_marquardt(Residuals&& residuals, Eigen::VectorXd x, const LmO
         }
       } else {
         mu *= 4.0;
-        if (mu > 1e16) break;   // no descent direction left: a (local) minimum to working precision
+        if (mu > 1e16) break;  // no descent direction left: a (local) minimum to working precision
         if (dx.allFinite() && dx.norm() <= o.x_tol * (x.norm() + o.x_tol)) break;
       }
     }

@@ -52,10 +52,14 @@ enum class Design : int { MonteCarlo, LatinHypercube, Sobol, Grid };
 
 inline const char* to_string(Design d) {
   switch (d) {
-    case Design::MonteCarlo: return "monte_carlo";
-    case Design::LatinHypercube: return "latin_hypercube";
-    case Design::Sobol: return "sobol";
-    case Design::Grid: return "grid";
+    case Design::MonteCarlo:
+      return "monte_carlo";
+    case Design::LatinHypercube:
+      return "latin_hypercube";
+    case Design::Sobol:
+      return "sobol";
+    case Design::Grid:
+      return "grid";
   }
   return "unknown";
 }
@@ -63,38 +67,45 @@ inline const char* to_string(Design d) {
 namespace detail {
 // Checks the correlation matrix and returns its lower Cholesky factor, row-major (dims x dims);
 // empty for "independent".
-inline std::vector<double> cholesky_of_correlation(const std::vector<std::vector<double>>& r, int dims) {
+inline std::vector<double> cholesky_of_correlation(const std::vector<std::vector<double>>& r,
+                                                   int dims) {
   if (r.empty()) return {};
   const auto n = static_cast<std::size_t>(dims);
   if (r.size() != n)
     invalid("correlation: " + std::to_string(r.size()) + " rows given for " + std::to_string(dims) +
-            " inputs: must be a " + std::to_string(dims) + " x " + std::to_string(dims) + " matrix");
+            " inputs: must be a " + std::to_string(dims) + " x " + std::to_string(dims) +
+            " matrix");
   for (std::size_t i = 0; i < n; ++i)
     if (r[i].size() != n)
-      invalid("correlation[" + std::to_string(i) + "]: " + std::to_string(r[i].size()) + " entries given for " +
-              std::to_string(dims) + " inputs: must be a " + std::to_string(dims) + " x " + std::to_string(dims) +
-              " matrix");
-  auto at = [](std::size_t i, std::size_t j) { return "correlation[" + std::to_string(i) + "][" + std::to_string(j) + "]"; };
+      invalid("correlation[" + std::to_string(i) + "]: " + std::to_string(r[i].size()) +
+              " entries given for " + std::to_string(dims) + " inputs: must be a " +
+              std::to_string(dims) + " x " + std::to_string(dims) + " matrix");
+  auto at = [](std::size_t i, std::size_t j) {
+    return "correlation[" + std::to_string(i) + "][" + std::to_string(j) + "]";
+  };
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < n; ++j) {
       const double x = r[i][j];
       if (!std::isfinite(x)) invalid(at(i, j) + " = " + format_number(x) + ": must be finite");
       if (i == j && std::fabs(x - 1.0) > 1e-12)
-        invalid(at(i, j) + " = " + format_number(x) + ": the diagonal of a correlation matrix must be 1");
+        invalid(at(i, j) + " = " + format_number(x) +
+                ": the diagonal of a correlation matrix must be 1");
       if (std::fabs(x) > 1.0) invalid(at(i, j) + " = " + format_number(x) + ": must be in [-1, 1]");
       if (std::fabs(x - r[j][i]) > 1e-12)
-        invalid(at(i, j) + " = " + format_number(x) + " but " + at(j, i) + " = " + format_number(r[j][i]) +
-                ": the correlation matrix must be symmetric");
+        invalid(at(i, j) + " = " + format_number(x) + " but " + at(j, i) + " = " +
+                format_number(r[j][i]) + ": the correlation matrix must be symmetric");
     }
   Eigen::MatrixXd R(dims, dims);
   for (int i = 0; i < dims; ++i)
     for (int j = 0; j < dims; ++j) R(i, j) = 0.5 * (r[i][j] + r[j][i]);
   Eigen::LLT<Eigen::MatrixXd> llt(R);
-  const double min_eigenvalue = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(R, Eigen::EigenvaluesOnly).eigenvalues()(0);
+  const double min_eigenvalue =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(R, Eigen::EigenvaluesOnly).eigenvalues()(0);
   if (llt.info() != Eigen::Success || !(min_eigenvalue > 1e-12))
-    invalid("correlation: not positive definite (smallest eigenvalue " + format_number(min_eigenvalue) +
-            "): the correlations contradict each other (e.g. a ~ b, b ~ c strongly but a ~ c weakly), or "
-            "some |rho| = 1; a valid correlation matrix has all eigenvalues > 0");
+    invalid(
+        "correlation: not positive definite (smallest eigenvalue " + format_number(min_eigenvalue) +
+        "): the correlations contradict each other (e.g. a ~ b, b ~ c strongly but a ~ c weakly), or "
+        "some |rho| = 1; a valid correlation matrix has all eigenvalues > 0");
   const Eigen::MatrixXd L = llt.matrixL();
   std::vector<double> out(n * n, 0.0);
   for (int i = 0; i < dims; ++i)
@@ -105,7 +116,8 @@ inline std::vector<double> cholesky_of_correlation(const std::vector<std::vector
 template <class T, class MemorySpace>
 Kokkos::View<T*, MemorySpace> to_view(const char* label, const std::vector<T>& v) {
   Kokkos::View<T*, MemorySpace> out(std::string(label), v.size());
-  const Kokkos::View<const T*, Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> host(v.data(), v.size());
+  const Kokkos::View<const T*, Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> host(
+      v.data(), v.size());
   Kokkos::deep_copy(out, host);
   return out;
 }
@@ -123,16 +135,18 @@ class Sampler {
   // Sobol direction numbers shipped, the same 32), LatinHypercube with sample_count == 0, a Grid
   // input without grid points, a Grid sample_count that is not the product of the grid sizes, or a
   // correlation with the Grid design.
-  Sampler(const std::vector<DistributionSpec>& inputs, const std::vector<std::vector<double>>& correlation,
-          Design design, std::uint64_t seed, std::uint64_t sample_count)
+  Sampler(const std::vector<DistributionSpec>& inputs,
+          const std::vector<std::vector<double>>& correlation, Design design, std::uint64_t seed,
+          std::uint64_t sample_count)
       : design_(design), seed_(seed), count_(sample_count) {
     using detail::invalid;
     if (inputs.size() > static_cast<std::size_t>(max_dimensions))
-      invalid(std::to_string(inputs.size()) + " uncertain inputs: at most " + std::to_string(max_dimensions) +
-              " are supported" + (design == Design::Sobol ? " (the Sobol direction numbers shipped cover 32)" : ""));
+      invalid(std::to_string(inputs.size()) + " uncertain inputs: at most " +
+              std::to_string(max_dimensions) + " are supported" +
+              (design == Design::Sobol ? " (the Sobol direction numbers shipped cover 32)" : ""));
     dims_ = static_cast<int>(inputs.size());
-    if (design != Design::MonteCarlo && design != Design::LatinHypercube && design != Design::Sobol &&
-        design != Design::Grid)
+    if (design != Design::MonteCarlo && design != Design::LatinHypercube &&
+        design != Design::Sobol && design != Design::Grid)
       invalid("design = " + std::to_string(static_cast<int>(design)) + ": not a design");
 
     std::vector<Marginal> marginals;
@@ -140,7 +154,8 @@ class Sampler {
     for (int d = 0; d < dims_; ++d) {
       try {
         // The Grid design uses only the grid points (`values`, checked below), not the marginals.
-        marginals.push_back(design == Design::Grid ? Marginal{} : prepare_marginal(inputs[d], values, cdf));
+        marginals.push_back(design == Design::Grid ? Marginal{}
+                                                   : prepare_marginal(inputs[d], values, cdf));
       } catch (const std::invalid_argument& e) {
         invalid("input " + std::to_string(d) + " (" + to_string(inputs[d].kind) + "): " + e.what());
       }
@@ -154,23 +169,27 @@ class Sampler {
     discrete_cdf_ = detail::to_view<double, MemorySpace>("lsi::sweeps::discrete_cdf", cdf);
 
     if (design == Design::Grid && !correlation.empty())
-      invalid("correlation: not allowed with the Grid design (a full factorial has no joint distribution to "
-              "correlate); remove it or choose another design");
+      invalid(
+          "correlation: not allowed with the Grid design (a full factorial has no joint distribution to "
+          "correlate); remove it or choose another design");
     std::vector<double> L = detail::cholesky_of_correlation(correlation, dims_);
     correlated_mask_ = 0;
     for (int i = 0; i < dims_ && !L.empty(); ++i)
       for (int j = 0; j < i; ++j)
-        if (L[static_cast<std::size_t>(i) * dims_ + j] != 0.0) correlated_mask_ |= std::uint32_t{1} << i;
+        if (L[static_cast<std::size_t>(i) * dims_ + j] != 0.0)
+          correlated_mask_ |= std::uint32_t{1} << i;
     // The normal scores needed: those that L mixes into a correlated row (and, for free, those of
     // the Normal and Lognormal marginals, which use the score directly); the others are skipped.
     score_mask_ = 0;
     for (int i = 0; i < dims_ && correlated_mask_ != 0; ++i)
       if ((correlated_mask_ >> i) & 1u)
         for (int j = 0; j <= i; ++j)
-          if (L[static_cast<std::size_t>(i) * dims_ + j] != 0.0) score_mask_ |= std::uint32_t{1} << j;
+          if (L[static_cast<std::size_t>(i) * dims_ + j] != 0.0)
+            score_mask_ |= std::uint32_t{1} << j;
     if (correlated_mask_ != 0)
       for (int d = 0; d < dims_; ++d)
-        if (marginals[d].kind == DistributionKind::Normal || marginals[d].kind == DistributionKind::Lognormal)
+        if (marginals[d].kind == DistributionKind::Normal ||
+            marginals[d].kind == DistributionKind::Lognormal)
           score_mask_ |= std::uint32_t{1} << d;
     if (correlated_mask_ == 0) L.assign(1, 1.0);
     cholesky_ = detail::to_view<double, MemorySpace>("lsi::sweeps::cholesky", L);
@@ -179,11 +198,13 @@ class Sampler {
     std::vector<std::uint64_t> directions(1, 0);
     std::vector<double> grid(1, 0.0);
     switch (design) {
-      case Design::MonteCarlo: break;
+      case Design::MonteCarlo:
+        break;
       case Design::LatinHypercube:
         if (sample_count == 0)
-          invalid("sample_count = 0: a Latin hypercube needs at least one sample (it stratifies [0,1) into "
-                  "sample_count intervals)");
+          invalid(
+              "sample_count = 0: a Latin hypercube needs at least one sample (it stratifies [0,1) into "
+              "sample_count intervals)");
         domain_ = make_permutation_domain(sample_count);
         for (int d = 0; d < dims_; ++d) keys_[d] = latin_hypercube_key(seed, d);
         break;
@@ -206,8 +227,9 @@ class Sampler {
                     "): no grid points: the Grid design needs the input's `values`");
           for (std::size_t k = 0; k < points.size(); ++k)
             if (!std::isfinite(points[k]))
-              invalid("input " + std::to_string(d) + " (" + to_string(s.kind) + "): values[" + std::to_string(k) +
-                      "] = " + detail::format_number(points[k]) + ": grid points must be finite");
+              invalid("input " + std::to_string(d) + " (" + to_string(s.kind) + "): values[" +
+                      std::to_string(k) + "] = " + detail::format_number(points[k]) +
+                      ": grid points must be finite");
           grid_offset_[d] = static_cast<std::uint32_t>(grid.size());
           grid_size_[d] = static_cast<std::uint32_t>(points.size());
           grid.insert(grid.end(), points.begin(), points.end());
@@ -216,14 +238,17 @@ class Sampler {
           sizes += (d ? " x " : "") + std::to_string(points.size());
         }
         if (overflow || product != sample_count)
-          invalid("sample_count = " + std::to_string(sample_count) + ": the Grid design's full factorial has " +
-                  (overflow ? std::string("more than 2^64") : std::to_string(product)) + " points (" +
-                  (sizes.empty() ? std::string("no inputs") : sizes) + "); sample_count must equal it");
+          invalid("sample_count = " + std::to_string(sample_count) +
+                  ": the Grid design's full factorial has " +
+                  (overflow ? std::string("more than 2^64") : std::to_string(product)) +
+                  " points (" + (sizes.empty() ? std::string("no inputs") : sizes) +
+                  "); sample_count must equal it");
         if (grid.empty()) grid.push_back(0.0);
         break;
       }
     }
-    sobol_directions_ = detail::to_view<std::uint64_t, MemorySpace>("lsi::sweeps::sobol_directions", directions);
+    sobol_directions_ =
+        detail::to_view<std::uint64_t, MemorySpace>("lsi::sweeps::sobol_directions", directions);
     grid_values_ = detail::to_view<double, MemorySpace>("lsi::sweeps::grid_values", grid);
   }
 
@@ -238,14 +263,17 @@ class Sampler {
   KOKKOS_INLINE_FUNCTION void design_uniforms(std::uint64_t index, double* u) const {
     switch (design_) {
       case Design::MonteCarlo:
-        for (int d = 0; d < dims_; ++d) u[d] = uniform_open01(seed_, index, static_cast<std::uint32_t>(d));
+        for (int d = 0; d < dims_; ++d)
+          u[d] = uniform_open01(seed_, index, static_cast<std::uint32_t>(d));
         break;
       case Design::LatinHypercube:
-        for (int d = 0; d < dims_; ++d) u[d] = latin_hypercube_uniform(seed_, keys_[d], domain_, index, d);
+        for (int d = 0; d < dims_; ++d)
+          u[d] = latin_hypercube_uniform(seed_, keys_[d], domain_, index, d);
         break;
       case Design::Sobol:
         for (int d = 0; d < dims_; ++d)
-          u[d] = sobol_word_to_open01(owen_scramble64(sobol_word(&sobol_directions_(d * sobol_bits), index), keys_[d]));
+          u[d] = sobol_word_to_open01(
+              owen_scramble64(sobol_word(&sobol_directions_(d * sobol_bits), index), keys_[d]));
         break;
       case Design::Grid: {
         std::uint64_t r = count_ > 0 ? index % count_ : 0;
@@ -264,13 +292,15 @@ class Sampler {
     double u[max_dimensions];
     design_uniforms(index, u);
     if (design_ == Design::Grid) {
-      for (int d = 0; d < dims_; ++d) out[d] = grid_values_(grid_offset_[d] + static_cast<std::uint32_t>(u[d]));
+      for (int d = 0; d < dims_; ++d)
+        out[d] = grid_values_(grid_offset_[d] + static_cast<std::uint32_t>(u[d]));
       return;
     }
     const double* values = discrete_values_.data();
     const double* cdf = discrete_cdf_.data();
     if (correlated_mask_ == 0) {
-      for (int d = 0; d < dims_; ++d) out[d] = marginal_quantile(marginals_(d), u[d], 0.0, false, values, cdf);
+      for (int d = 0; d < dims_; ++d)
+        out[d] = marginal_quantile(marginals_(d), u[d], 0.0, false, values, cdf);
       return;
     }
     double z[max_dimensions];
@@ -294,7 +324,8 @@ class Sampler {
   std::uint32_t correlated_mask_ = 0;  // bit d: row d of L mixes other dimensions in
   std::uint32_t score_mask_ = 0;       // bit d: the copula computes the normal score of dimension d
   PermutationDomain domain_{};
-  std::uint64_t keys_[max_dimensions] = {};  // Latin hypercube permutation keys / Sobol scrambling seeds
+  std::uint64_t keys_[max_dimensions] =
+      {};  // Latin hypercube permutation keys / Sobol scrambling seeds
   std::uint32_t grid_offset_[max_dimensions] = {}, grid_size_[max_dimensions] = {};
   Kokkos::View<Marginal*, MemorySpace> marginals_;
   Kokkos::View<double*, MemorySpace> discrete_values_, discrete_cdf_, cholesky_, grid_values_;
@@ -317,7 +348,8 @@ void sample_batch(const ExecSpace& space, const Sampler<MemorySpace>& s, std::ui
   const int dims = s.dimensions();
   Kokkos::parallel_for(
       "lsi::sweeps::sample_batch",
-      Kokkos::RangePolicy<ExecSpace, Kokkos::IndexType<std::int64_t>>(space, 0, static_cast<std::int64_t>(out.extent(0))),
+      Kokkos::RangePolicy<ExecSpace, Kokkos::IndexType<std::int64_t>>(
+          space, 0, static_cast<std::int64_t>(out.extent(0))),
       KOKKOS_LAMBDA(const std::int64_t i) {
         double x[Sampler<MemorySpace>::max_dimensions];
         sampler.sample(first + static_cast<std::uint64_t>(i), x);

@@ -38,7 +38,8 @@ constexpr int sobol_bits = 64;  // direction numbers per dimension
 // The direction numbers of the first `dims` dimensions, row-major [dim][k-1], 64 per dimension.
 inline std::vector<std::uint64_t> sobol_direction_numbers(int dims) {
   if (dims < 0 || dims > sobol_max_dimensions)
-    throw std::invalid_argument("Sobol design: " + std::to_string(dims) + " dimensions: the direction numbers "
+    throw std::invalid_argument("Sobol design: " + std::to_string(dims) +
+                                " dimensions: the direction numbers "
                                 "shipped (Joe & Kuo new-joe-kuo-6.21201) cover at most " +
                                 std::to_string(sobol_max_dimensions));
   std::vector<std::uint64_t> v(static_cast<std::size_t>(dims) * sobol_bits, 0);
@@ -50,7 +51,8 @@ inline std::vector<std::uint64_t> sobol_direction_numbers(int dims) {
     }
     const SobolPolynomial& p = sobol_joe_kuo_6_21201[d - 1];
     const int s = p.s;
-    for (int k = 1; k <= s; ++k) V[k - 1] = static_cast<std::uint64_t>(p.m[k - 1]) << (sobol_bits - k);
+    for (int k = 1; k <= s; ++k)
+      V[k - 1] = static_cast<std::uint64_t>(p.m[k - 1]) << (sobol_bits - k);
     for (int k = s + 1; k <= sobol_bits; ++k) {
       std::uint64_t x = V[k - s - 1] ^ (V[k - s - 1] >> s);
       for (int j = 1; j <= s - 1; ++j)

@@ -48,12 +48,14 @@ struct Interval {
 };
 
 struct OutputStatistics {
-  std::size_t count = 0;           // finite + infinite values used
-  std::size_t infinite_count = 0;  // +inf values (e.g. "barrier never stops"); mean/sd are +inf if > 0
+  std::size_t count = 0;  // finite + infinite values used
+  std::size_t infinite_count =
+      0;  // +inf values (e.g. "barrier never stops"); mean/sd are +inf if > 0
   double mean = 0, standard_deviation = 0, min = 0, max = 0;
-  Interval mean_ci{0, 0};          // Student t, at `confidence`
+  Interval mean_ci{0, 0};            // Student t, at `confidence`
   double q05 = 0, q50 = 0, q95 = 0;  // Hyndman-Fan type 7
-  Interval q05_ci{0, 0}, q50_ci{0, 0}, q95_ci{0, 0};  // distribution-free, from binomial order statistics
+  Interval q05_ci{0, 0}, q50_ci{0, 0},
+      q95_ci{0, 0};  // distribution-free, from binomial order statistics
 };
 
 struct ExceedanceEstimate {
@@ -73,7 +75,8 @@ inline double incomplete_beta(double a, double b, double x) {
   if (x <= 0) return 0.0;
   if (x >= 1) return 1.0;
   if (x > (a + 1) / (a + b + 2)) return 1.0 - incomplete_beta(b, a, 1.0 - x);
-  const double log_front = a * std::log(x) + b * std::log1p(-x) - (std::lgamma(a) + std::lgamma(b) - std::lgamma(a + b));
+  const double log_front =
+      a * std::log(x) + b * std::log1p(-x) - (std::lgamma(a) + std::lgamma(b) - std::lgamma(a + b));
   constexpr double tiny = 1e-300, eps = 1e-16;
   double c = 1.0, d = 1.0 - (a + b) * x / (a + 1);
   if (std::fabs(d) < tiny) d = tiny;
@@ -135,7 +138,8 @@ inline double student_t_quantile(double p, double nu) {
 
 inline void check_confidence(double confidence) {
   if (!(confidence > 0 && confidence < 1))
-    throw std::invalid_argument("confidence = " + detail::format_number(confidence) + ": must be in (0, 1)");
+    throw std::invalid_argument("confidence = " + detail::format_number(confidence) +
+                                ": must be in (0, 1)");
 }
 
 }  // namespace stats
@@ -158,24 +162,31 @@ inline OrderStatisticRanks order_statistic_ranks(std::size_t count, double q, do
     long long lo = 0, hi = n;  // largest l in [0, n] with F(l - 1) <= a/2
     while (lo < hi) {
       const long long mid = lo + (hi - lo + 1) / 2;
-      if (F(mid - 1) <= half_alpha) lo = mid;
-      else hi = mid - 1;
+      if (F(mid - 1) <= half_alpha)
+        lo = mid;
+      else
+        hi = mid - 1;
     }
     r.lower = lo;
     lo = 1, hi = n + 1;  // smallest u in [1, n + 1] with F(u - 1) >= 1 - a/2
     while (lo < hi) {
       const long long mid = lo + (hi - lo) / 2;
-      if (F(mid - 1) >= 1.0 - half_alpha) hi = mid;
-      else lo = mid + 1;
+      if (F(mid - 1) >= 1.0 - half_alpha)
+        hi = mid;
+      else
+        lo = mid + 1;
     }
     r.upper = lo;
     r.coverage = F(r.upper - 1) - F(r.lower - 1);
   } else {
     const double z = normal_quantile(1.0 - half_alpha);
-    const double mean = static_cast<double>(n) * q, sd = std::sqrt(static_cast<double>(n) * q * (1 - q));
+    const double mean = static_cast<double>(n) * q,
+                 sd = std::sqrt(static_cast<double>(n) * q * (1 - q));
     r.lower = std::max<long long>(0, static_cast<long long>(std::floor(mean - z * sd)));
     r.upper = std::min<long long>(n + 1, static_cast<long long>(std::ceil(mean + z * sd)) + 1);
-    auto Fn = [&](long long k) { return sd > 0 ? normal_cdf((static_cast<double>(k) + 0.5 - mean) / sd) : 1.0; };
+    auto Fn = [&](long long k) {
+      return sd > 0 ? normal_cdf((static_cast<double>(k) + 0.5 - mean) / sd) : 1.0;
+    };
     r.coverage = Fn(r.upper - 1) - Fn(r.lower - 1);
   }
   return r;
@@ -195,12 +206,14 @@ inline double quantile_type7(const std::vector<double>& sorted, double q) {
 
 namespace stats {
 inline void check_values(const std::vector<double>& values, const char* who) {
-  if (values.empty()) throw std::invalid_argument(std::string(who) + ": no values (every sample failed?)");
+  if (values.empty())
+    throw std::invalid_argument(std::string(who) + ": no values (every sample failed?)");
   for (std::size_t i = 0; i < values.size(); ++i)
     if (std::isnan(values[i]) || values[i] == -inf)
-      throw std::invalid_argument(std::string(who) + ": values[" + std::to_string(i) + "] = " +
-                                  detail::format_number(values[i]) +
-                                  ": must be a number or +inf (exclude failed samples before the statistics)");
+      throw std::invalid_argument(
+          std::string(who) + ": values[" + std::to_string(i) +
+          "] = " + detail::format_number(values[i]) +
+          ": must be a number or +inf (exclude failed samples before the statistics)");
 }
 // Sorts values (no NaN) ascending: the same sequence as std::sort with operator< (the only
 // freedom std::sort has is the relative order of -0 and +0, which compare equal; here -0 comes
@@ -252,7 +265,9 @@ inline void sort_values(std::vector<double>& values) {
 inline Interval quantile_interval(const std::vector<double>& sorted, double q, double confidence) {
   const auto r = order_statistic_ranks(sorted.size(), q, confidence);
   const double low = r.lower <= 0 ? -inf : sorted[static_cast<std::size_t>(r.lower - 1)];
-  const double high = r.upper > static_cast<long long>(sorted.size()) ? inf : sorted[static_cast<std::size_t>(r.upper - 1)];
+  const double high = r.upper > static_cast<long long>(sorted.size())
+                          ? inf
+                          : sorted[static_cast<std::size_t>(r.upper - 1)];
   return {low, high};
 }
 }  // namespace stats
@@ -276,7 +291,8 @@ inline OutputStatistics describe(std::vector<double> values, double confidence =
     double sum = 0;
     for (double v : values) sum += v;
     s.mean = sum / static_cast<double>(n);
-    double ss = 0, c = 0;  // two-pass, with the compensation term of the corrected two-pass algorithm
+    double ss = 0,
+           c = 0;  // two-pass, with the compensation term of the corrected two-pass algorithm
     for (double v : values) {
       ss += (v - s.mean) * (v - s.mean);
       c += v - s.mean;
@@ -284,7 +300,8 @@ inline OutputStatistics describe(std::vector<double> values, double confidence =
     if (n >= 2) {
       const double var = (ss - c * c / static_cast<double>(n)) / static_cast<double>(n - 1);
       s.standard_deviation = std::sqrt(std::max(0.0, var));
-      const double t = stats::student_t_quantile(0.5 + 0.5 * confidence, static_cast<double>(n - 1));
+      const double t =
+          stats::student_t_quantile(0.5 + 0.5 * confidence, static_cast<double>(n - 1));
       const double half = t * s.standard_deviation / std::sqrt(static_cast<double>(n));
       s.mean_ci = {s.mean - half, s.mean + half};
     } else {
@@ -302,10 +319,12 @@ inline OutputStatistics describe(std::vector<double> values, double confidence =
 }
 
 // P(value > threshold), Wilson score interval at `confidence`. Same input rules as describe().
-inline ExceedanceEstimate exceedance(const std::vector<double>& values, double threshold, double confidence = 0.95) {
+inline ExceedanceEstimate exceedance(const std::vector<double>& values, double threshold,
+                                     double confidence = 0.95) {
   stats::check_values(values, "exceedance");
   stats::check_confidence(confidence);
-  if (std::isnan(threshold)) throw std::invalid_argument("exceedance: threshold = nan: must be a number");
+  if (std::isnan(threshold))
+    throw std::invalid_argument("exceedance: threshold = nan: must be a number");
   ExceedanceEstimate e{threshold, 0, values.size(), 0.0, {0, 0}};
   for (double v : values)
     if (v > threshold) ++e.exceed_count;
@@ -314,7 +333,8 @@ inline ExceedanceEstimate exceedance(const std::vector<double>& values, double t
   const double z = normal_quantile(0.5 + 0.5 * confidence), z2 = z * z;
   const double denom = 1.0 + z2 / n;
   const double center = (e.probability + z2 / (2 * n)) / denom;
-  const double half = z * std::sqrt(e.probability * (1 - e.probability) / n + z2 / (4 * n * n)) / denom;
+  const double half =
+      z * std::sqrt(e.probability * (1 - e.probability) / n + z2 / (4 * n * n)) / denom;
   e.ci.low = e.exceed_count == 0 ? 0.0 : std::max(0.0, center - half);
   e.ci.high = e.exceed_count == e.count ? 1.0 : std::min(1.0, center + half);
   return e;

@@ -9,9 +9,9 @@
 namespace lsi {
 
 struct BarrierGeometry {
-  double height = 0.0;      // H, m
-  double base_width = 0.0;  // B, m
-  double top_width = 0.0;   // b, m
+  double height = 0.0;                   // H, m
+  double base_width = 0.0;               // B, m
+  double top_width = 0.0;                // b, m
   double face_angle = 0.5 * math::pi();  // beta, rad
 
   KOKKOS_INLINE_FUNCTION double area() const { return 0.5 * (base_width + top_width) * height; }

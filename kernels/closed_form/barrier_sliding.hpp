@@ -20,8 +20,8 @@ namespace lsi {
 
 struct BarrierMotion {
   bool moves = false;
-  double start_time = 0.0;   // t*, s
-  double stop_time = 0.0;    // s; +infinity if the barrier never stops
+  double start_time = 0.0;          // t*, s
+  double stop_time = 0.0;           // s; +infinity if the barrier never stops
   double final_displacement = 0.0;  // Delta x_f, m; +infinity if it never stops
   // Internal state at the phase boundaries, for evaluation at any t.
   double k1 = 0.0, sB = 0.0, a1 = 0.0, aC = 0.0;
@@ -31,13 +31,19 @@ struct BarrierMotion {
   KOKKOS_INLINE_FUNCTION double velocity(double t) const {
     if (!moves || t <= start_time || t >= stop_time) return 0.0;
     if (t <= T1) return 0.5 * k1 * (t - start_time) * (t - start_time);
-    if (t <= T2) { const double u = t - T1; return v_T1 + a1 * u + 0.5 * sB * u * u; }
+    if (t <= T2) {
+      const double u = t - T1;
+      return v_T1 + a1 * u + 0.5 * sB * u * u;
+    }
     return v_T2 + aC * (t - T2);
   }
   KOKKOS_INLINE_FUNCTION double displacement(double t) const {
     if (!moves || t <= start_time) return 0.0;
     if (t >= stop_time) return final_displacement;
-    if (t <= T1) { const double u = t - start_time; return k1 * u * u * u / 6.0; }
+    if (t <= T1) {
+      const double u = t - start_time;
+      return k1 * u * u * u / 6.0;
+    }
     if (t <= T2) {
       const double u = t - T1;
       return x_T1 + v_T1 * u + 0.5 * a1 * u * u + sB * u * u * u / 6.0;
@@ -51,25 +57,25 @@ struct BarrierMotion {
 // models (batch.hpp) vectorise over samples. Lanes of a phase that does not apply may hold
 // infinities (e.g. t* = g'/k1 with k1 = 0); they are never selected.
 KOKKOS_INLINE_FUNCTION BarrierMotion barrier_motion(const ForcePulse& p, const SlidingBlock& b) {
-  const double g_friction = b.base_friction * gravity;          // g' = g tan(delta_b)
+  const double g_friction = b.base_friction * gravity;  // g' = g tan(delta_b)
   // Moves only if the peak drive beats friction.
   const bool moves = (b.drive > 0.0) & (b.acceleration(p.peak) > 0.0);
   const double k1 = b.drive * p.peak / (b.mass * p.rise_time);
-  const double start_time = g_friction / k1;                      // t*
+  const double start_time = g_friction / k1;  // t*
   const double uA = p.rise_time - start_time;
   const double v_T1 = 0.5 * k1 * uA * uA;
   const double x_T1 = k1 * uA * uA * uA / 6.0;
-  const double a1 = k1 * uA;                                      // = acceleration at T1
+  const double a1 = k1 * uA;  // = acceleration at T1
   const double dT = p.duration - p.rise_time;
   const double sB = b.drive * (p.residual - p.peak) / (b.mass * dT);
   const double uStop = first_stop(v_T1, a1, sB, dT);
-  const bool stops_before_T2 = uStop >= 0.0;                      // friction stops it before T2
-  const double x_stop = x_T1 + v_T1 * uStop + 0.5 * a1 * uStop * uStop +
-                        sB * uStop * uStop * uStop / 6.0;
+  const bool stops_before_T2 = uStop >= 0.0;  // friction stops it before T2
+  const double x_stop =
+      x_T1 + v_T1 * uStop + 0.5 * a1 * uStop * uStop + sB * uStop * uStop * uStop / 6.0;
   const double v_T2 = v_T1 + a1 * dT + 0.5 * sB * dT * dT;
   const double x_T2 = x_T1 + v_T1 * dT + 0.5 * a1 * dT * dT + sB * dT * dT * dT / 6.0;
   const double aC = b.acceleration(p.residual);
-  const bool decelerates = aC < 0.0;                              // after T2: to rest, or never
+  const bool decelerates = aC < 0.0;  // after T2: to rest, or never
   const double stop_C = decelerates ? p.duration - v_T2 / aC : math::infinity();
   const double x_C = decelerates ? x_T2 - 0.5 * v_T2 * v_T2 / aC : math::infinity();
 

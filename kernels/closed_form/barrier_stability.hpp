@@ -30,12 +30,9 @@ KOKKOS_INLINE_FUNCTION double overturning_lever(const BarrierGeometry& g, const 
   return r.horizontal * z + r.vertical_down * (px - g.base_width);
 }
 
-KOKKOS_INLINE_FUNCTION StabilityCheck barrier_stability(const double* time,
-                                                        const double* normal_force, int n,
-                                                        const BarrierGeometry& g,
-                                                        const FaceResolution& r,
-                                                        double barrier_mass, double base_friction,
-                                                        double resultant_height) {
+KOKKOS_INLINE_FUNCTION StabilityCheck barrier_stability(
+    const double* time, const double* normal_force, int n, const BarrierGeometry& g,
+    const FaceResolution& r, double barrier_mass, double base_friction, double resultant_height) {
   StabilityCheck out;
   out.resultant_height = math::min(resultant_height, g.height);
   const double W = barrier_mass * gravity;
@@ -47,7 +44,10 @@ KOKKOS_INLINE_FUNCTION StabilityCheck barrier_stability(const double* time,
     const double push = N * r.horizontal;
     if (push > 0.0) {
       const double fs = base_friction * (W + N * r.vertical_down) / push;
-      if (fs < out.min_sliding_safety) { out.min_sliding_safety = fs; out.time_min_sliding = time[i]; }
+      if (fs < out.min_sliding_safety) {
+        out.min_sliding_safety = fs;
+        out.time_min_sliding = time[i];
+      }
     }
     const double moment = N * lever;
     if (moment > 0.0) {

@@ -35,7 +35,6 @@ struct ClosedFormOutputs {
   View final_displacement;  // m (0 for a fixed barrier, +infinity if it never stops)
 };
 
-
 // Runs body(i) for every sample i in [0, n). On a GPU one thread a sample; on the host in blocks of
 // kSamplesPerBlock consecutive samples, the loop over a block marked free of dependencies between
 // samples so that GCC evaluates the models for a vector register of samples at once (the models
@@ -55,20 +54,20 @@ void for_each_sample(const char* name, const ExecSpace& space, int n, const Body
     Kokkos::parallel_for(name, Kokkos::RangePolicy<ExecSpace>(space, 0, n), body);
   } else {
     const int blocks = (n + kSamplesPerBlock - 1) / kSamplesPerBlock;
-    Kokkos::parallel_for(
-        name, Kokkos::RangePolicy<ExecSpace>(space, 0, blocks), [=](const int block) {
-          const int begin = block * kSamplesPerBlock;
-          if (begin + kSamplesPerBlock <= n) {
+    Kokkos::parallel_for(name, Kokkos::RangePolicy<ExecSpace>(space, 0, blocks),
+                         [=](const int block) {
+                           const int begin = block * kSamplesPerBlock;
+                           if (begin + kSamplesPerBlock <= n) {
 #if defined(__clang__)
 #pragma clang loop vectorize(assume_safety)
 #elif defined(__GNUC__)
 #pragma GCC ivdep
 #endif
-            for (int k = 0; k < kSamplesPerBlock; ++k) body(begin + k);
-          } else {
-            for (int i = begin; i < n; ++i) body(i);
-          }
-        });
+                             for (int k = 0; k < kSamplesPerBlock; ++k) body(begin + k);
+                           } else {
+                             for (int i = begin; i < n; ++i) body(i);
+                           }
+                         });
   }
 }
 
@@ -85,8 +84,8 @@ void evaluate_two_body_batch(const ExecSpace& space, const ClosedFormInputs<Memo
         out.peak_force(i) = imp.pulse.peak;
         out.rise_time(i) = imp.pulse.rise_time;
         out.impact_duration(i) = imp.pulse.duration;
-        out.final_displacement(i) = final_displacement_under(
-            imp.pulse, in.barrier_mass(i), in.base_friction(i), in.face_angle(i));
+        out.final_displacement(i) = final_displacement_under(imp.pulse, in.barrier_mass(i),
+                                                             in.base_friction(i), in.face_angle(i));
       });
 }
 
@@ -103,8 +102,8 @@ void evaluate_empirical_batch(const ExecSpace& space, const ClosedFormInputs<Mem
         out.peak_force(i) = imp.pulse.peak;
         out.rise_time(i) = imp.pulse.rise_time;
         out.impact_duration(i) = imp.pulse.duration;
-        out.final_displacement(i) = final_displacement_under(
-            imp.pulse, in.barrier_mass(i), in.base_friction(i), in.face_angle(i));
+        out.final_displacement(i) = final_displacement_under(imp.pulse, in.barrier_mass(i),
+                                                             in.base_friction(i), in.face_angle(i));
       });
 }
 

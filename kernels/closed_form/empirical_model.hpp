@@ -25,10 +25,10 @@
 namespace lsi {
 
 struct EmpiricalCoefficients {
-  double a1 = 1.781;    // alpha = a1 Fr^a2
+  double a1 = 1.781;  // alpha = a1 Fr^a2
   double a2 = -0.515;
-  double tau = 0.14;    // T1 / T2, in (0, 1)
-  double kappa = 0.0;   // static coefficient
+  double tau = 0.14;   // T1 / T2, in (0, 1)
+  double kappa = 0.0;  // static coefficient
 };
 
 struct EmpiricalImpact {
@@ -36,10 +36,10 @@ struct EmpiricalImpact {
   double tangential_velocity = 0.0;  // v_t, m/s
   double froude = 0.0;               // Fr
   double alpha = 0.0;
-  double peak_dynamic = 0.0;         // F_peak,dyn, N/m
-  double peak_static = 0.0;          // F_peak,stat, N/m
-  double landslide_mass = 0.0;       // m1, kg/m
-  ForcePulse pulse;                  // normal force on the face; peak = F_peak
+  double peak_dynamic = 0.0;    // F_peak,dyn, N/m
+  double peak_static = 0.0;     // F_peak,stat, N/m
+  double landslide_mass = 0.0;  // m1, kg/m
+  ForcePulse pulse;             // normal force on the face; peak = F_peak
 
   // Landslide velocity normal to the face, eq. 9; zero from T2 on (the flow is stopped).
   KOKKOS_INLINE_FUNCTION double landslide_normal_velocity(double t) const {
@@ -61,16 +61,16 @@ KOKKOS_INLINE_FUNCTION EmpiricalImpact empirical_impact(double thickness, double
   r.normal_velocity = velocity * math::sin(face_angle_rad);
   r.tangential_velocity = velocity * math::cos(face_angle_rad);
   r.landslide_mass = landslide_mass;
-  r.froude = r.normal_velocity / math::sqrt(gravity * thickness);                 // eq. 1
-  r.alpha = c.a1 * math::pow(r.froude, c.a2);                                      // eq. 2
+  r.froude = r.normal_velocity / math::sqrt(gravity * thickness);                          // eq. 1
+  r.alpha = c.a1 * math::pow(r.froude, c.a2);                                              // eq. 2
   r.peak_dynamic = r.alpha * density * r.normal_velocity * r.normal_velocity * thickness;  // eq. 4
-  r.peak_static = 0.5 * c.kappa * density * gravity * thickness * thickness;      // eq. 5
-  const double peak = r.peak_dynamic + r.peak_static;                              // eq. 3
+  r.peak_static = 0.5 * c.kappa * density * gravity * thickness * thickness;               // eq. 5
+  const double peak = r.peak_dynamic + r.peak_static;                                      // eq. 3
   const double T2 = 2.0 * landslide_mass * r.normal_velocity /
-                    (peak + r.peak_static - c.tau * r.peak_static);                // eq. 6
+                    (peak + r.peak_static - c.tau * r.peak_static);  // eq. 6
   r.pulse.peak = peak;
   r.pulse.duration = T2;
-  r.pulse.rise_time = c.tau * T2;                                                  // eq. 7
+  r.pulse.rise_time = c.tau * T2;  // eq. 7
   r.pulse.residual = r.peak_static;
   return r;
 }

@@ -11,8 +11,8 @@ namespace lsi {
 struct MassForDisplacement {
   enum class Status { Found, AnyMassWorks, NoMassInRange };
   Status status = Status::NoMassInRange;
-  double mass = 0.0;           // kg/m (Found: the minimum; AnyMassWorks: the lower scan bound)
-  double displacement = 0.0;   // m, at `mass`
+  double mass = 0.0;          // kg/m (Found: the minimum; AnyMassWorks: the lower scan bound)
+  double displacement = 0.0;  // m, at `mass`
   int evaluations = 0;
 };
 
@@ -33,15 +33,19 @@ MassForDisplacement minimum_barrier_mass(DisplacementOfMass&& displacement_of_ma
     const double m = std::exp(l0 + (l1 - l0) * k / (scan_points - 1));
     if (!ok(m)) last_fail = k;
   }
-  if (last_fail == scan_points - 1) { out.mass = mass_high; out.displacement = displacement_of_mass(mass_high); return out; }
+  if (last_fail == scan_points - 1) {
+    out.mass = mass_high;
+    out.displacement = displacement_of_mass(mass_high);
+    return out;
+  }
   if (last_fail < 0) {
     out.status = MassForDisplacement::Status::AnyMassWorks;
     out.mass = mass_low;
     out.displacement = displacement_of_mass(mass_low);
     return out;
   }
-  double lo = l0 + (l1 - l0) * last_fail / (scan_points - 1);       // fails
-  double hi = l0 + (l1 - l0) * (last_fail + 1) / (scan_points - 1); // passes
+  double lo = l0 + (l1 - l0) * last_fail / (scan_points - 1);        // fails
+  double hi = l0 + (l1 - l0) * (last_fail + 1) / (scan_points - 1);  // passes
   while (hi - lo > relative_tolerance) {
     const double mid = 0.5 * (lo + hi);
     (ok(std::exp(mid)) ? hi : lo) = mid;

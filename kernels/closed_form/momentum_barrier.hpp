@@ -57,15 +57,15 @@ struct MomentumBarrierState {
 };
 
 struct MomentumBarrierResult {
-  double peak_force = 0.0;           // N/m: the fixed pulse's peak (every path reaches it)
-  double rise_time = 0.0;            // s: when N reaches the peak
-  double contact_end = 0.0;          // s: when N returns to zero (+infinity: never)
-  double start_time = -1.0;          // s: first instant of sliding (-1: never slides)
-  double stop_time = 0.0;            // s: when the barrier comes to rest (+infinity: never)
-  double final_displacement = 0.0;   // m (+infinity without base friction once it slides)
-  double final_landslide_velocity = 0.0;   // v1 at the end, m/s
-  double largest_barrier_velocity = 0.0;   // m/s
-  bool ok = true;                    // false: the integration did not finish (a NaN input)
+  double peak_force = 0.0;                // N/m: the fixed pulse's peak (every path reaches it)
+  double rise_time = 0.0;                 // s: when N reaches the peak
+  double contact_end = 0.0;               // s: when N returns to zero (+infinity: never)
+  double start_time = -1.0;               // s: first instant of sliding (-1: never slides)
+  double stop_time = 0.0;                 // s: when the barrier comes to rest (+infinity: never)
+  double final_displacement = 0.0;        // m (+infinity without base friction once it slides)
+  double final_landslide_velocity = 0.0;  // v1 at the end, m/s
+  double largest_barrier_velocity = 0.0;  // m/s
+  bool ok = true;                         // false: the integration did not finish (a NaN input)
 };
 
 // The fixed-barrier pulse of the momentum-consistent analytical model: the two-body triangle of
@@ -92,7 +92,7 @@ KOKKOS_INLINE_FUNCTION ForcePulse momentum_capped_pulse(ForcePulse p, double lan
   const double J = p.pulse_impulse(), most = landslide_mass * velocity / horizontal;
   if (!(J > most)) return p;
   const double tau = p.rise_time / p.duration;
-  p.duration *= most / J;   // residual 0: J = peak T2 / 2, linear in T2
+  p.duration *= most / J;  // residual 0: J = peak T2 / 2, linear in T2
   p.rise_time = tau * p.duration;
   return p;
 }
@@ -103,9 +103,9 @@ enum class Branch { Rise, Decay };
 
 // Constants of one case.
 struct Model {
-  double m1, m2, v0, h, c, g_friction;   // g_friction = tan(delta_b) g
-  double f1;                             // the flow's base friction, m/s^2
-  double a, b, W, peak, slip_force;      // N = a sigma (rise), b sigma (decay); slip above slip_force
+  double m1, m2, v0, h, c, g_friction;  // g_friction = tan(delta_b) g
+  double f1;                            // the flow's base friction, m/s^2
+  double a, b, W, peak, slip_force;  // N = a sigma (rise), b sigma (decay); slip above slip_force
   bool can_slide;
 };
 
@@ -191,11 +191,11 @@ KOKKOS_INLINE_FUNCTION void dp_step(const Contact& f, const double* y, double dt
                          2187.0 / 6784.0 * k5[i] + 11.0 / 84.0 * k6[i]);
   f.derivative(y5, k7);
   for (int i = 0; i < kDim; ++i)
-    err[i] = dt * ((35.0 / 384.0 - 5179.0 / 57600.0) * k1[i] +
-                   (500.0 / 1113.0 - 7571.0 / 16695.0) * k3[i] +
-                   (125.0 / 192.0 - 393.0 / 640.0) * k4[i] +
-                   (-2187.0 / 6784.0 + 92097.0 / 339200.0) * k5[i] +
-                   (11.0 / 84.0 - 187.0 / 2100.0) * k6[i] - 1.0 / 40.0 * k7[i]);
+    err[i] =
+        dt *
+        ((35.0 / 384.0 - 5179.0 / 57600.0) * k1[i] + (500.0 / 1113.0 - 7571.0 / 16695.0) * k3[i] +
+         (125.0 / 192.0 - 393.0 / 640.0) * k4[i] + (-2187.0 / 6784.0 + 92097.0 / 339200.0) * k5[i] +
+         (11.0 / 84.0 - 187.0 / 2100.0) * k6[i] - 1.0 / 40.0 * k7[i]);
 }
 
 // The recorder of the histories: the state at each requested time.
@@ -221,10 +221,9 @@ enum class Event { None, Peak, Slip, Stop, End, Failed };
 
 // The response, and the state at `count` increasing `sample_times` into `samples` (both may be
 // null with count 0). Times after the end repeat the final state.
-KOKKOS_INLINE_FUNCTION MomentumBarrierResult momentum_barrier(const MomentumBarrierSetup& setup,
-                                                              const double* sample_times = nullptr,
-                                                              int count = 0,
-                                                              MomentumBarrierState* samples = nullptr) {
+KOKKOS_INLINE_FUNCTION MomentumBarrierResult
+momentum_barrier(const MomentumBarrierSetup& setup, const double* sample_times = nullptr,
+                 int count = 0, MomentumBarrierState* samples = nullptr) {
   using namespace momentum_detail;
   const Model m = model_of(setup);
   MomentumBarrierResult r;
@@ -244,7 +243,7 @@ KOKKOS_INLINE_FUNCTION MomentumBarrierResult momentum_barrier(const MomentumBarr
   const double T1 = setup.fixed_pulse.rise_time, T2 = setup.fixed_pulse.duration;
   const double tol = 1e-12;
   Contact f{&m, Branch::Rise, false};
-  double y[kDim] = {0.0, 0.0, 0.0, 0.0};   // sigma, I, x2, t
+  double y[kDim] = {0.0, 0.0, 0.0, 0.0};  // sigma, I, x2, t
 
   if (m.f1 == 0.0 && m.slip_force > 0.0) {
     // Sticking on the rising branch of a smooth flow base: the fixed pulse, N = peak t / T1,
@@ -278,7 +277,7 @@ KOKKOS_INLINE_FUNCTION MomentumBarrierResult momentum_barrier(const MomentumBarr
     if (f.sliding) r.start_time = 0.0;
     while (rec.wants(t0)) rec.put(rec.next_time(), 0.0, m.v0, 0.0, 0.0);
   } else {
-    f.sliding = true;   // no friction under the barrier: it moves as soon as it is pushed
+    f.sliding = true;  // no friction under the barrier: it moves as soon as it is pushed
     r.start_time = 0.0;
   }
 
@@ -289,12 +288,12 @@ KOKKOS_INLINE_FUNCTION MomentumBarrierResult momentum_barrier(const MomentumBarr
   while (contact) {
     if (f.branch == Branch::Decay && !f.sliding && m.f1 == 0.0) {
       // Sticking on the decaying branch of a smooth flow base: N = b sigma falls linearly.
-      const double rate = m.h * m.b / (2.0 * m.m1);   // -d sigma / dt
+      const double rate = m.h * m.b / (2.0 * m.m1);  // -d sigma / dt
       const double t_start = y[3], N0 = m.b * y[0], I0 = y[1];
       const double t_end = t_start + y[0] / rate;
       auto at = [&](double s, double& N, double& impulse) {
         const double u = s - t_start;
-        N = math::max(0.0, N0 - m.b * rate * u);   // round-off at the very end
+        N = math::max(0.0, N0 - m.b * rate * u);  // round-off at the very end
         impulse = I0 + N0 * u - 0.5 * m.b * rate * u * u;
       };
       while (rec.wants(t_end)) {
@@ -324,7 +323,7 @@ KOKKOS_INLINE_FUNCTION MomentumBarrierResult momentum_barrier(const MomentumBarr
         const double h_sigma = -y[0] / n;
         auto dz = [&](double sigma, const double* z, double* out) {
           double state[kDim] = {sigma, z[1], z[2], z[0]}, d[kDim];
-          f.derivative(state, d);   // d[0] = sigma' (its friction term finite for sigma > 0)
+          f.derivative(state, d);  // d[0] = sigma' (its friction term finite for sigma > 0)
           const double kappa = m.h / m.m1 + (f.sliding ? m.c / m.m2 : 0.0);
           const double dt_dsigma = -2.0 * sigma / (kappa * m.b * sigma + rest);
           out[0] = dt_dsigma;
@@ -345,7 +344,7 @@ KOKKOS_INLINE_FUNCTION MomentumBarrierResult momentum_barrier(const MomentumBarr
           for (int j = 0; j < 3; ++j)
             znew[j] = z[j] + h_sigma / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
           const double sigma_new = i + 1 == n ? 0.0 : sigma + h_sigma;
-          while (rec.wants(znew[0])) {   // linear within this last, short stretch
+          while (rec.wants(znew[0])) {  // linear within this last, short stretch
             const double s = rec.next_time(), u = (s - z[0]) / (znew[0] - z[0]);
             const double st[kDim] = {sigma + u * (sigma_new - sigma), z[1] + u * (znew[1] - z[1]),
                                      z[2] + u * (znew[2] - z[2]), s};
@@ -378,9 +377,11 @@ KOKKOS_INLINE_FUNCTION MomentumBarrierResult momentum_barrier(const MomentumBarr
       }
       auto crossed = [&](const double* z) {
         if (f.branch == Branch::Rise && f.force(z) >= m.peak) return Event::Peak;
-        if (f.branch == Branch::Rise && !f.sliding && f.force(z) >= m.slip_force) return Event::Slip;
+        if (f.branch == Branch::Rise && !f.sliding && f.force(z) >= m.slip_force)
+          return Event::Slip;
         if (f.branch == Branch::Decay && !(z[0] > 0.0) && rest_braking) return Event::End;
-        if (f.branch == Branch::Decay && f.sliding && f.barrier_velocity(z) <= 0.0) return Event::Stop;
+        if (f.branch == Branch::Decay && f.sliding && f.barrier_velocity(z) <= 0.0)
+          return Event::Stop;
         return Event::None;
       };
       Event ev = crossed(y5);
@@ -393,7 +394,7 @@ KOKKOS_INLINE_FUNCTION MomentumBarrierResult momentum_barrier(const MomentumBarr
           dp_step(f, y, mid, ym, em);
           (crossed(ym) == ev ? hi : lo) = mid;
         }
-        dt_event = ev == Event::End ? lo : hi;   // the end: sigma still >= 0
+        dt_event = ev == Event::End ? lo : hi;  // the end: sigma still >= 0
         dp_step(f, y, dt_event, y5, err);
         event = ev;
       }
@@ -412,7 +413,7 @@ KOKKOS_INLINE_FUNCTION MomentumBarrierResult momentum_barrier(const MomentumBarr
       case Event::Peak:
         r.rise_time = y[3];
         f.branch = Branch::Decay;
-        y[0] = m.peak / m.b;   // N = peak on both branches
+        y[0] = m.peak / m.b;  // N = peak on both branches
         break;
       case Event::Slip:
         f.sliding = true;
@@ -422,7 +423,7 @@ KOKKOS_INLINE_FUNCTION MomentumBarrierResult momentum_barrier(const MomentumBarr
         f.sliding = false;
         r.stop_time = y[3];
         break;
-      default:   // End
+      default:  // End
         contact = false;
         break;
     }
@@ -436,7 +437,7 @@ KOKKOS_INLINE_FUNCTION MomentumBarrierResult momentum_barrier(const MomentumBarr
   r.final_landslide_velocity = math::max(0.0, v1);
   if (r.start_time < 0.0) r.stop_time = 0.0;
   if (f.sliding && v2 > 0.0) {
-    if (m.g_friction == 0.0) {   // slides on for ever with the flow behind it
+    if (m.g_friction == 0.0) {  // slides on for ever with the flow behind it
       r.stop_time = math::infinity();
       r.final_displacement = math::infinity();
       while (rec.wants(math::infinity())) {

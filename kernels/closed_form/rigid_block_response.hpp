@@ -34,35 +34,38 @@ KOKKOS_INLINE_FUNCTION RigidBlockSummary rigid_block_response(const double* time
     const double t0 = time[i], t1 = time[i + 1];
     const double a0 = block.acceleration(normal_force[i]);
     const double a1 = block.acceleration(normal_force[i + 1]);
-    if (!(t1 > t0)) { record(i + 1); continue; }
-    const double s = (a1 - a0) / (t1 - t0);      // da/dt within the segment
+    if (!(t1 > t0)) {
+      record(i + 1);
+      continue;
+    }
+    const double s = (a1 - a0) / (t1 - t0);  // da/dt within the segment
     double ta = t0;
-    bool onset = false;   // ta is the computed stick -> slip instant: the drive equals friction
+    bool onset = false;  // ta is the computed stick -> slip instant: the drive equals friction
     for (int pass = 0; pass < 4 && ta < t1; ++pass) {
       // At the onset the acceleration is zero by construction; rounding (e.g. FMA contraction)
       // may leave -1e-16 there, which would read as "stops at once" and lose the whole slide.
       const double aa = onset ? 0.0 : a0 + s * (ta - t0);
       onset = false;
-      if (!sliding) {                              // stuck: does the drive beat friction?
+      if (!sliding) {  // stuck: does the drive beat friction?
         if (aa > 0.0) {
           sliding = true;
         } else if (s > 0.0 && a1 > 0.0) {
-          ta = t0 - a0 / s;                        // drive = friction here
+          ta = t0 - a0 / s;  // drive = friction here
           sliding = true;
           onset = true;
         } else {
-          break;                                   // stuck to the end of the segment
+          break;  // stuck to the end of the segment
         }
         if (out.start_time < 0.0) out.start_time = ta;
         continue;
       }
       const double u = first_stop(v, aa, s, t1 - ta);
-      if (u < 0.0) {                               // slides to the end of the segment
+      if (u < 0.0) {  // slides to the end of the segment
         const double du = t1 - ta;
         x += v * du + 0.5 * aa * du * du + s * du * du * du / 6.0;
         v += aa * du + 0.5 * s * du * du;
         ta = t1;
-      } else {                                     // comes to rest inside the segment
+      } else {  // comes to rest inside the segment
         x += v * u + 0.5 * aa * u * u + s * u * u * u / 6.0;
         v = 0.0;
         sliding = false;
@@ -70,7 +73,7 @@ KOKKOS_INLINE_FUNCTION RigidBlockSummary rigid_block_response(const double* time
         out.stop_time = ta;
       }
     }
-    if (v < 0.0) v = 0.0;                          // round-off guard: never moves upstream
+    if (v < 0.0) v = 0.0;  // round-off guard: never moves upstream
     record(i + 1);
   }
   // After the last sample the force stays constant.

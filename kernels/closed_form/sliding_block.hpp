@@ -10,9 +10,9 @@
 namespace lsi {
 
 struct SlidingBlock {
-  double mass = 0.0;            // m2, kg/m (a fixed barrier is never given to the sliding code)
-  double base_friction = 0.0;   // tan(delta_b)
-  double drive = 1.0;           // c: net horizontal drive per unit normal force
+  double mass = 0.0;           // m2, kg/m (a fixed barrier is never given to the sliding code)
+  double base_friction = 0.0;  // tan(delta_b)
+  double drive = 1.0;          // c: net horizontal drive per unit normal force
 
   // Acceleration while sliding under normal force N (m/s^2).
   KOKKOS_INLINE_FUNCTION double acceleration(double normal_force) const {
@@ -36,7 +36,7 @@ KOKKOS_INLINE_FUNCTION double first_stop(double v, double a, double s, double u_
   // square root is NaN, and so are q and both roots: every comparison with a NaN is false.
   const double sq = math::sqrt(a * a - 2.0 * s * v);
   const double q = -0.5 * (a + (a >= 0.0 ? sq : -sq));
-  const double r1 = q / (0.5 * s), r2 = v / q;   // q = 0: r1 = 0 (no stop) and r2 = infinity
+  const double r1 = q / (0.5 * s), r2 = v / q;  // q = 0: r1 = 0 (no stop) and r2 = infinity
   const double root1 = r1 > 0.0 ? r1 : math::infinity();
   const double root2 = r2 > 0.0 ? r2 : math::infinity();
   const double best = s == 0.0 ? linear : math::min(root1, root2);

@@ -22,8 +22,8 @@
 namespace lsi {
 
 struct TwoBodyCoefficients {
-  double lambda = 0.41;   // s1,max / L1,0, in (0, 1]
-  double tau = 0.25;      // T1 / T2, in (0, 1)
+  double lambda = 0.41;  // s1,max / L1,0, in (0, 1]
+  double tau = 0.25;     // T1 / T2, in (0, 1)
 };
 
 // The paper's calibrated values (Cuomo et al. 2022): fixed barriers 0.72 / 0.17, free 0.41 / 0.25.
@@ -35,14 +35,14 @@ KOKKOS_INLINE_FUNCTION TwoBodyCoefficients default_two_body_coefficients(bool fi
 }
 
 struct TwoBodyImpact {
-  double landslide_mass = 0.0;   // m1, kg/m
-  double reduced_mass = 0.0;     // mu, kg/m
+  double landslide_mass = 0.0;     // m1, kg/m
+  double reduced_mass = 0.0;       // mu, kg/m
   double approach_velocity = 0.0;  // v10, m/s
-  double max_shortening = 0.0;   // s1,max, m
-  double K1 = 0.0;               // kg/s
-  double q1 = 0.0;               // kg m^0.5 / s^2
-  double common_velocity = 0.0;  // v_CM = m1 v10 / (m1 + m2), m/s
-  ForcePulse pulse;              // normal force on the face
+  double max_shortening = 0.0;     // s1,max, m
+  double K1 = 0.0;                 // kg/s
+  double q1 = 0.0;                 // kg m^0.5 / s^2
+  double common_velocity = 0.0;    // v_CM = m1 v10 / (m1 + m2), m/s
+  ForcePulse pulse;                // normal force on the face
 
   // eq. 15; after T2 the landslide keeps v_CM.
   KOKKOS_INLINE_FUNCTION double landslide_velocity(double t) const {
@@ -63,13 +63,13 @@ KOKKOS_INLINE_FUNCTION TwoBodyImpact two_body_impact(double landslide_mass, doub
   r.landslide_mass = landslide_mass;
   r.approach_velocity = velocity;
   r.reduced_mass = landslide_mass / (1.0 + landslide_mass / barrier_mass);
-  r.max_shortening = c.lambda * equivalent_length;                     // s1,max = lambda L1,0
+  r.max_shortening = c.lambda * equivalent_length;  // s1,max = lambda L1,0
   r.K1 = r.reduced_mass * velocity / r.max_shortening;
-  r.q1 = 0.75 * r.K1 * velocity / math::sqrt(r.max_shortening);       // eq. 11
-  const double T2 = (8.0 / 3.0) * r.max_shortening / velocity;         // eq. 12
+  r.q1 = 0.75 * r.K1 * velocity / math::sqrt(r.max_shortening);  // eq. 11
+  const double T2 = (8.0 / 3.0) * r.max_shortening / velocity;   // eq. 12
   r.pulse.duration = T2;
-  r.pulse.rise_time = c.tau * T2;                                      // eq. 7
-  r.pulse.peak = 0.5 * r.q1 * r.q1 / r.K1 * T2;                        // eq. 13 at t = T1
+  r.pulse.rise_time = c.tau * T2;                // eq. 7
+  r.pulse.peak = 0.5 * r.q1 * r.q1 / r.K1 * T2;  // eq. 13 at t = T1
   r.pulse.residual = 0.0;
   r.common_velocity = velocity - r.reduced_mass * velocity / landslide_mass;
   return r;

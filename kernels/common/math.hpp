@@ -28,7 +28,9 @@ using Kokkos::Experimental::tan;
 #endif
 
 KOKKOS_INLINE_FUNCTION constexpr double pi() { return 3.14159265358979323846; }
-KOKKOS_INLINE_FUNCTION constexpr double degrees_to_radians(double deg) { return deg * pi() / 180.0; }
+KOKKOS_INLINE_FUNCTION constexpr double degrees_to_radians(double deg) {
+  return deg * pi() / 180.0;
+}
 KOKKOS_INLINE_FUNCTION constexpr double infinity() { return __builtin_huge_val(); }
 KOKKOS_INLINE_FUNCTION constexpr double quiet_nan() { return __builtin_nan(""); }
 KOKKOS_INLINE_FUNCTION constexpr double min(double a, double b) { return a < b ? a : b; }

@@ -8,9 +8,9 @@ namespace lsi::mpm {
 
 struct Barrier {
   BarrierShape shape;
-  double face_friction = 0.0;   // tan(delta), flow on the barrier's faces
+  double face_friction = 0.0;  // tan(delta), flow on the barrier's faces
   bool fixed = true;
-  BarrierMotion motion;         // mass, base friction, gravity; state (displacement, velocity)
+  BarrierMotion motion;  // mass, base friction, gravity; state (displacement, velocity)
 };
 
 }  // namespace lsi::mpm

@@ -22,9 +22,10 @@
 namespace lsi::mpm {
 
 struct BarrierContactReport {
-  double force[3][2] = {{0, 0}, {0, 0}, {0, 0}};   // N/m on the barrier, per face, (x, y)
-  double work = 0.0;   // J/m taken from the material this step (> 0: dissipated or given to the barrier)
-  int nodes = 0;       // nodes in contact this step
+  double force[3][2] = {{0, 0}, {0, 0}, {0, 0}};  // N/m on the barrier, per face, (x, y)
+  double work =
+      0.0;        // J/m taken from the material this step (> 0: dissipated or given to the barrier)
+  int nodes = 0;  // nodes in contact this step
   // N m/m: sum over the upstream face's nodes of (y - y_toe) f_x - (x - x_downstream_toe) f_y,
   // positive where it tips the barrier downstream about its downstream toe.
   double upstream_moment = 0.0;
@@ -52,12 +53,12 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
                     double& f5, double& w, double& mo, int& count) {
         int j, i_begin, i_end;
         items.nodes(item, j, i_begin, i_end);
-        for (int i = i_begin; i <= i_end; ++i) {   // a row of the region, or one node
+        for (int i = i_begin; i <= i_end; ++i) {  // a row of the region, or one node
           const int n = i + nx * j;
           const double m = g.mass(n);
           if (!(m > 0.0)) continue;
           const double x = ox + i * dx - displacement, y = oy + j * dx;
-          if (y < b.toe[1] - tol) continue;   // below the base: the base wall's business
+          if (y < b.toe[1] - tol) continue;  // below the base: the base wall's business
           int k = 0;
           if (b.outside_distance(x, y, k) > tol) continue;
           const double nxk = b.face[k].normal[0], nyk = b.face[k].normal[1];
@@ -75,18 +76,22 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
           const double vnew[2] = {velocity + t[0], t[1]};
           double imp[2];
           for (int d = 0; d < 2; ++d) {
-            imp[d] = m * (vnew[d] - v[d]);   // impulse on the node
+            imp[d] = m * (vnew[d] - v[d]);  // impulse on the node
             w -= imp[d] * 0.5 * (g.velocity_old(n, d) + vnew[d]);
             g.velocity(n, d) = vnew[d];
           }
-          const double fx = -imp[0] / dt, fy = -imp[1] / dt;   // on the barrier
+          const double fx = -imp[0] / dt, fy = -imp[1] / dt;  // on the barrier
           if (k == 0) {
             f0 += fx;
             f1 += fy;
             mo += (y - b.toe[1]) * fx - (x - x_downstream_toe) * fy;
+          } else if (k == 1) {
+            f2 += fx;
+            f3 += fy;
+          } else {
+            f4 += fx;
+            f5 += fy;
           }
-          else if (k == 1) { f2 += fx; f3 += fy; }
-          else { f4 += fx; f5 += fy; }
           ++count;
         }
       },

@@ -15,14 +15,14 @@
 namespace lsi::mpm {
 
 struct BarrierMotion {
-  double mass = 0.0;            // M, kg/m
-  double base_friction = 0.0;   // tan(delta_b)
-  double gravity = lsi::gravity;        // g normal to the base, m/s^2
+  double mass = 0.0;              // M, kg/m
+  double base_friction = 0.0;     // tan(delta_b)
+  double gravity = lsi::gravity;  // g normal to the base, m/s^2
   // State.
-  double displacement = 0.0;    // m, downstream positive
-  double velocity = 0.0;        // m/s
-  double friction_work = 0.0;   // J/m dissipated by the base friction (accumulated)
-  double base_normal_force = 0.0;   // N/m, last step
+  double displacement = 0.0;       // m, downstream positive
+  double velocity = 0.0;           // m/s
+  double friction_work = 0.0;      // J/m dissipated by the base friction (accumulated)
+  double base_normal_force = 0.0;  // N/m, last step
   bool sliding() const { return velocity != 0.0; }
 
   // Advances by dt under the force (fx, fy) of the flow on the barrier, constant over the step.
@@ -32,7 +32,7 @@ struct BarrierMotion {
     const double limit = base_friction * N;
     const double v0 = velocity;
     if (v0 == 0.0) {
-      if (std::fabs(fx) <= limit) return;   // sticks
+      if (std::fabs(fx) <= limit) return;  // sticks
       const double a = (fx - std::copysign(limit, fx)) / mass;
       velocity = a * dt;
       displacement += 0.5 * a * dt * dt;
@@ -48,7 +48,7 @@ struct BarrierMotion {
       friction_work += limit * std::fabs(ds);
       return;
     }
-    const double t_stop = -v0 / a;          // in (0, dt]: the barrier stops within the step
+    const double t_stop = -v0 / a;  // in (0, dt]: the barrier stops within the step
     const double ds = 0.5 * v0 * t_stop;
     velocity = 0.0;
     displacement += ds;

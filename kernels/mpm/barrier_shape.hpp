@@ -14,14 +14,14 @@
 namespace lsi::mpm {
 
 struct BarrierFace {
-  double point[2] = {0.0, 0.0};    // a point of the face (its lower or upstream end), m
-  double normal[2] = {0.0, 0.0};   // outward unit normal
+  double point[2] = {0.0, 0.0};   // a point of the face (its lower or upstream end), m
+  double normal[2] = {0.0, 0.0};  // outward unit normal
 };
 
 struct BarrierShape {
   enum Face : int { Upstream = 0, Crest = 1, Downstream = 2 };
   BarrierFace face[3];
-  double toe[2] = {0.0, 0.0};      // upstream toe (x0, y0), m, at zero displacement
+  double toe[2] = {0.0, 0.0};  // upstream toe (x0, y0), m, at zero displacement
   double height = 0.0, base_width = 0.0, top_width = 0.0, face_angle = 0.5 * math::pi();
 
   BarrierShape() = default;
@@ -46,8 +46,8 @@ struct BarrierShape {
     double best = -1e300;
     nearest = Upstream;
     for (int k = 0; k < 3; ++k) {
-      const double d = (x - face[k].point[0]) * face[k].normal[0] +
-                       (y - face[k].point[1]) * face[k].normal[1];
+      const double d =
+          (x - face[k].point[0]) * face[k].normal[0] + (y - face[k].point[1]) * face[k].normal[1];
       if (d > best) {
         best = d;
         nearest = k;

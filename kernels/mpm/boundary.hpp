@@ -15,7 +15,7 @@ struct Wall {
   double position = 0.0;   // coordinate of the wall (x for left/right, y for bottom/top), m
   double friction = 0.0;   // Coulomb coefficient mu (0: smooth)
   bool bilateral = false;  // true: the normal velocity is zero whatever its sign (fixed support)
-  bool no_slip = false;    // true: a node on the wall keeps no tangential velocity (friction unused)
+  bool no_slip = false;  // true: a node on the wall keeps no tangential velocity (friction unused)
 };
 
 struct Boundaries {
@@ -27,12 +27,15 @@ KOKKOS_INLINE_FUNCTION bool apply_walls(const Boundaries& b, double x, double y,
                                         double tol) {
   bool acted = false;
   auto contact = [&](const Wall& w, int normal_axis, double inward) {
-    const double vn = v[normal_axis] * inward;        // > 0: leaving the wall
+    const double vn = v[normal_axis] * inward;  // > 0: leaving the wall
     if (vn >= 0.0 && !w.bilateral) return;
     acted = true;
     const int t = 1 - normal_axis;
     v[normal_axis] = 0.0;
-    if (w.no_slip) { v[t] = 0.0; return; }
+    if (w.no_slip) {
+      v[t] = 0.0;
+      return;
+    }
     const double vt = v[t], reduce = w.friction * math::fabs(vn);  // mu |v_n|
     v[t] = math::fabs(vt) <= reduce ? 0.0 : vt - (vt > 0.0 ? reduce : -reduce);
   };

@@ -20,10 +20,10 @@ namespace lsi::mpm {
 enum class Transfer { Apic, FlipPic };
 
 struct G2PReport {
-  double max_speed = 0.0;   // m/s
-  double max_expansion = 1.0;   // largest V / V0 of a point, at least 1 (time_step.hpp)
-  int non_finite = 0;       // number of particles with a non-finite velocity or position
-  int outside = 0;          // number of particles too close to the grid edge (or beyond)
+  double max_speed = 0.0;      // m/s
+  double max_expansion = 1.0;  // largest V / V0 of a point, at least 1 (time_step.hpp)
+  int non_finite = 0;          // number of particles with a non-finite velocity or position
+  int outside = 0;             // number of particles too close to the grid edge (or beyond)
 };
 
 // What G2P does after the transfer: nothing, or the stress update (elastic, or with plasticity).
@@ -35,7 +35,7 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
                    const Kokkos::View<const PreparedMaterial*, MemorySpace>& materials = {}) {
   const double ox = g.origin[0], oy = g.origin[1], dx = g.dx, inv_dx = 1.0 / g.dx;
   const double apic = Flip ? 0.0 : 4.0 * inv_dx * inv_dx;
-  const double xmax = (g.nx - 2) * dx, ymax = (g.ny - 2) * dx;   // keep 1 cell of padding
+  const double xmax = (g.nx - 2) * dx, ymax = (g.ny - 2) * dx;  // keep 1 cell of padding
   const int nx = g.nx;
   double vmax = 0.0, jmax = 1.0;
   int bad = 0, out = 0;
@@ -56,7 +56,7 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
         offset_weights(sx, xp, dx, wxd);
         double v[2] = {0, 0}, dv[2] = {0, 0}, vmid[2] = {0, 0}, C[2][2] = {{0, 0}, {0, 0}},
                L[2][2] = {{0, 0}, {0, 0}};
-        for (int b = 0; b < 3; ++b) {   // rows outside: the inner loop walks contiguous nodes
+        for (int b = 0; b < 3; ++b) {  // rows outside: the inner loop walks contiguous nodes
           const double wy = sy.w[b], dwy = sy.dw[b], dyb = (sy.base + b) * dx - yp;
           const int row = sx.base + nx * (sy.base + b);
           double A0[2] = {0, 0}, A1[2] = {0, 0}, A2[2] = {0, 0}, O0[2] = {0, 0};
@@ -90,8 +90,8 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
           }
         }
         if constexpr (Stress != G2PStress::None)
-          update_point_stress<Stress == G2PStress::Plastic>(p, q, mats(p.material(q)),
-                                                            L[0][0], L[0][1], L[1][0], L[1][1], dt);
+          update_point_stress<Stress == G2PStress::Plastic>(p, q, mats(p.material(q)), L[0][0],
+                                                            L[0][1], L[1][0], L[1][1], dt);
         const double s2 = p.velocity(q, 0) * p.velocity(q, 0) + p.velocity(q, 1) * p.velocity(q, 1);
         if (!(s2 < 1e300) || !(p.position(q, 0) == p.position(q, 0)) ||
             !(p.position(q, 1) == p.position(q, 1))) {

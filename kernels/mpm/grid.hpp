@@ -48,11 +48,11 @@ template <class MemorySpace>
 struct Grid {
   double origin[2] = {0.0, 0.0};
   double dx = 1.0;
-  int nx = 0, ny = 0;                                 // nodes per direction
-  Kokkos::View<double*, MemorySpace> mass;            // kg/m
-  Kokkos::View<double* [2], MemorySpace> momentum;    // kg/s per m (mass x velocity)
-  Kokkos::View<double* [2], MemorySpace> force;       // N/m
-  Kokkos::View<double* [2], MemorySpace> velocity;    // m/s, after the update
+  int nx = 0, ny = 0;                                   // nodes per direction
+  Kokkos::View<double*, MemorySpace> mass;              // kg/m
+  Kokkos::View<double* [2], MemorySpace> momentum;      // kg/s per m (mass x velocity)
+  Kokkos::View<double* [2], MemorySpace> force;         // N/m
+  Kokkos::View<double* [2], MemorySpace> velocity;      // m/s, after the update
   Kokkos::View<double* [2], MemorySpace> velocity_old;  // m/s, before the update (FLIP)
   // Bookkeeping that lets the kernels skip the empty part of the grid (host memory, shared by
   // the copies of this Grid): [0..3] the nodes that may hold mass (P2G sets it), [4..7] the nodes

@@ -24,8 +24,7 @@ namespace lsi::mpm {
 
 template <class ExecSpace, class MemorySpace>
 double grid_update(const Grid<MemorySpace>& g, const Boundaries& walls, double dt,
-                   double wall_force[2], double small_mass = 0.0,
-                   const double* gravity = nullptr) {
+                   double wall_force[2], double small_mass = 0.0, const double* gravity = nullptr) {
   const double ox = g.origin[0], oy = g.origin[1], dx = g.dx, tol = 1e-9 * g.dx;
   const int nx = g.nx;
   // Only the nodes whose fields may be nonzero (Grid::active): outside them nothing moves.
@@ -44,7 +43,7 @@ double grid_update(const Grid<MemorySpace>& g, const Boundaries& walls, double d
       KOKKOS_LAMBDA(const int t, double& lost, double& rx, double& ry) {
         int j, i_begin, i_end;
         items.nodes(t, j, i_begin, i_end);
-        for (int i = i_begin; i <= i_end; ++i) {   // a row of the region, or one node
+        for (int i = i_begin; i <= i_end; ++i) {  // a row of the region, or one node
           const int n = i + nx * j;
           const double m = mass(n);
           if (!(m > 0.0)) {

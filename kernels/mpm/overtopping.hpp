@@ -14,8 +14,8 @@
 namespace lsi::mpm {
 
 struct OvertoppingReport {
-  double overtopped = 0.0;   // m^2
-  double total = 0.0;        // m^2
+  double overtopped = 0.0;  // m^2
+  double total = 0.0;       // m^2
 };
 
 template <class ExecSpace, class MemorySpace>
@@ -33,9 +33,9 @@ OvertoppingReport overtopping(const Particles<MemorySpace>& p, double crest_x) {
 }
 
 struct BarrierInterior {
-  double inside = 0.0;       // m^2: every point whose centre lies inside the barrier
-  double past_crest = 0.0;   // m^2: those of them downstream of the upstream crest corner, which
-                             // `overtopping` counts as overtopped
+  double inside = 0.0;      // m^2: every point whose centre lies inside the barrier
+  double past_crest = 0.0;  // m^2: those of them downstream of the upstream crest corner, which
+                            // `overtopping` counts as overtopped
 };
 
 // Initial volume (m^2 per m) of the points whose centre lies inside the barrier (shape displaced

@@ -65,7 +65,7 @@ struct NodeTile {
     return (i - i0) + stride * (j - j0);
   }
 };
-}
+}  // namespace detail
 
 // A P2G's buffers of `Fields` doubles per node, allocated once per solver (zero between calls).
 template <class ExecSpace, bool Atomic, int Fields = detail::kP2GFields>
@@ -79,8 +79,8 @@ struct P2GScatter {
       !Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
 
   int copies_count = 0;
-  Kokkos::View<double**, Kokkos::LayoutRight, Mem> copies;   // [copy][node * kFields + field]
-  Kokkos::View<int* [4], Kokkos::LayoutRight, Mem> boxes;    // nodes each copy touched, i0 i1 j0 j1
+  Kokkos::View<double**, Kokkos::LayoutRight, Mem> copies;  // [copy][node * kFields + field]
+  Kokkos::View<int* [4], Kokkos::LayoutRight, Mem> boxes;   // nodes each copy touched, i0 i1 j0 j1
   // The atomic scatter's tiles (detail::scatter_tiles): points per team (0: no tiles, every
   // point adds into the buffer) and the most nodes a tile holds; a team whose points touch more
   // adds them into the buffer directly. On a device 128 by default (an H100: the dry and the
@@ -120,8 +120,10 @@ namespace detail {
 
 template <bool Atomic>
 KOKKOS_FORCEINLINE_FUNCTION void scatter_add(double* a, double v) {
-  if constexpr (Atomic) Kokkos::atomic_add(a, v);
-  else *a += v;
+  if constexpr (Atomic)
+    Kokkos::atomic_add(a, v);
+  else
+    *a += v;
 }
 
 // The tiled atomic scatter. Team t takes points [t P, (t + 1) P) (P = tile_points), finds the
@@ -181,7 +183,7 @@ void scatter_tiles(S& scatter, const PositionView& position, const int n_points,
     team.team_barrier();
     const NodeTile local{box(0), box(2), box(1) - box(0) + 3};
     const int height = box(3) - box(2) + 3;
-    if (local.stride * height > capacity) {   // too spread out for a tile
+    if (local.stride * height > capacity) {  // too spread out for a tile
       Kokkos::parallel_for(Kokkos::TeamThreadRange(team, begin, end), [&](const int q) {
         int bi, bj;
         point_fn(q, buf, NodeTile{0, 0, nx}, bi, bj);
@@ -200,7 +202,7 @@ void scatter_tiles(S& scatter, const PositionView& position, const int n_points,
       team.team_barrier();
       Kokkos::parallel_for(Kokkos::TeamThreadRange(team, values), [&](const int k) {
         const double v = tile(k);
-        if (v == 0.0) return;   // adding zero changes nothing
+        if (v == 0.0) return;  // adding zero changes nothing
         const int node = k / F, field = k - F * node;
         const int row = node / local.stride, i = local.i0 + (node - row * local.stride);
         Kokkos::atomic_add(buf + F * (i + nx * (local.j0 + row)) + field, v);
@@ -269,8 +271,7 @@ NodeBox scatter_points(S& scatter, const PositionView& position, const int n_poi
   } else {
     // One contiguous chunk of points per copy: a copy is never written by two threads at once.
     Kokkos::parallel_for(
-        "lsi::mpm::p2g_scatter", Kokkos::RangePolicy<ExecSpace>(0, nc),
-        KOKKOS_LAMBDA(const int c) {
+        "lsi::mpm::p2g_scatter", Kokkos::RangePolicy<ExecSpace>(0, nc), KOKKOS_LAMBDA(const int c) {
           const int begin = static_cast<int>(static_cast<long>(n_points) * c / nc);
           const int end = static_cast<int>(static_cast<long>(n_points) * (c + 1) / nc);
           double* buf = &copies(c, 0);
@@ -289,7 +290,7 @@ NodeBox scatter_points(S& scatter, const PositionView& position, const int n_poi
           boxes(c, 3) = b1;
         });
     Kokkos::fence();
-    auto host = Kokkos::create_mirror_view(boxes);   // the same memory on host spaces
+    auto host = Kokkos::create_mirror_view(boxes);  // the same memory on host spaces
     Kokkos::deep_copy(host, boxes);
     for (int c = 0; c < nc; ++c) {
       const NodeBox b{host(c, 0), host(c, 1), host(c, 2), host(c, 3)};
@@ -323,14 +324,14 @@ P2GBoxes gather_nodes(S& scatter, NodeBox touched, const NodeBox& whole,
         KOKKOS_LAMBDA(const int t) {
           int j, i_begin, i_end;
           items.nodes(t, j, i_begin, i_end);
-          for (int i = i_begin; i <= i_end; ++i) {   // a row of the region, or one node
+          for (int i = i_begin; i <= i_end; ++i) {  // a row of the region, or one node
             const int n = i + nx * j;
             double acc[F];
             for (int k = 0; k < F; ++k) acc[k] = 0.0;
             for (int c = 0; c < nc; ++c) {
-              if (nc > 1 && (i < boxes(c, 0) || i > boxes(c, 1) || j < boxes(c, 2) ||
-                             j > boxes(c, 3)))
-                continue;   // this copy touched no node here: it holds zeros
+              if (nc > 1 &&
+                  (i < boxes(c, 0) || i > boxes(c, 1) || j < boxes(c, 2) || j > boxes(c, 3)))
+                continue;  // this copy touched no node here: it holds zeros
               double* b = &copies(c, static_cast<size_t>(F) * n);
               for (int k = 0; k < F; ++k) {
                 acc[k] += b[k];

@@ -15,9 +15,9 @@ namespace lsi::mpm {
 
 struct BodySpec {
   std::vector<std::array<double, 2>> polygon;   // vertices, either orientation
-  int material = 0;                               // index into the material table
-  std::array<double, 2> velocity = {0.0, 0.0};    // initial velocity, m/s
-  int points_per_cell_direction = 2;              // n: n^2 points per cell
+  int material = 0;                             // index into the material table
+  std::array<double, 2> velocity = {0.0, 0.0};  // initial velocity, m/s
+  int points_per_cell_direction = 2;            // n: n^2 points per cell
   // Geostatic initial stress under gravity magnitude g: sigma_yy = -rho g (surface_y - y),
   // sigma_xx = sigma_zz = K0 sigma_yy. Off when geostatic_k0 < 0. With surface_from_polygon the
   // surface is the polygon's top above each point (sloping fronts and tails), not surface_y.
@@ -43,7 +43,7 @@ inline double polygon_top(const std::vector<std::array<double, 2>>& poly, double
   for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
     const auto& a = poly[i];
     const auto& b = poly[j];
-    if ((a[0] <= x) == (b[0] <= x)) continue;   // the edge does not cross the line
+    if ((a[0] <= x) == (b[0] <= x)) continue;  // the edge does not cross the line
     top = std::max(top, a[1] + (b[1] - a[1]) * (x - a[0]) / (b[0] - a[0]));
   }
   return top;
@@ -79,23 +79,33 @@ template <class MemorySpace>
 Particles<MemorySpace> build_particles(const std::vector<BodySpec>& bodies,
                                        const std::vector<Material>& materials,
                                        const double grid_origin[2], double cell_size) {
-  struct Point { double x, y, vx, vy, m, V, s[4]; int mat; };
+  struct Point {
+    double x, y, vx, vy, m, V, s[4];
+    int mat;
+  };
   std::vector<Point> pts;
   for (const auto& body : bodies) {
     const Material& mat = materials.at(body.material);
     for_each_fill_point(body.polygon, body.points_per_cell_direction, grid_origin, cell_size,
                         [&](double x, double y, double V) {
-      Point p{x, y, body.velocity[0], body.velocity[1], mat.density * V, V, {0, 0, 0, 0},
-              body.material};
-      if (body.geostatic_k0 >= 0.0) {
-        const double top = body.surface_from_polygon ? polygon_top(body.polygon, x)
-                                                     : body.surface_y;
-        const double syy = -mat.density * body.gravity * (top - y);
-        p.s[1] = syy;
-        p.s[0] = p.s[3] = body.geostatic_k0 * syy;
-      }
-      pts.push_back(p);
-    });
+                          Point p{x,
+                                  y,
+                                  body.velocity[0],
+                                  body.velocity[1],
+                                  mat.density * V,
+                                  V,
+                                  {0, 0, 0, 0},
+                                  body.material};
+                          if (body.geostatic_k0 >= 0.0) {
+                            const double top = body.surface_from_polygon
+                                                   ? polygon_top(body.polygon, x)
+                                                   : body.surface_y;
+                            const double syy = -mat.density * body.gravity * (top - y);
+                            p.s[1] = syy;
+                            p.s[0] = p.s[3] = body.geostatic_k0 * syy;
+                          }
+                          pts.push_back(p);
+                        });
   }
   Particles<MemorySpace> p(static_cast<int>(pts.size()));
   auto x = Kokkos::create_mirror_view(p.position);
@@ -105,10 +115,14 @@ Particles<MemorySpace> build_particles(const std::vector<BodySpec>& bodies,
   auto vol = Kokkos::create_mirror_view(p.volume);
   auto mat = Kokkos::create_mirror_view(p.material);
   for (size_t q = 0; q < pts.size(); ++q) {
-    x(q, 0) = pts[q].x; x(q, 1) = pts[q].y;
-    v(q, 0) = pts[q].vx; v(q, 1) = pts[q].vy;
+    x(q, 0) = pts[q].x;
+    x(q, 1) = pts[q].y;
+    v(q, 0) = pts[q].vx;
+    v(q, 1) = pts[q].vy;
     for (int k = 0; k < 4; ++k) s(q, k) = pts[q].s[k];
-    m(q) = pts[q].m; vol(q) = pts[q].V; mat(q) = pts[q].mat;
+    m(q) = pts[q].m;
+    vol(q) = pts[q].V;
+    mat(q) = pts[q].mat;
   }
   Kokkos::deep_copy(p.position, x);
   Kokkos::deep_copy(p.velocity, v);

@@ -10,17 +10,17 @@ enum StressComponent { XX = 0, YY = 1, XY = 2, ZZ = 3 };
 template <class MemorySpace>
 struct Particles {
   int count = 0;
-  Kokkos::View<double* [2], MemorySpace> position;        // m
-  Kokkos::View<double* [2], MemorySpace> velocity;        // m/s
-  Kokkos::View<double* [2][2], MemorySpace> affine;       // APIC C = B D^-1, 1/s
+  Kokkos::View<double* [2], MemorySpace> position;              // m
+  Kokkos::View<double* [2], MemorySpace> velocity;              // m/s
+  Kokkos::View<double* [2][2], MemorySpace> affine;             // APIC C = B D^-1, 1/s
   Kokkos::View<double* [2][2], MemorySpace> velocity_gradient;  // L = grad v of the last step, 1/s
-  Kokkos::View<double* [4], MemorySpace> stress;          // Cauchy, Pa (tension positive)
-  Kokkos::View<double*, MemorySpace> mass;                // kg/m
-  Kokkos::View<double*, MemorySpace> volume;              // m^2 (current)
-  Kokkos::View<double*, MemorySpace> volume0;             // m^2 (initial)
-  Kokkos::View<double*, MemorySpace> plastic_work;        // J/m dissipated (accumulated)
-  Kokkos::View<double*, MemorySpace> deviatoric_strain;   // accumulated equivalent shear strain
-  Kokkos::View<int*, MemorySpace> material;               // index into the material table
+  Kokkos::View<double* [4], MemorySpace> stress;                // Cauchy, Pa (tension positive)
+  Kokkos::View<double*, MemorySpace> mass;                      // kg/m
+  Kokkos::View<double*, MemorySpace> volume;                    // m^2 (current)
+  Kokkos::View<double*, MemorySpace> volume0;                   // m^2 (initial)
+  Kokkos::View<double*, MemorySpace> plastic_work;              // J/m dissipated (accumulated)
+  Kokkos::View<double*, MemorySpace> deviatoric_strain;  // accumulated equivalent shear strain
+  Kokkos::View<int*, MemorySpace> material;              // index into the material table
 
   Particles() = default;
   explicit Particles(int n) : count(n) {

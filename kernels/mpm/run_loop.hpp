@@ -14,9 +14,8 @@ namespace lsi::mpm {
 // step(): one step, returns its Status; energy_grew(): the growth check at an output.
 template <class SolverT, class Step, class EnergyGrew>
 Status run_loop(const SolverT& solver, double end_time, double output_interval,
-                double& max_time_step, double user_max_time_step, double min_time_step,
-                Step&& step, EnergyGrew&& energy_grew,
-                const std::function<void(const SolverT&)>& on_output,
+                double& max_time_step, double user_max_time_step, double min_time_step, Step&& step,
+                EnergyGrew&& energy_grew, const std::function<void(const SolverT&)>& on_output,
                 const std::function<bool(const SolverT&)>& done) {
   if (on_output) on_output(solver);
   double next_output = solver.time() + output_interval;

@@ -17,8 +17,10 @@ class ScatterChoice {
   ScatterChoice() = default;
   // tile_points: SolverSettings::scatter_tile_points (< 0: the scatter's default).
   ScatterChoice(const Grid<Mem>& grid, bool atomic, int tile_points) {
-    if (atomic) scatter_.template emplace<P2GScatter<ExecSpace, true, Fields>>(grid);
-    else scatter_.template emplace<P2GScatter<ExecSpace, false, Fields>>(grid);
+    if (atomic)
+      scatter_.template emplace<P2GScatter<ExecSpace, true, Fields>>(grid);
+    else
+      scatter_.template emplace<P2GScatter<ExecSpace, false, Fields>>(grid);
     if (tile_points >= 0) visit([&](auto& s) { s.use_tiles(tile_points); });
   }
 

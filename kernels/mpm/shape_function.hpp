@@ -8,17 +8,17 @@
 namespace lsi::mpm {
 
 struct Stencil1D {
-  int base;        // index of the first of the 3 nodes
-  double w[3];     // weights
-  double dw[3];    // d(weight)/dx
+  int base;      // index of the first of the 3 nodes
+  double w[3];   // weights
+  double dw[3];  // d(weight)/dx
 };
 
 // x: particle coordinate relative to the grid origin; dx: cell size.
 KOKKOS_FORCEINLINE_FUNCTION Stencil1D quadratic_bspline(double x, double inv_dx) {
   Stencil1D s;
   const double xi = x * inv_dx;
-  s.base = static_cast<int>(xi - 0.5);            // floor, xi > 0.5 inside the padded grid
-  const double f = xi - s.base;                     // in [0.5, 1.5)
+  s.base = static_cast<int>(xi - 0.5);  // floor, xi > 0.5 inside the padded grid
+  const double f = xi - s.base;         // in [0.5, 1.5)
   const double a = 1.5 - f, b = f - 1.0, c = f - 0.5;
   s.w[0] = 0.5 * a * a;
   s.w[1] = 0.75 - b * b;

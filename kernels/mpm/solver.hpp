@@ -34,7 +34,6 @@
 
 namespace lsi::mpm {
 
-
 // The dry solver's settings: the shared ones and the small-mass cut.
 struct Settings : SolverSettings {
   // Nodes with less mass than this fraction of the lightest point get gravity but no internal
@@ -52,12 +51,15 @@ class Solver : public SolverBase<Solver<ExecSpace>, ExecSpace, Settings> {
 
   Solver(Grid<Mem> grid, Particles<Mem> particles, const std::vector<Material>& materials,
          Boundaries walls, Settings settings)
-      : Base(settings), grid_(grid), particles_(particles), walls_(walls),
+      : Base(settings),
+        grid_(grid),
+        particles_(particles),
+        walls_(walls),
         scatter_(grid_, settings.atomic_scatter, settings.scatter_tile_points) {
     wave_speed_ = this->prepare_materials(materials, "materials");
     this->max_speed_ = largest_speed<ExecSpace>(particles_.velocity, particles_.count);
-    expansion_ = largest_expansion<ExecSpace>(particles_.volume, particles_.volume0,
-                                              particles_.count);
+    expansion_ =
+        largest_expansion<ExecSpace>(particles_.volume, particles_.volume0, particles_.count);
     initial_ = energy();
     this->max_mechanical_ = initial_.kinetic + initial_.elastic;
     small_mass_ = this->settings_.small_mass_fraction *
@@ -67,8 +69,8 @@ class Solver : public SolverBase<Solver<ExecSpace>, ExecSpace, Settings> {
   // Advances one step. Returns Running, or the reason the run must stop.
   Status step() {
     const Settings& s = this->settings_;
-    if (!this->take_time_step(stable_time_step(grid_.dx, wave_speed_, expansion_,
-                                               this->max_speed_, s.courant, s.max_time_step)))
+    if (!this->take_time_step(stable_time_step(grid_.dx, wave_speed_, expansion_, this->max_speed_,
+                                               s.courant, s.max_time_step)))
       return this->status_;
     this->observe(StepStage::BeforeP2G);
     scatter_.visit([&](auto& scatter) { p2g(particles_, grid_, scatter, s.gravity); });
@@ -124,10 +126,10 @@ class Solver : public SolverBase<Solver<ExecSpace>, ExecSpace, Settings> {
   G2PReport g2p_and_stress_update() {
     const Settings& s = this->settings_;
     return this->plastic_
-               ? g2p_stress_update<ExecSpace, true>(particles_, grid_, this->materials_,
-                                                    this->dt_, s.transfer, s.flip_ratio)
-               : g2p_stress_update<ExecSpace, false>(particles_, grid_, this->materials_,
-                                                     this->dt_, s.transfer, s.flip_ratio);
+               ? g2p_stress_update<ExecSpace, true>(particles_, grid_, this->materials_, this->dt_,
+                                                    s.transfer, s.flip_ratio)
+               : g2p_stress_update<ExecSpace, false>(particles_, grid_, this->materials_, this->dt_,
+                                                     s.transfer, s.flip_ratio);
   }
 
   // The diagnostics' kinetic energies (transfer_dissipation.hpp).
@@ -153,7 +155,7 @@ class Solver : public SolverBase<Solver<ExecSpace>, ExecSpace, Settings> {
   Particles<Mem> particles_;
   Boundaries walls_;
   ScatterChoice<ExecSpace> scatter_;
-  double expansion_ = 1.0;   // largest V / V0 of the last G2P (time_step.hpp)
+  double expansion_ = 1.0;  // largest V / V0 of the last G2P (time_step.hpp)
   double wave_speed_ = 0.0;
   double small_mass_ = 0.0;
   EnergyReport initial_;

@@ -53,7 +53,7 @@ class SolverBase {
   double time_step() const { return dt_; }
   long steps() const { return steps_; }
   Status status() const { return status_; }
-  const double* wall_force() const { return wall_force_; }   // N/m on the walls, last step
+  const double* wall_force() const { return wall_force_; }  // N/m on the walls, last step
   const SettingsT& settings() const { return settings_; }
   bool has_plasticity() const { return plastic_; }
 
@@ -123,11 +123,11 @@ class SolverBase {
   Kokkos::View<const PreparedMaterial*, Mem> materials_;
   bool plastic_ = false;
   double max_speed_ = 0.0, dt_ = 0.0, time_ = 0.0;
-  double boundary_ = 0.0;                 // J/m, work dissipated by the walls and the barrier
+  double boundary_ = 0.0;  // J/m, work dissipated by the walls and the barrier
   double wall_force_[2] = {0.0, 0.0};
   long steps_ = 0;
   Status status_ = Status::Running;
-  double max_mechanical_ = 0.0;           // largest kinetic + stored energy seen (J/m)
+  double max_mechanical_ = 0.0;  // largest kinetic + stored energy seen (J/m)
   BarrierCoupling barrier_;
   TransferDissipation transfer_;
 };

@@ -10,17 +10,17 @@ namespace lsi::mpm {
 
 struct SolverSettings {
   double courant = 0.5;
-  double max_time_step = std::numeric_limits<double>::infinity();   // s
-  double min_time_step = 1e-12;                                     // s; below: collapse
-  double gravity[2] = {0.0, -lsi::gravity};                         // body force, m/s^2
-  Transfer transfer = Transfer::Apic;   // APIC, or a FLIP/PIC blend without affine terms
-  double flip_ratio = 0.99;             // FlipPic only: share of FLIP, [0, 1] (0: plain PIC)
-  bool atomic_scatter = false;          // P2G with atomics instead of per-thread buffers (p2g.hpp)
+  double max_time_step = std::numeric_limits<double>::infinity();  // s
+  double min_time_step = 1e-12;                                    // s; below: collapse
+  double gravity[2] = {0.0, -lsi::gravity};                        // body force, m/s^2
+  Transfer transfer = Transfer::Apic;  // APIC, or a FLIP/PIC blend without affine terms
+  double flip_ratio = 0.99;            // FlipPic only: share of FLIP, [0, 1] (0: plain PIC)
+  bool atomic_scatter = false;         // P2G with atomics instead of per-thread buffers (p2g.hpp)
   // Points per tile of the atomic P2G (P2GScatter::tile_points): -1 the default (128 on a
   // device from 50 000 points on, none on the host), 0 none, n > 0 tiles of n points at any
   // size. A knob of the benchmarks and tests.
   int scatter_tile_points = -1;
-  double energy_growth_limit = 0.5;     // relative growth of the total energy deemed unstable
+  double energy_growth_limit = 0.5;  // relative growth of the total energy deemed unstable
   // Account the kinetic energy lost in the grid transfers (transfer_dissipation.hpp): a few
   // reductions a step, off by default.
   bool track_transfer_dissipation = false;

@@ -38,9 +38,9 @@ KOKKOS_FORCEINLINE_FUNCTION bool clearly_elastic(const PreparedMaterial& pm, con
 // gradient L of the step.
 template <bool WithPlasticity, class MemorySpace>
 KOKKOS_FORCEINLINE_FUNCTION void update_point_stress(const Particles<MemorySpace>& p, const int q,
-                                                const PreparedMaterial& m, const double Lxx,
-                                                const double Lxy, const double Lyx,
-                                                const double Lyy, const double dt) {
+                                                     const PreparedMaterial& m, const double Lxx,
+                                                     const double Lxy, const double Lyx,
+                                                     const double Lyy, const double dt) {
   const double de[3] = {Lxx * dt, Lyy * dt, 0.5 * (Lxy + Lyx) * dt};
   double s[4] = {p.stress(q, 0), p.stress(q, 1), p.stress(q, 2), p.stress(q, 3)};
   jaumann_rotate(s, 0.5 * (Lxy - Lyx), dt);

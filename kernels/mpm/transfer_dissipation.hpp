@@ -27,8 +27,7 @@ double points_kinetic_energy(const Masses& mass, const Velocities& velocity) {
   Kokkos::parallel_reduce(
       "lsi::mpm::points_kinetic_energy", Kokkos::RangePolicy<ExecSpace>(0, mass.extent(0)),
       KOKKOS_LAMBDA(const int q, double& sum) {
-        sum += 0.5 * mass(q) *
-               (velocity(q, 0) * velocity(q, 0) + velocity(q, 1) * velocity(q, 1));
+        sum += 0.5 * mass(q) * (velocity(q, 0) * velocity(q, 0) + velocity(q, 1) * velocity(q, 1));
       },
       k);
   return k;
@@ -62,9 +61,9 @@ double grid_kinetic_energy(const Grid<MemorySpace>& g, GridState state) {
 // step with the points' kinetic energy after G2P, which is also the next step's "points before"
 // (nothing changes the points' velocities between steps), so that it is reduced once a step.
 struct TransferDissipation {
-  double accumulated = 0.0;   // J/m, since the start of the run
+  double accumulated = 0.0;  // J/m, since the start of the run
   double points_before = 0.0, grid_after_p2g = 0.0, grid_after_update = 0.0;
-  bool points_before_current = false;   // points_before left by the last step
+  bool points_before_current = false;  // points_before left by the last step
 
   void close_step(double points_after) {
     accumulated += (points_before - grid_after_p2g) + (grid_after_update - points_after);

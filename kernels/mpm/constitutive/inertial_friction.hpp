@@ -58,8 +58,7 @@ KOKKOS_INLINE_FUNCTION double inertial_number(const PreparedMaterial& pm, const 
 // The material at the point's inertial number: its friction constants set for
 // sin(phi(I)) (a copy; the prepared material of the body is left alone).
 KOKKOS_INLINE_FUNCTION PreparedMaterial at_inertial_state(const PreparedMaterial& pm,
-                                                          const double gamma_dot,
-                                                          const double p) {
+                                                          const double gamma_dot, const double p) {
   PreparedMaterial r = pm;
   const double sphi = pm.sin_phi + pm.inertial_rise * inertial_fraction(pm, gamma_dot, p);
   r.set_friction(sphi, math::sqrt(1.0 - sphi * sphi));

@@ -7,14 +7,14 @@ namespace lsi::mpm {
 struct Material {
   enum class Model : int { LinearElastic = 0, MohrCoulomb = 1 };
   Model model = Model::LinearElastic;
-  double density = 1000.0;          // kg/m^3
-  double young_modulus = 1e6;       // Pa
+  double density = 1000.0;     // kg/m^3
+  double young_modulus = 1e6;  // Pa
   double poisson_ratio = 0.3;
   // Mohr-Coulomb only:
-  double friction_angle = 0.0;      // phi, rad
-  double dilatancy_angle = 0.0;     // psi, rad (non-associated when psi != phi)
-  double cohesion = 0.0;            // c, Pa
-  double tension_cutoff = 0.0;      // largest principal stress allowed, Pa (<= c cot(phi))
+  double friction_angle = 0.0;   // phi, rad
+  double dilatancy_angle = 0.0;  // psi, rad (non-associated when psi != phi)
+  double cohesion = 0.0;         // c, Pa
+  double tension_cutoff = 0.0;   // largest principal stress allowed, Pa (<= c cot(phi))
   // Rate-dependent friction, mu(I) (optional; constitutive/inertial_friction.hpp): sin(phi) rises
   // from sin(friction_angle) at rest to sin(limit_friction_angle) at large inertial numbers
   // I = gamma_dot d / sqrt(p / rho_s). Off while reference_inertial_number is 0.

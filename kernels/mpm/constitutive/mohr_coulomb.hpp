@@ -54,8 +54,7 @@ KOKKOS_INLINE_FUNCTION double mohr_coulomb_return(const PreparedMaterial& pm, do
       // D n of the second plane: b (s1 = s2 side) for the upper edge, c for the lower.
       const double Dn2[3] = {upper ? ls : up, upper ? up : down, upper ? down : ls};
       for (int i = 0; i < 3; ++i) r[i] = trial[i] - da * Dna[i] - db * Dn2[i];
-      ok = da >= 0.0 && db >= 0.0 && r[0] >= r[1] - 1e-12 * scale &&
-           r[1] >= r[2] - 1e-12 * scale;
+      ok = da >= 0.0 && db >= 0.0 && r[0] >= r[1] - 1e-12 * scale && r[1] >= r[2] - 1e-12 * scale;
     }
     if (!ok || (r[0] + r[1] + r[2]) / 3.0 > pm.apex) r[0] = r[1] = r[2] = pm.apex;
   }

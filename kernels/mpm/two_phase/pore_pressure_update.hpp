@@ -37,8 +37,8 @@ namespace lsi::mpm::two_phase {
 
 // Coefficients of the artificial bulk viscosity (dimensionless; 0, 0: off).
 struct BulkViscosity {
-  double linear = 0.0;      // c1
-  double quadratic = 0.0;   // c2
+  double linear = 0.0;     // c1
+  double quadratic = 0.0;  // c2
   bool on() const { return linear > 0.0 || quadratic > 0.0; }
 };
 
@@ -73,7 +73,7 @@ void nodal_volume(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<Me
 KOKKOS_INLINE_FUNCTION int cell_of_point(double x, double y, double ox, double oy, double inv_dx,
                                          int nx, int ny) {
   const double fx = (x - ox) * inv_dx, fy = (y - oy) * inv_dx;
-  if (!(fx >= 0.0 && fy >= 0.0 && fx < nx - 1 && fy < ny - 1)) return -1;   // NaN: outside
+  if (!(fx >= 0.0 && fy >= 0.0 && fx < nx - 1 && fy < ny - 1)) return -1;  // NaN: outside
   return static_cast<int>(fx) + nx * static_cast<int>(fy);
 }
 
@@ -128,8 +128,8 @@ void cell_mean_pore_pressure(const TwoPhaseParticles<MemorySpace>& p,
 // energy sum n V p^2 / (2 K_L) (Jensen): the drop is returned (J/m). Removes the checkerboard
 // (Q1P0-like pressure per cell).
 template <class ExecSpace, class MemorySpace>
-double project_pore_pressure(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g,
-                             double liquid_bulk_modulus) {
+double project_pore_pressure(const TwoPhaseParticles<MemorySpace>& p,
+                             const TwoPhaseGrid<MemorySpace>& g, double liquid_bulk_modulus) {
   sum_cell_pore_pressure<ExecSpace>(p, g);
   const auto s = p.solid;
   const auto num = g.smooth_value, den = g.smooth_weight;
@@ -153,7 +153,7 @@ double project_pore_pressure(const TwoPhaseParticles<MemorySpace>& p, const TwoP
 
 // D = (1 - n) tr(L_S) + n div(v_L) (see the file comment).
 KOKKOS_FORCEINLINE_FUNCTION double mixture_volumetric_rate(double n, double trace_L_solid,
-                                                          double liquid_divergence) {
+                                                           double liquid_divergence) {
   return (1.0 - n) * trace_L_solid + n * liquid_divergence;
 }
 
@@ -186,20 +186,19 @@ KOKKOS_FORCEINLINE_FUNCTION double update_point_pore_pressure(
 // Returns the dissipation of the step, J/m: the work of the bulk viscosity and the liquid energy
 // released at free-surface points (0 with both off). g.dx() is the length l of the viscosity.
 template <class ExecSpace, class MemorySpace>
-double pore_pressure_update(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g,
-                            const Liquid& liquid, double dt,
+double pore_pressure_update(const TwoPhaseParticles<MemorySpace>& p,
+                            const TwoPhaseGrid<MemorySpace>& g, const Liquid& liquid, double dt,
                             const Kokkos::View<const PreparedMaterial*, MemorySpace>& materials,
-                            BulkViscosity viscosity = {},
-                            double free_surface_fill = 0.0) {
+                            BulkViscosity viscosity = {}, double free_surface_fill = 0.0) {
   const auto s = p.solid;
   const double K_L = liquid.bulk_modulus, rho_L = liquid.density;
   const auto D = p.volumetric_rate;
   Kokkos::parallel_for(
       "lsi::mpm::two_phase::volumetric_rate", Kokkos::RangePolicy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q) {
-        D(q) = mixture_volumetric_rate(
-            p.porosity(q), s.velocity_gradient(q, 0, 0) + s.velocity_gradient(q, 1, 1),
-            p.liquid_divergence(q));
+        D(q) = mixture_volumetric_rate(p.porosity(q),
+                                       s.velocity_gradient(q, 0, 0) + s.velocity_gradient(q, 1, 1),
+                                       p.liquid_divergence(q));
       });
   const bool surface = free_surface_fill > 0.0;
   if (surface) nodal_volume<ExecSpace>(p, g);
@@ -231,7 +230,8 @@ double pore_pressure_update(const TwoPhaseParticles<MemorySpace>& p, const TwoPh
                           sy = quadratic_bspline(s.position(q, 1) - oy, inv_dx);
           double fill = 0.0;
           for (int b = 0; b < 3; ++b)
-            for (int a = 0; a < 3; ++a) fill += sx.w[a] * sy.w[b] * vol(sx.base + a + nx * (sy.base + b));
+            for (int a = 0; a < 3; ++a)
+              fill += sx.w[a] * sy.w[b] * vol(sx.base + a + nx * (sy.base + b));
           if (fill * inv_cell < fill_min) {
             const double pw = p.pore_pressure(q);
             diss += n1 * pw * pw * s.volume(q) / (2.0 * K_L);

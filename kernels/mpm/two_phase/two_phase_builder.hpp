@@ -28,18 +28,16 @@ namespace lsi::mpm::two_phase {
 // density), velocity (of both phases), points and geostatic state (the surface is also the water
 // table), and the pore liquid's.
 struct TwoPhaseBodySpec : BodySpec {
-  double porosity = 0.4;                          // n0
-  double hydraulic_conductivity = 1e-4;           // k, m/s
-  double excess_pore_pressure = 0.0;              // Pa, uniform, added to p
-  double surface_load = 0.0;                      // Pa, on the top row of points (surface_y)
+  double porosity = 0.4;                 // n0
+  double hydraulic_conductivity = 1e-4;  // k, m/s
+  double excess_pore_pressure = 0.0;     // Pa, uniform, added to p
+  double surface_load = 0.0;             // Pa, on the top row of points (surface_y)
 };
 
 template <class MemorySpace>
-TwoPhaseParticles<MemorySpace> build_two_phase_particles(const std::vector<TwoPhaseBodySpec>& bodies,
-                                                         const std::vector<Material>& materials,
-                                                         const Liquid& liquid,
-                                                         const double grid_origin[2],
-                                                         double cell_size) {
+TwoPhaseParticles<MemorySpace> build_two_phase_particles(
+    const std::vector<TwoPhaseBodySpec>& bodies, const std::vector<Material>& materials,
+    const Liquid& liquid, const double grid_origin[2], double cell_size) {
   struct Point {
     double x[2], v[2], mS, mL, V, n, k, p, s[4], t[2];
     int mat;
@@ -51,21 +49,30 @@ TwoPhaseParticles<MemorySpace> build_two_phase_particles(const std::vector<TwoPh
     const Material& mat = materials.at(body.material);
     const double n = body.porosity, rho_L = liquid.density;
     const double rho_m = (1.0 - n) * mat.density + n * rho_L;
-    for_each_fill_point(body.polygon, np, grid_origin, cell_size, [&](double x, double y, double V) {
-      Point P{{x, y}, {body.velocity[0], body.velocity[1]}, (1.0 - n) * mat.density * V,
-              n * rho_L * V, V, n, body.hydraulic_conductivity, body.excess_pore_pressure,
-              {0, 0, 0, 0}, {0, 0}, body.material};
-      const double depth =
-          (body.surface_from_polygon ? polygon_top(body.polygon, x) : body.surface_y) - y;
-      if (body.geostatic_k0 >= 0.0 && depth > 0.0) {
-        P.p += rho_L * body.gravity * depth;
-        const double syy = -(rho_m - rho_L) * body.gravity * depth;
-        P.s[1] = syy;
-        P.s[0] = P.s[3] = body.geostatic_k0 * syy;
-      }
-      if (body.surface_load != 0.0 && depth > 0.0 && depth < h) P.t[1] = -body.surface_load * h;
-      pts.push_back(P);
-    });
+    for_each_fill_point(
+        body.polygon, np, grid_origin, cell_size, [&](double x, double y, double V) {
+          Point P{{x, y},
+                  {body.velocity[0], body.velocity[1]},
+                  (1.0 - n) * mat.density * V,
+                  n * rho_L * V,
+                  V,
+                  n,
+                  body.hydraulic_conductivity,
+                  body.excess_pore_pressure,
+                  {0, 0, 0, 0},
+                  {0, 0},
+                  body.material};
+          const double depth =
+              (body.surface_from_polygon ? polygon_top(body.polygon, x) : body.surface_y) - y;
+          if (body.geostatic_k0 >= 0.0 && depth > 0.0) {
+            P.p += rho_L * body.gravity * depth;
+            const double syy = -(rho_m - rho_L) * body.gravity * depth;
+            P.s[1] = syy;
+            P.s[0] = P.s[3] = body.geostatic_k0 * syy;
+          }
+          if (body.surface_load != 0.0 && depth > 0.0 && depth < h) P.t[1] = -body.surface_load * h;
+          pts.push_back(P);
+        });
   }
   const int count = static_cast<int>(pts.size());
   TwoPhaseParticles<MemorySpace> p(count);
@@ -89,8 +96,13 @@ TwoPhaseParticles<MemorySpace> build_two_phase_particles(const std::vector<TwoPh
       t(q, d) = P.t[d];
     }
     for (int c = 0; c < 4; ++c) s(q, c) = P.s[c];
-    ms(q) = P.mS; ml(q) = P.mL; vol(q) = P.V; mat(q) = P.mat;
-    por(q) = P.n; k(q) = P.k; pw(q) = P.p;
+    ms(q) = P.mS;
+    ml(q) = P.mL;
+    vol(q) = P.V;
+    mat(q) = P.mat;
+    por(q) = P.n;
+    k(q) = P.k;
+    pw(q) = P.p;
   }
   Kokkos::deep_copy(p.solid.position, x);
   Kokkos::deep_copy(p.solid.velocity, v);

@@ -16,7 +16,7 @@ struct TwoPhaseEnergyReport {
   double time = 0.0;
   double kinetic_solid = 0.0, kinetic_liquid = 0.0, elastic = 0.0, liquid = 0.0, potential = 0.0;
   double plastic = 0.0, boundary = 0.0, drag = 0.0;
-  double viscous = 0.0;   // accumulated work of the artificial bulk viscosity (>= 0)
+  double viscous = 0.0;  // accumulated work of the artificial bulk viscosity (>= 0)
   // minus the accumulated work of gravity on the relative flow and of the surface loads: they
   // enter the total like potential energies.
   double seepage_potential = 0.0, load_potential = 0.0;
@@ -30,8 +30,8 @@ struct TwoPhaseEnergyReport {
 template <class ExecSpace, class MemorySpace>
 TwoPhaseEnergyReport two_phase_particle_energies(
     const TwoPhaseParticles<MemorySpace>& p,
-    const Kokkos::View<const PreparedMaterial*, MemorySpace>& materials,
-    double liquid_bulk_modulus, const double gravity[2]) {
+    const Kokkos::View<const PreparedMaterial*, MemorySpace>& materials, double liquid_bulk_modulus,
+    const double gravity[2]) {
   TwoPhaseEnergyReport e;
   const auto s = p.solid;
   const double gx = gravity[0], gy = gravity[1], K_L = liquid_bulk_modulus;
@@ -40,9 +40,11 @@ TwoPhaseEnergyReport two_phase_particle_energies(
       KOKKOS_LAMBDA(const int q, double& ks, double& kl, double& el, double& li, double& pot,
                     double& pl) {
         const double mS = s.mass(q), mL = p.liquid_mass(q);
-        ks += 0.5 * mS * (s.velocity(q, 0) * s.velocity(q, 0) + s.velocity(q, 1) * s.velocity(q, 1));
-        kl += 0.5 * mL * (p.liquid_velocity(q, 0) * p.liquid_velocity(q, 0) +
-                          p.liquid_velocity(q, 1) * p.liquid_velocity(q, 1));
+        ks +=
+            0.5 * mS * (s.velocity(q, 0) * s.velocity(q, 0) + s.velocity(q, 1) * s.velocity(q, 1));
+        kl += 0.5 * mL *
+              (p.liquid_velocity(q, 0) * p.liquid_velocity(q, 0) +
+               p.liquid_velocity(q, 1) * p.liquid_velocity(q, 1));
         const double st[4] = {s.stress(q, 0), s.stress(q, 1), s.stress(q, 2), s.stress(q, 3)};
         el += s.volume(q) * elastic_energy_density(materials(s.material(q)).material, st);
         const double pw = p.pore_pressure(q);

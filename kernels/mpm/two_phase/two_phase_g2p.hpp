@@ -40,11 +40,11 @@
 namespace lsi::mpm::two_phase {
 
 struct TwoPhaseG2PReport {
-  G2PReport health;            // max_speed over both phases, non_finite, outside
-  double load_work = 0.0;      // J/m, work of the surface loads this step
+  G2PReport health;        // max_speed over both phases, non_finite, outside
+  double load_work = 0.0;  // J/m, work of the surface loads this step
   // two_phase_g2p_update() only:
-  double viscous_work = 0.0;   // J/m, the bulk viscosity's work (pore pressure fused)
-  TimeStepLimits limits;       // of the points at the end of the step (pore pressure fused)
+  double viscous_work = 0.0;  // J/m, the bulk viscosity's work (pore pressure fused)
+  TimeStepLimits limits;      // of the points at the end of the step (pore pressure fused)
 };
 
 // What two_phase_g2p_impl does after the transfer of a point.
@@ -56,9 +56,9 @@ struct TwoPhasePointWork {
 
 // The corrected walls of the ghost reads (see the file comment).
 struct GhostWalls {
-  bool solid[4] = {false, false, false, false};    // left, right, bottom, top
+  bool solid[4] = {false, false, false, false};  // left, right, bottom, top
   bool liquid[4] = {false, false, false, false};
-  int index[4] = {0, 0, 0, 0};                     // node index of the wall line
+  int index[4] = {0, 0, 0, 0};  // node index of the wall line
 };
 
 template <class ExecSpace, bool Ghosts, G2PStress Stress, bool Apic, class MemorySpace>
@@ -91,7 +91,7 @@ TwoPhaseG2PReport two_phase_g2p_impl(
         [[maybe_unused]] const bool fuse_pore = pore;
         [[maybe_unused]] const TwoPhaseConstants& constants = kc;
         [[maybe_unused]] const double r_flip = flip, r_pic = pic;
-        [[maybe_unused]] const double apic_scale = apic;   // 4 / dx^2, APIC only
+        [[maybe_unused]] const double apic_scale = apic;  // 4 / dx^2, APIC only
         const auto& points = p;
         const auto& grid_s = S;
         const auto& grid_l = L;
@@ -104,8 +104,8 @@ TwoPhaseG2PReport two_phase_g2p_impl(
         double vS[2] = {0, 0}, vSm[2] = {0, 0}, CS[2][2] = {{0, 0}, {0, 0}},
                LS[2][2] = {{0, 0}, {0, 0}};
         double vL[2] = {0, 0}, CL[2][2] = {{0, 0}, {0, 0}}, divL = 0.0;
-        [[maybe_unused]] double vSo[2] = {0, 0}, vLo[2] = {0, 0};   // FLIP: old grid velocities
-        for (int b = 0; b < 3; ++b) {   // rows outside: the inner loop walks contiguous nodes
+        [[maybe_unused]] double vSo[2] = {0, 0}, vLo[2] = {0, 0};  // FLIP: old grid velocities
+        for (int b = 0; b < 3; ++b) {  // rows outside: the inner loop walks contiguous nodes
           const double wy = sy.w[b], dwy = sy.dw[b], dyb = (sy.base + b) * dx - yp;
           const int row = sx.base + nx * (sy.base + b);
           double A0s[2] = {0, 0}, A1s[2] = {0, 0}, A2s[2] = {0, 0}, O0s[2] = {0, 0};
@@ -122,9 +122,15 @@ TwoPhaseG2PReport two_phase_g2p_impl(
                 const int ax = k < 2 ? 0 : 1;
                 const int sg = (k == 0 || k == 2) ? 1 : -1;
                 const int own = ax == 0 ? sx.base + a : sy.base + b;
-                if (sg * (own - ghost.index[k]) >= 0) continue;   // not beyond this wall
-                if (ghost.solid[k]) { is[ax] = 2 * ghost.index[k] - own; flip_s[ax] = true; }
-                if (ghost.liquid[k]) { il[ax] = 2 * ghost.index[k] - own; flip_l[ax] = true; }
+                if (sg * (own - ghost.index[k]) >= 0) continue;  // not beyond this wall
+                if (ghost.solid[k]) {
+                  is[ax] = 2 * ghost.index[k] - own;
+                  flip_s[ax] = true;
+                }
+                if (ghost.liquid[k]) {
+                  il[ax] = 2 * ghost.index[k] - own;
+                  flip_l[ax] = true;
+                }
               }
               const int ms_node = is[0] + nx * is[1], ml_node = il[0] + nx * il[1];
               for (int r = 0; r < 2; ++r) {
@@ -133,8 +139,8 @@ TwoPhaseG2PReport two_phase_g2p_impl(
                     flip_s[r] ? -grid_s.velocity_old(ms_node, r) : grid_s.velocity_old(node, r);
                 vl[r] = flip_l[r] ? -grid_l.velocity(ml_node, r) : grid_l.velocity(node, r);
                 if constexpr (!Apic)
-                  vlo[r] = flip_l[r] ? -grid_l.velocity_old(ml_node, r)
-                                     : grid_l.velocity_old(node, r);
+                  vlo[r] =
+                      flip_l[r] ? -grid_l.velocity_old(ml_node, r) : grid_l.velocity_old(node, r);
               }
             } else {
               for (int r = 0; r < 2; ++r) {
@@ -183,7 +189,7 @@ TwoPhaseG2PReport two_phase_g2p_impl(
           }
           s.position(q, r) += dt * vSm[r];
           for (int c = 0; c < 2; ++c) {
-            if constexpr (Apic) {   // FLIP/PIC: the affine matrices stay zero (as built)
+            if constexpr (Apic) {  // FLIP/PIC: the affine matrices stay zero (as built)
               s.affine(q, r, c) = apic_scale * CS[r][c];
               points.liquid_affine(q, r, c) = apic_scale * CL[r][c];
             }
@@ -199,8 +205,8 @@ TwoPhaseG2PReport two_phase_g2p_impl(
           if (fuse_pore)
             points.volumetric_rate(q) =
                 mixture_volumetric_rate(points.porosity(q), LS[0][0] + LS[1][1], divL);
-          update_point_stress<Stress == G2PStress::Plastic>(s, q, m, LS[0][0], LS[0][1],
-                                                            LS[1][0], LS[1][1], dt);
+          update_point_stress<Stress == G2PStress::Plastic>(s, q, m, LS[0][0], LS[0][1], LS[1][0],
+                                                            LS[1][1], dt);
           if (fuse_pore) {
             visc += update_point_pore_pressure(points, q, m, constants, LS[0][0], LS[0][1],
                                                LS[1][0], LS[1][1], dt);
@@ -219,15 +225,15 @@ TwoPhaseG2PReport two_phase_g2p_impl(
         const double px = s.position(q, 0) - ox, py = s.position(q, 1) - oy;
         if (!(px > dx && px < xmax && py > dx && py < ymax)) ++outside;
       },
-      Kokkos::Max<double>(vmax), load, viscous, Kokkos::Max<double>(cmax),
-      Kokkos::Min<double>(dtk), bad, out);
+      Kokkos::Max<double>(vmax), load, viscous, Kokkos::Max<double>(cmax), Kokkos::Min<double>(dtk),
+      bad, out);
   TwoPhaseG2PReport r;
   r.health.max_speed = vmax;
   r.health.non_finite = bad;
   r.health.outside = out;
   r.load_work = load;
   r.viscous_work = viscous;
-  r.limits.wave_speed = cmax > 0.0 ? std::sqrt(cmax) : 0.0;   // the reduction took c^2
+  r.limits.wave_speed = cmax > 0.0 ? std::sqrt(cmax) : 0.0;  // the reduction took c^2
   r.limits.permeability_dt = dtk;
   return r;
 }

@@ -34,17 +34,16 @@ namespace lsi::mpm::two_phase {
 enum class Drag { Explicit, SemiImplicit };
 
 struct GridUpdateReport {
-  double wall_dissipation = 0.0;     // J/m
-  double drag_dissipation = 0.0;     // J/m
-  double seepage_gravity_work = 0.0; // J/m
-  double wall_force[2] = {0.0, 0.0}; // N/m, on the walls
+  double wall_dissipation = 0.0;      // J/m
+  double drag_dissipation = 0.0;      // J/m
+  double seepage_gravity_work = 0.0;  // J/m
+  double wall_force[2] = {0.0, 0.0};  // N/m, on the walls
 };
 
 template <class ExecSpace, bool SemiImplicit, class MemorySpace>
 GridUpdateReport two_phase_grid_update_impl(const TwoPhaseGrid<MemorySpace>& g,
-                                            const Boundaries& walls,
-                                            const Boundaries& liquid_walls, double dt,
-                                            const double gravity[2]) {
+                                            const Boundaries& walls, const Boundaries& liquid_walls,
+                                            double dt, const double gravity[2]) {
   const auto S = g.solid;
   const auto L = g.liquid;
   const auto drag = g.drag;
@@ -66,7 +65,7 @@ GridUpdateReport two_phase_grid_update_impl(const TwoPhaseGrid<MemorySpace>& g,
                     double& ry) {
         int j, i_begin, i_end;
         items.nodes(t, j, i_begin, i_end);
-        for (int ii = i_begin; ii <= i_end; ++ii) {   // a row of the region, or one node
+        for (int ii = i_begin; ii <= i_end; ++ii) {  // a row of the region, or one node
           const int i = ii + nx * j;
           const double mS = S.mass(i), mL = L.mass(i);
           if (!(mS > 0.0)) {

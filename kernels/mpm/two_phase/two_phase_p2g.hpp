@@ -38,9 +38,18 @@ namespace lsi::mpm::two_phase {
 // The interleaved record of a node in the two-phase P2G's buffers.
 namespace node_field {
 enum : int {
-  SolidMass, SolidMomentumX, SolidMomentumY, MixtureForceX, MixtureForceY,
-  LiquidMass, LiquidMomentumX, LiquidMomentumY, LiquidForceX, LiquidForceY,
-  Drag, Count
+  SolidMass,
+  SolidMomentumX,
+  SolidMomentumY,
+  MixtureForceX,
+  MixtureForceY,
+  LiquidMass,
+  LiquidMomentumX,
+  LiquidMomentumY,
+  LiquidForceX,
+  LiquidForceY,
+  Drag,
+  Count
 };
 }
 
@@ -50,7 +59,7 @@ using TwoPhaseScatter = P2GScatter<ExecSpace, Atomic, node_field::Count>;
 // The walls of the mirror correction, relative to the grid origin (see the file comment).
 struct MirrorWalls {
   bool any = false;
-  bool solid[4] = {false, false, false, false};    // left, right, bottom, top
+  bool solid[4] = {false, false, false, false};  // left, right, bottom, top
   bool liquid[4] = {false, false, false, false};
   double at[4] = {0.0, 0.0, 0.0, 0.0};
 };
@@ -136,7 +145,7 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_p2g_point(
     const int ax = k < 2 ? 0 : 1;
     const double c = mw.at[k], sgn = (k == 0 || k == 2) ? 1.0 : -1.0;
     const double pos[2] = {xp, yp};
-    const double dist = sgn * (pos[ax] - c);   // > 0 inside
+    const double dist = sgn * (pos[ax] - c);  // > 0 inside
     if (!(dist > 0.0 && dist < 1.5 * dx)) continue;
     double mpos[2] = {xp, yp};
     mpos[ax] = 2.0 * c - pos[ax];
@@ -149,7 +158,7 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_p2g_point(
     for (int b = 0; b < 3; ++b)
       for (int a = 0; a < 3; ++a) {
         const int ni[2] = {mx.base + a, my.base + b};
-        if (!(sgn * (ni[ax] * dx - c) > tol)) continue;   // free nodes only
+        if (!(sgn * (ni[ax] * dx - c) > tol)) continue;  // free nodes only
         double* node = buf + F * tile.offset(ni[0], ni[1]);
         const double w = mx.w[a] * my.w[b];
         const double gw[2] = {mx.dw[a] * my.w[b], mx.w[a] * my.dw[b]};
@@ -192,8 +201,8 @@ void two_phase_p2g(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<M
       scatter, p.solid.position, p.count, ox, oy, inv_dx, nx,
       KOKKOS_LAMBDA(const int q, double* buf, const lsi::mpm::detail::NodeTile& tile, int& bi,
                     int& bj) {
-        detail::two_phase_p2g_point<S::atomic>(p, q, buf, tile, ox, oy, dx, inv_dx, gx, gy,
-                                               rhoLg, mw, bi, bj);
+        detail::two_phase_p2g_point<S::atomic>(p, q, buf, tile, ox, oy, dx, inv_dx, gx, gy, rhoLg,
+                                               mw, bi, bj);
       });
   const auto S_ = g.solid;
   const auto L_ = g.liquid;

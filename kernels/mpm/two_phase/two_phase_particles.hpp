@@ -16,22 +16,22 @@ namespace lsi::mpm::two_phase {
 template <class MemorySpace>
 struct TwoPhaseParticles {
   int count = 0;
-  Particles<MemorySpace> solid;                               // skeleton (see above)
-  Kokkos::View<double* [2], MemorySpace> liquid_velocity;     // m/s
-  Kokkos::View<double* [2][2], MemorySpace> liquid_affine;    // APIC C of the liquid, 1/s
-  Kokkos::View<double*, MemorySpace> liquid_divergence;       // div v_L of the last step, 1/s
-  Kokkos::View<double*, MemorySpace> liquid_mass;             // kg/m, m_L = n0 rho_L V0 (constant)
-  Kokkos::View<double*, MemorySpace> porosity;                // n, current
-  Kokkos::View<double*, MemorySpace> pore_pressure;           // Pa, compression positive
-  Kokkos::View<double*, MemorySpace> conductivity;            // hydraulic conductivity k, m/s
-  Kokkos::View<double* [2], MemorySpace> traction;            // N/m, surface load on the point
-                                                              // (applied to the mixture)
+  Particles<MemorySpace> solid;                             // skeleton (see above)
+  Kokkos::View<double* [2], MemorySpace> liquid_velocity;   // m/s
+  Kokkos::View<double* [2][2], MemorySpace> liquid_affine;  // APIC C of the liquid, 1/s
+  Kokkos::View<double*, MemorySpace> liquid_divergence;     // div v_L of the last step, 1/s
+  Kokkos::View<double*, MemorySpace> liquid_mass;           // kg/m, m_L = n0 rho_L V0 (constant)
+  Kokkos::View<double*, MemorySpace> porosity;              // n, current
+  Kokkos::View<double*, MemorySpace> pore_pressure;         // Pa, compression positive
+  Kokkos::View<double*, MemorySpace> conductivity;          // hydraulic conductivity k, m/s
+  Kokkos::View<double* [2], MemorySpace> traction;          // N/m, surface load on the point
+                                                            // (applied to the mixture)
   // Artificial bulk viscosity (pore_pressure_update.hpp): the mixture's volumetric strain rate
   // D = (1 - n) tr(L_S) + n div(v_L) of the last step, 1/s, and
   // the viscous pressure q(D) >= 0 (Pa, compression positive) it gives. q acts in P2G beside p
   // (p + q in both the mixture and the liquid force) but is never added to p.
-  Kokkos::View<double*, MemorySpace> volumetric_rate;         // 1/s
-  Kokkos::View<double*, MemorySpace> viscous_pressure;        // Pa
+  Kokkos::View<double*, MemorySpace> volumetric_rate;   // 1/s
+  Kokkos::View<double*, MemorySpace> viscous_pressure;  // Pa
 
   TwoPhaseParticles() = default;
   explicit TwoPhaseParticles(int n) : count(n), solid(n) {
@@ -50,8 +50,8 @@ struct TwoPhaseParticles {
 
 // The pore liquid, one per solver (SI).
 struct Liquid {
-  double density = 1000.0;        // rho_L, kg/m^3
-  double bulk_modulus = 2.2e9;    // K_L, Pa
+  double density = 1000.0;      // rho_L, kg/m^3
+  double bulk_modulus = 2.2e9;  // K_L, Pa
 };
 
 }  // namespace lsi::mpm::two_phase

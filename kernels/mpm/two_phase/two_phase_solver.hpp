@@ -46,23 +46,22 @@ struct TwoPhaseSettings : SolverSettings {
   // The g in the definition of the hydraulic conductivity, k = kappa rho_L g / mu (m/s): a unit
   // convention, not the body force (a test without gravity still has a finite drag).
   double darcy_gravity = lsi::gravity;
-  Drag drag = Drag::Explicit;         // explicit (the paper; permeability limit on dt) or
-                                      // semi-implicit per node (no permeability limit)
+  Drag drag = Drag::Explicit;  // explicit (the paper; permeability limit on dt) or
+                               // semi-implicit per node (no permeability limit)
   // Mirror-image wall correction of P2G (two_phase_p2g.hpp): removes the +15 % boundary layer of
   // stress and pore pressure next to walls the material rests on. Off by default (the
   // single-phase solver has no such correction); on in the column tests.
   bool wall_correction = false;
   // Optional stabilisations for saturated impacts (pore_pressure_update.hpp; docs/notes/two_phase.md,
   // "Impacts": measured, none of them keeps the L3-B3 impact finite, so all are off by default).
-  double bulk_viscosity_linear = 0.0;      // c1 of q = rho_m l |D| (c1 c + c2 l |D|), D < 0 only
-  double bulk_viscosity_quadratic = 0.0;   // c2
-  double free_surface_fill = 0.0;          // points whose neighbourhood fill is below: p = q = 0
-  bool cell_pore_pressure = false;         // p projected to its cell's mean every step
+  double bulk_viscosity_linear = 0.0;     // c1 of q = rho_m l |D| (c1 c + c2 l |D|), D < 0 only
+  double bulk_viscosity_quadratic = 0.0;  // c2
+  double free_surface_fill = 0.0;         // points whose neighbourhood fill is below: p = q = 0
+  bool cell_pore_pressure = false;        // p projected to its cell's mean every step
 };
 
 template <class ExecSpace>
-class TwoPhaseSolver
-    : public SolverBase<TwoPhaseSolver<ExecSpace>, ExecSpace, TwoPhaseSettings> {
+class TwoPhaseSolver : public SolverBase<TwoPhaseSolver<ExecSpace>, ExecSpace, TwoPhaseSettings> {
   using Base = SolverBase<TwoPhaseSolver<ExecSpace>, ExecSpace, TwoPhaseSettings>;
   friend Base;
 
@@ -74,7 +73,11 @@ class TwoPhaseSolver
   TwoPhaseSolver(TwoPhaseGrid<Mem> grid, TwoPhaseParticles<Mem> particles,
                  const std::vector<Material>& materials, Liquid liquid, Boundaries walls,
                  Boundaries liquid_walls, TwoPhaseSettings settings)
-      : Base(settings), grid_(grid), particles_(particles), liquid_(liquid), walls_(walls),
+      : Base(settings),
+        grid_(grid),
+        particles_(particles),
+        liquid_(liquid),
+        walls_(walls),
         liquid_walls_(liquid_walls),
         scatter_(grid_.solid, settings.atomic_scatter, settings.scatter_tile_points) {
     if (settings.wall_correction) {
@@ -151,7 +154,7 @@ class TwoPhaseSolver
     this->transfer_.points_before_current = false;
   }
 
-  const TimeStepLimits& time_step_limits() const { return limits_; }   // of the last step
+  const TimeStepLimits& time_step_limits() const { return limits_; }  // of the last step
   // N/m on the walls, last step: eq. 26 over the constrained nodes, plus the mirror images'
   // share with the wall correction (mirror_reaction.hpp).
   const double* wall_force() const { return this->wall_force_; }
@@ -167,9 +170,9 @@ class TwoPhaseSolver
     if (next_limits_current_)
       limits_ = next_limits_;
     else
-      limits_ = two_phase_time_step_limits<ExecSpace>(
-          particles_, this->materials_, liquid_, s.darcy_gravity, s.bulk_viscosity_linear,
-          s.bulk_viscosity_quadratic, grid_.dx());
+      limits_ = two_phase_time_step_limits<ExecSpace>(particles_, this->materials_, liquid_,
+                                                      s.darcy_gravity, s.bulk_viscosity_linear,
+                                                      s.bulk_viscosity_quadratic, grid_.dx());
     next_limits_current_ = false;
     return limits_;
   }
@@ -187,8 +190,8 @@ class TwoPhaseSolver
     const TwoPhaseSettings& s = this->settings_;
     double mirror[2] = {0.0, 0.0};
     if (s.wall_correction) mirror_wall_reaction<ExecSpace>(grid_, particles_, s.gravity, mirror);
-    const GridUpdateReport gu = two_phase_grid_update<ExecSpace>(
-        grid_, walls_, liquid_walls_, this->dt_, s.gravity, s.drag);
+    const GridUpdateReport gu = two_phase_grid_update<ExecSpace>(grid_, walls_, liquid_walls_,
+                                                                 this->dt_, s.gravity, s.drag);
     this->boundary_ += gu.wall_dissipation;
     drag_ += gu.drag_dissipation;
     seepage_work_ += gu.seepage_gravity_work;
@@ -200,10 +203,10 @@ class TwoPhaseSolver
   void contact_barrier() {
     const Barrier& b = this->barrier_.barrier();
     const auto& m = b.motion;
-    BarrierContactReport both = barrier_contact<ExecSpace>(
-        grid_.solid, b.shape, m.displacement, m.velocity, b.face_friction, this->dt_);
-    const BarrierContactReport l = barrier_contact<ExecSpace>(
-        grid_.liquid, b.shape, m.displacement, m.velocity, 0.0, this->dt_);
+    BarrierContactReport both = barrier_contact<ExecSpace>(grid_.solid, b.shape, m.displacement,
+                                                           m.velocity, b.face_friction, this->dt_);
+    const BarrierContactReport l = barrier_contact<ExecSpace>(grid_.liquid, b.shape, m.displacement,
+                                                              m.velocity, 0.0, this->dt_);
     for (int k = 0; k < 3; ++k)
       for (int d = 0; d < 2; ++d) both.force[k][d] += l.force[k][d];
     both.work += l.work;
@@ -219,9 +222,8 @@ class TwoPhaseSolver
     TwoPhasePointWork work;
     work.plastic = this->plastic_;
     work.pore_pressure = !(s.free_surface_fill > 0.0);
-    work.constants = {liquid_.density,          liquid_.bulk_modulus,
-                      s.darcy_gravity,          s.bulk_viscosity_linear,
-                      s.bulk_viscosity_quadratic, grid_.dx()};
+    work.constants = {liquid_.density,         liquid_.bulk_modulus,       s.darcy_gravity,
+                      s.bulk_viscosity_linear, s.bulk_viscosity_quadratic, grid_.dx()};
     const TwoPhaseG2PReport r = two_phase_g2p_update<ExecSpace>(
         particles_, grid_, this->dt_, this->materials_, work, corrected_walls(),
         corrected_liquid_walls(), s.transfer, s.flip_ratio);
@@ -233,8 +235,7 @@ class TwoPhaseSolver
     } else {
       viscous_ += pore_pressure_update<ExecSpace>(
           particles_, grid_, liquid_, this->dt_, this->materials_,
-          BulkViscosity{s.bulk_viscosity_linear, s.bulk_viscosity_quadratic},
-          s.free_surface_fill);
+          BulkViscosity{s.bulk_viscosity_linear, s.bulk_viscosity_quadratic}, s.free_surface_fill);
     }
     if (s.cell_pore_pressure)
       viscous_ += project_pore_pressure<ExecSpace>(particles_, grid_, liquid_.bulk_modulus);
@@ -242,8 +243,8 @@ class TwoPhaseSolver
   }
 
   double energy_scale(const TwoPhaseEnergyReport& e) const {
-    return this->max_mechanical_ + std::abs(e.plastic) + std::abs(e.boundary) +
-           std::abs(e.drag) + std::abs(e.viscous) + std::abs(e.potential - initial_.potential) +
+    return this->max_mechanical_ + std::abs(e.plastic) + std::abs(e.boundary) + std::abs(e.drag) +
+           std::abs(e.viscous) + std::abs(e.potential - initial_.potential) +
            std::abs(e.seepage_potential) + std::abs(e.load_potential) + 1e-300;
   }
   // Kinetic energies of both phases, of the points and of the grid (transfer_dissipation.hpp).
@@ -258,8 +259,7 @@ class TwoPhaseSolver
   }
   bool energy_grew() {
     const TwoPhaseEnergyReport e = energy();
-    this->max_mechanical_ =
-        std::max(this->max_mechanical_, e.kinetic() + e.elastic + e.liquid);
+    this->max_mechanical_ = std::max(this->max_mechanical_, e.kinetic() + e.elastic + e.liquid);
     return !(energy_residual(e) <= this->settings_.energy_growth_limit);
   }
 
@@ -268,8 +268,8 @@ class TwoPhaseSolver
   Liquid liquid_;
   Boundaries walls_, liquid_walls_;
   ScatterChoice<ExecSpace, node_field::Count> scatter_;
-  TimeStepLimits limits_;          // of the last step
-  TimeStepLimits next_limits_;     // of the points as they are, when next_limits_current_
+  TimeStepLimits limits_;       // of the last step
+  TimeStepLimits next_limits_;  // of the points as they are, when next_limits_current_
   bool next_limits_current_ = false;
   double drag_ = 0.0, seepage_work_ = 0.0, load_work_ = 0.0, viscous_ = 0.0;
   TwoPhaseEnergyReport initial_;

@@ -57,27 +57,27 @@ KOKKOS_FORCEINLINE_FUNCTION double saturated_wave_speed(double M, double rho_S, 
 }
 
 // Permeability limit of the explicit drag (see above), s.
-KOKKOS_INLINE_FUNCTION double permeability_time_step(double k, double rho_S, double n,
-                                                     double rho_L, double g) {
+KOKKOS_INLINE_FUNCTION double permeability_time_step(double k, double rho_S, double n, double rho_L,
+                                                     double g) {
   const double rho_m = (1.0 - n) * rho_S + n * rho_L;
   return 2.0 * k * (1.0 - n) * rho_S / (n * g * rho_m);
 }
 
 struct TimeStepLimits {
-  double wave_speed = 0.0;                 // m/s, largest over the points (0: none; with the bulk
-                                           // viscosity's share, see below)
-  double permeability_dt = 1e300;          // s, smallest over the points (explicit drag only)
+  double wave_speed = 0.0;         // m/s, largest over the points (0: none; with the bulk
+                                   // viscosity's share, see below)
+  double permeability_dt = 1e300;  // s, smallest over the points (explicit drag only)
 };
 
 // The constants of the per-point updates of a two-phase step (the time-step limits here, the pore
 // pressure in pore_pressure_update.hpp): the liquid, the g of the conductivity, the bulk
 // viscosity and its length l (the cell size).
 struct TwoPhaseConstants {
-  double liquid_density = 1000.0;        // rho_L, kg/m^3
-  double liquid_bulk_modulus = 2.2e9;    // K_L, Pa
-  double darcy_gravity = lsi::gravity;           // m/s^2
-  double c1 = 0.0, c2 = 0.0;             // bulk viscosity (BulkViscosity), 0, 0: off
-  double cell_size = 0.0;                // m
+  double liquid_density = 1000.0;       // rho_L, kg/m^3
+  double liquid_bulk_modulus = 2.2e9;   // K_L, Pa
+  double darcy_gravity = lsi::gravity;  // m/s^2
+  double c1 = 0.0, c2 = 0.0;            // bulk viscosity (BulkViscosity), 0, 0: off
+  double cell_size = 0.0;               // m
   KOKKOS_INLINE_FUNCTION bool viscous() const { return c1 > 0.0 || c2 > 0.0; }
 };
 
@@ -114,7 +114,7 @@ TimeStepLimits two_phase_time_step_limits(
     double darcy_gravity, double viscosity_linear = 0.0, double viscosity_quadratic = 0.0,
     double cell_size = 0.0) {
   const auto s = p.solid;
-  const TwoPhaseConstants k{liquid.density, liquid.bulk_modulus, darcy_gravity,
+  const TwoPhaseConstants k{liquid.density,   liquid.bulk_modulus, darcy_gravity,
                             viscosity_linear, viscosity_quadratic, cell_size};
   TimeStepLimits lim;
   Kokkos::parallel_reduce(
@@ -123,7 +123,7 @@ TimeStepLimits two_phase_time_step_limits(
         point_time_step_limits(p, q, materials(s.material(q)), k, c2, dtk);
       },
       Kokkos::Max<double>(lim.wave_speed), Kokkos::Min<double>(lim.permeability_dt));
-  lim.wave_speed = lim.wave_speed > 0.0 ? std::sqrt(lim.wave_speed) : 0.0;   // from c^2
+  lim.wave_speed = lim.wave_speed > 0.0 ? std::sqrt(lim.wave_speed) : 0.0;  // from c^2
   return lim;
 }
 
