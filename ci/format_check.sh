@@ -9,7 +9,12 @@ if ! command -v clang-format >/dev/null; then
   echo "ci/format_check.sh: clang-format is not installed (bash ci/setup.sh installs it)" >&2
   exit 1
 fi
-mapfile -t files < <(git ls-files '*.cpp' '*.hpp' '*.h' | grep -v '^tests/fuzz/corpus/')
+if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+  mapfile -t files < <(git ls-files '*.cpp' '*.hpp' '*.h' | grep -v '^tests/fuzz/corpus/')
+else  # a source tree without git (an archive): every source below the root but the build trees
+  mapfile -t files < <(find . \( -path './build*' -o -path './.git' -o -path './tests/fuzz/corpus' \) \
+    -prune -o \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' \) -print | sed 's|^\./||' | sort)
+fi
 if [ "${1:-}" = "--fix" ]; then
   clang-format -i "${files[@]}"
   exit 0

@@ -86,7 +86,7 @@ TEST(SceneFieldRanges, TheParserRefusesExactlyTheValuesOutsideTheTable) {
     const std::string key = pointer.substr(pointer.rfind('/') + 1);
     for (const double v : candidates) {
       json doc = base_scene();
-      doc["methods"].erase("list");   // the overrides' array, not a scene key
+      doc["methods"].erase("list");  // the overrides' array, not a scene key
       if (f == length_m) doc["landslide"]["shape"] = {{"kind", "rectangle"}, {"length_m", 10}};
       if (f == barrier_mass_kg_per_m) doc["barrier"].erase("density_kg_m3");
       doc[json::json_pointer(pointer)] = v;
