@@ -81,6 +81,7 @@ std::string attach_convergence(const ConvergenceStudy& study, const Scene& scene
   here.snapshot_interval_s = c.mpm.snapshot_interval_s;
   here.cell_mean_pore_pressure_output = c.mpm.cell_mean_pore_pressure_output;
   here.transfer_dissipation = c.mpm.transfer_dissipation;
+  here.face_band_m = c.mpm.face_band_m;
   if (!(here == c.mpm))
     return "the study's base resolution has other MPM settings (cell size, Courant number, ...)";
   if (mpm.end_state != EndState::AtRest)

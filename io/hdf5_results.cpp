@@ -211,7 +211,11 @@ MethodResult read_group(hid_t file, const std::string& name) {
     // Only datasets are histories; subgroups (the MPM particle snapshots, /mpm/snapshots) are not.
     Handle obj(H5Oopen(g, l.c_str(), H5P_DEFAULT), H5Oclose, "cannot open '" + l + "'");
     if (H5Iget_type(obj) != H5I_DATASET) continue;
-    r.series[l].values = read_dataset(g, l);
+    auto& series = r.series[l];
+    series.values = read_dataset(g, l);
+    if (has_attribute(obj, "units")) series.units = read_string_attribute(obj, "units");
+    if (has_attribute(obj, "description"))
+      series.description = read_string_attribute(obj, "description");
   }
   for (const auto& s : kScalars)
     r.*(s.member) = has_attribute(g, s.name) ? read_double_attribute(g, s.name)

@@ -38,8 +38,8 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
                                    "small_mass_fraction",
                                    "transfer_dissipation"};
   if (impact)
-    keys.insert(keys.end(),
-                {"phases", "drag", "pore_pressure", "pore_pressure_output", "peak_force_window_s"});
+    keys.insert(keys.end(), {"phases", "drag", "pore_pressure", "pore_pressure_output",
+                             "peak_force_window_s", "face_band_m"});
   if (impact && block.is_object() && block.contains("base_friction"))
     jf::fail(jf::join_path(path, "base_friction") + " = " +
              jf::format_value(block["base_friction"]) +
@@ -77,6 +77,7 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
       r.fail_at("pore_pressure_output", "only used with \"phases\": \"saturated\"");
     s.peak_force_window_s =
         r.number_or("peak_force_window_s", kDefaultPeakForceWindow, jf::greater_than(0, "s"));
+    s.face_band_m = r.optional_number("face_band_m", jf::greater_than(0, "m")).value_or(0.0);
   } else {
     s.end_time_s = r.number("end_time_s", jf::greater_than(0, "s"));
   }

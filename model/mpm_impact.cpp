@@ -224,6 +224,13 @@ MpmCase impact_case(const Scene& scene) {
   barrier.motion.mass = b.mass();
   barrier.motion.base_friction = b.base_friction;
   barrier.motion.gravity = g;
+  // At most kMaxFaceBands bands: each is a history of the result.
+  constexpr double kMaxFaceBands = 1000;
+  if (c.settings.face_band_m > 0.0 && c.settings.face_band_m < b.height_m / kMaxFaceBands)
+    throw InputError("methods.mpm.face_band_m = " + format_number(c.settings.face_band_m) +
+                     ": must be >= barrier.height_m / " + format_number(kMaxFaceBands) + " = " +
+                     format_number(b.height_m / kMaxFaceBands) + " (m)");
+  barrier.face_band_height = c.settings.face_band_m;
   c.barrier = barrier;
   return c;
 }

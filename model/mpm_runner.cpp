@@ -3,6 +3,7 @@
 #include <Kokkos_Core.hpp>
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -303,6 +304,23 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
         denominator > 1e-9 * (std::fabs(fx0) + std::fabs(fy0)) && denominator > 0.0
             ? (moment - sh.base_width * fy0) / denominator
             : 0.0);
+    // The face's normal stress in height bands (methods.mpm.face_band_m): each band's normal
+    // force over its length along the face; the bands' forces add up to `force`.
+    const std::vector<double> bands = solver.take_barrier_band_impulse();
+    for (std::size_t k = 0; k < bands.size(); ++k) {
+      const double band = c.barrier->face_band_height;
+      const double z0 = k * band, z1 = std::min((k + 1) * band, sh.height);
+      char name[48], what[160];
+      std::snprintf(name, sizeof name, "face_pressure_band_%03zu", k);
+      std::snprintf(what, sizeof what,
+                    "mean normal stress on the upstream face between %.6g and %.6g m above the "
+                    "base; mean over the output interval",
+                    z0, z1);
+      auto& sr = r.series[name];
+      sr.units = "Pa";
+      sr.description = what;
+      sr.values.push_back(bands[k] * inv * std::sin(sh.face_angle) / (z1 - z0));
+    }
     r.landslide_kinetic_energy.push_back(kinetic);
     const auto& motion = solver.barrier().motion;
     r.barrier_velocity.push_back(motion.velocity);

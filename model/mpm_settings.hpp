@@ -34,6 +34,9 @@ struct MpmSettings {
   // The peak force is also reported as the largest mean over any window of this length (s);
   // impact scenes: kDefaultPeakForceWindow unless the scene gives it.
   double peak_force_window_s = 0.0;
+  // Impact scenes: > 0, the upstream face's normal stress in height bands of this size (m), as
+  // histories face_pressure_band_<k>; 0 = not reported.
+  double face_band_m = 0.0;
   bool end_time_given = true;  // false: end_time_s is the impact scene's default
 
   bool operator==(const MpmSettings&) const = default;

@@ -11,7 +11,10 @@
 // with the work the contact took from the material, measured with the mid-step node velocity as
 // for the walls (grid_update.hpp), and the moment of the upstream face's forces about the
 // barrier's downstream toe (the overturning moment of the face load, from where along the face
-// each node pushes).
+// each node pushes). With face bands (band_force of n > 0 entries, band_height > 0), each upstream
+// face node's normal force on the barrier is also added into the band of its height above the
+// base, floor((y - y_toe) / band_height) (the top band takes what lies above): the face load's
+// distribution, whose bands add up to the face's normal force.
 #pragma once
 #include <Kokkos_Core.hpp>
 
@@ -35,7 +38,9 @@ struct BarrierContactReport {
 template <class ExecSpace, class MemorySpace>
 BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierShape& shape,
                                      double displacement, double velocity, double friction,
-                                     double dt) {
+                                     double dt,
+                                     const Kokkos::View<double*, MemorySpace>& band_force = {},
+                                     double band_height = 0.0) {
   const double ox = g.origin[0], oy = g.origin[1], dx = g.dx, tol = 1e-9 * g.dx;
   const int nx = g.nx;
   const BarrierShape b = shape;
@@ -47,6 +52,7 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
   const NodeBox region = g.mass_box();
   if (region.empty()) return r;
   const NodeItems<ExecSpace> items(region);
+  const int bands = band_height > 0.0 ? static_cast<int>(band_force.extent(0)) : 0;
   Kokkos::parallel_reduce(
       "lsi::mpm::barrier_contact", Kokkos::RangePolicy<ExecSpace>(0, items.count()),
       KOKKOS_LAMBDA(const int item, double& f0, double& f1, double& f2, double& f3, double& f4,
@@ -85,6 +91,13 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
             f0 += fx;
             f1 += fy;
             mo += (y - b.toe[1]) * fx - (x - x_downstream_toe) * fy;
+            if (bands > 0) {
+              const int band = static_cast<int>((y - b.toe[1]) / band_height);
+              Kokkos::atomic_add(&band_force(band < 0       ? 0
+                                             : band < bands ? band
+                                                            : bands - 1),
+                                 -(fx * nxk + fy * nyk));
+            }
           } else if (k == 1) {
             f2 += fx;
             f3 += fy;

@@ -48,6 +48,9 @@ class SolverBase {
   const BarrierContactReport& barrier_contact_report() const { return barrier_.contact(); }
   void take_barrier_impulse(double impulse[3][2]) { barrier_.take_impulse(impulse); }
   double take_barrier_moment_impulse() { return barrier_.take_moment_impulse(); }
+  // The upstream face's normal impulse per height band since the last call (Barrier::
+  // face_band_height; empty without bands).
+  std::vector<double> take_barrier_band_impulse() { return barrier_.take_band_impulse(); }
 
   double time() const { return time_; }
   double time_step() const { return dt_; }
@@ -128,7 +131,7 @@ class SolverBase {
   long steps_ = 0;
   Status status_ = Status::Running;
   double max_mechanical_ = 0.0;  // largest kinetic + stored energy seen (J/m)
-  BarrierCoupling barrier_;
+  BarrierCoupling<Mem> barrier_;
   TransferDissipation transfer_;
 };
 

@@ -492,6 +492,56 @@ TEST(Cli, MpmImpactRunsBesideTheClosedFormsAndConservesMomentum) {
   check_impact_histories(stored.results[2], 1800.0 * 3.0 * 4.0);
 }
 
+// methods.mpm.face_band_m: the upstream face's normal stress in height bands, whose forces (stress
+// times the band's length along the 60 deg face) add up to the face's normal force at every
+// output, dry and saturated (both phases push): to 1e-9 of the peak, the round-off of the summed
+// node forces. A contact only pushes, so no band is ever negative.
+TEST(Cli, MpmFaceBandsAddUpToTheFaceForce) {
+  nlohmann::json s = nlohmann::json::parse(R"({"name": "bands",
+    "landslide": {"thickness_m": 3.0, "velocity_m_s": 12.5, "density_kg_m3": 1800,
+      "shape": {"kind": "front-body-tail", "body_squares": 4},
+      "material": {"friction_angle_deg": 20, "young_modulus_mpa": 2, "poisson_ratio": 0.25}},
+    "barrier": {"height_m": 5, "base_width_m": 6, "top_width_m": 2, "face_angle_deg": 60,
+      "density_kg_m3": 2000, "base_friction": 0.5, "face_friction": 0.3, "fixed": true},
+    "methods": {"mpm": {"cell_size_m": 0.75, "transfer": "apic", "end_time_s": 1.5,
+                        "face_band_m": 1.5}}})");
+  const double sin60 = std::sqrt(3.0) / 2.0;
+  const double lengths[] = {1.5 / sin60, 1.5 / sin60, 1.5 / sin60, 0.5 / sin60};  // top: 4.5-5 m
+  for (const char* phases : {"dry", "saturated"}) {
+    s["methods"]["mpm"]["phases"] = phases;
+    const fs::path scene = write_file(std::string("bands_") + phases + ".json", s.dump());
+    const fs::path out = temp_dir() / (std::string("bands_") + phases + ".h5");
+    const Outcome r = run("run " + scene.string() + " --out " + out.string());
+    ASSERT_EQ(r.code, 0) << r.out;
+    const lsi::MethodResult m = lsi::read_results(out.string()).results.at(0);
+    std::vector<const std::vector<double>*> band;
+    for (const char* name : {"face_pressure_band_000", "face_pressure_band_001",
+                             "face_pressure_band_002", "face_pressure_band_003"}) {
+      ASSERT_TRUE(m.series.count(name)) << phases << ": " << name;
+      EXPECT_EQ(m.series.at(name).units, "Pa");
+      band.push_back(&m.series.at(name).values);
+    }
+    EXPECT_EQ(m.series.count("face_pressure_band_004"), 0u) << "4 bands for 5 m in 1.5 m bands";
+    const double peak = *std::max_element(m.force.begin(), m.force.end());
+    ASSERT_GT(peak, 1e5) << phases;
+    for (std::size_t i = 0; i < m.time.size(); ++i) {
+      double sum = 0.0;
+      for (int k = 0; k < 4; ++k) {
+        EXPECT_GE((*band[k])[i], 0.0) << phases << " band " << k << " t = " << m.time[i];
+        sum += (*band[k])[i] * lengths[k];
+      }
+      EXPECT_NEAR(sum, m.force[i], 1e-9 * peak) << phases << " t = " << m.time[i];
+    }
+  }
+  // A band too small for the barrier (more than 1000 histories) is refused.
+  const Outcome bad = run("run " + write_file("bands_bad.json", s.dump()).string() +
+                          " --set /methods/mpm/face_band_m=0.001");
+  EXPECT_EQ(bad.code, 2) << bad.out;
+  EXPECT_NE(bad.out.find("face_band_m = 0.001: must be >= barrier.height_m / 1000"),
+            std::string::npos)
+      << bad.out;
+}
+
 // The text summary of an MPM impact gives the overtopped and retained volumes and the leaked part
 // of the overtopped one, as stored in the result file. A 3 m flow at 12.5 m/s (the paper's shape,
 // 4 squares: 54 m^2) against a light 60 deg earth barrier, dry at 4 cells through the thickness

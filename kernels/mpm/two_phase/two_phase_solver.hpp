@@ -203,10 +203,13 @@ class TwoPhaseSolver : public SolverBase<TwoPhaseSolver<ExecSpace>, ExecSpace, T
   void contact_barrier() {
     const Barrier& b = this->barrier_.barrier();
     const auto& m = b.motion;
-    BarrierContactReport both = barrier_contact<ExecSpace>(grid_.solid, b.shape, m.displacement,
-                                                           m.velocity, b.face_friction, this->dt_);
-    const BarrierContactReport l = barrier_contact<ExecSpace>(grid_.liquid, b.shape, m.displacement,
-                                                              m.velocity, 0.0, this->dt_);
+    this->barrier_.begin_step();  // both phases add into the face bands
+    BarrierContactReport both = barrier_contact<ExecSpace>(
+        grid_.solid, b.shape, m.displacement, m.velocity, b.face_friction, this->dt_,
+        this->barrier_.band_force(), b.face_band_height);
+    const BarrierContactReport l =
+        barrier_contact<ExecSpace>(grid_.liquid, b.shape, m.displacement, m.velocity, 0.0,
+                                   this->dt_, this->barrier_.band_force(), b.face_band_height);
     for (int k = 0; k < 3; ++k)
       for (int d = 0; d < 2; ++d) both.force[k][d] += l.force[k][d];
     both.work += l.work;
