@@ -302,6 +302,19 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     throw InputError(
         "stop.interval: a sharded run cannot stop on a confidence interval (each "
         "shard sees only its samples); run unsharded or drop the rule");
+  // Shards take whole chunks in turn: with fewer chunks than shards some would have no work.
+  const std::uint64_t chunk_count = (study.samples + study.chunk_samples - 1) / study.chunk_samples;
+  if (std::uint64_t(opt.shard_count) > chunk_count) {
+    const std::uint64_t most = (study.samples + opt.shard_count - 1) / opt.shard_count;
+    throw InputError("chunk_samples = " + std::to_string(study.chunk_samples) + ": the study's " +
+                     std::to_string(study.samples) + " samples make " +
+                     std::to_string(chunk_count) + " chunk(s), fewer than the " +
+                     std::to_string(opt.shard_count) +
+                     " shards (or MPI ranks), which take whole chunks: some would have no work; "
+                     "set chunk_samples <= " +
+                     std::to_string(most) + " in the study, or use at most " +
+                     std::to_string(chunk_count) + " shard(s)");
+  }
   const fs::path parts = opt.out + ".parts";
   const fs::path marker = parts / "sweep.json";
   const json identity = {

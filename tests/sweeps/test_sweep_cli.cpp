@@ -162,6 +162,19 @@ TEST(SweepCli, StudyErrorsNameTheFieldAndExit2) {
       run("sweep " + ok.string() + " --out " + (temp_dir() / "s.h5").string() + " --shard 3/2");
   EXPECT_EQ(s.code, 2);
   EXPECT_NE(s.out.find("--shard 3/2: must be i/N with 0 <= i < N"), std::string::npos) << s.out;
+  // 20000 samples in chunks of 4096 are 5 chunks: 6 shards would leave one without work, and
+  // every shard is refused (before anything is written), naming the chunk size that would do.
+  for (const char* shard : {"0/6", "5/6"}) {
+    const fs::path out = temp_dir() / "six.h5";
+    const Outcome e = run("sweep " + ok.string() + " --out " + out.string() + " --shard " + shard);
+    EXPECT_EQ(e.code, 2) << e.out;
+    EXPECT_NE(e.out.find("chunk_samples = 4096: the study's 20000 samples make 5 chunk(s), fewer "
+                         "than the 6 shards"),
+              std::string::npos)
+        << e.out;
+    EXPECT_NE(e.out.find("set chunk_samples <= 3334"), std::string::npos) << e.out;
+    EXPECT_FALSE(fs::exists(out));
+  }
 }
 
 TEST(SweepCli, SamplesAgreeWithLsiRunAndStatisticsCountThem) {
