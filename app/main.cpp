@@ -30,6 +30,7 @@
 #include "io/text_file.hpp"
 #include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 #include "io/scene_overrides.hpp"
+#include "model/progress.hpp"
 #include "io/scene_parser.hpp"
 
 namespace {
@@ -177,6 +178,11 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version",
                        std::string("lsi ") + LSI_VERSION + " (" + LSI_GIT_REVISION + ")");
   app.require_subcommand(1);
+  std::string progress = "auto";
+  app.add_option("--progress", progress,
+                 "Progress on standard error: auto (a line rewritten on a terminal, a heartbeat "
+                 "line every 30 s in logs), log (the heartbeat), none");
+  app.fallthrough();  // --progress also after the subcommand
 
   std::string scene_path, methods_list, out_path, format = "table";
   std::vector<std::string> overrides;
@@ -254,6 +260,7 @@ int main(int argc, char** argv) {
 
   try {
     lsi::reject_empty_values(app);
+    lsi::set_progress_mode(lsi::progress_mode_from(progress));
     for (const auto& s : subcommands)
       if (*s.command) return s.run();
     check_format(format);

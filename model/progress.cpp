@@ -1,5 +1,7 @@
 #include "model/progress.hpp"
 
+#include "model/input_error.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -13,7 +15,36 @@ double seconds_between(std::chrono::steady_clock::time_point a,
 }
 }  // namespace
 
-StatusLine::StatusLine(bool enabled) : enabled_(enabled), last_(std::chrono::steady_clock::now()) {}
+namespace {
+ProgressMode g_mode = ProgressMode::Auto;
+}  // namespace
+
+void set_progress_mode(ProgressMode mode) { g_mode = mode; }
+ProgressMode progress_mode() { return g_mode; }
+
+ProgressMode progress_mode_from(const std::string& text) {
+  if (text == "auto") return ProgressMode::Auto;
+  if (text == "log") return ProgressMode::Log;
+  if (text == "none") return ProgressMode::None;
+  throw InputError("--progress " + text + ": allowed: auto, log, none");
+}
+
+namespace {
+StatusLine::Kind kind_for(bool wanted) {
+  if (!wanted || g_mode == ProgressMode::None) return StatusLine::Kind::Off;
+  if (g_mode == ProgressMode::Log || isatty(STDERR_FILENO) != 1) return StatusLine::Kind::Heartbeat;
+  return StatusLine::Kind::Line;
+}
+}  // namespace
+
+StatusLine::StatusLine(bool wanted) : StatusLine(kind_for(wanted), kHeartbeatSeconds, stderr) {}
+
+StatusLine::StatusLine(Kind kind, double heartbeat_seconds, std::FILE* out)
+    : kind_(kind),
+      heartbeat_seconds_(heartbeat_seconds),
+      out_(out),
+      last_(std::chrono::steady_clock::now()),
+      last_beat_(last_) {}
 
 bool StatusLine::due() {
   const auto now = std::chrono::steady_clock::now();
@@ -23,29 +54,34 @@ bool StatusLine::due() {
 }
 
 void StatusLine::show(const std::string& text) {
-  if (!enabled_) return;
-  std::fprintf(stderr, "\r%s\033[K", text.c_str());
-  std::fflush(stderr);
+  if (kind_ == Kind::Off) return;
+  if (kind_ == Kind::Heartbeat) {
+    const auto now = std::chrono::steady_clock::now();
+    if (seconds_between(last_beat_, now) < heartbeat_seconds_) return;
+    last_beat_ = now;
+    std::fprintf(out_, "%s\n", text.c_str());
+    std::fflush(out_);
+    return;
+  }
+  std::fprintf(out_, "\r%s\033[K", text.c_str());
+  std::fflush(out_);
   shown_ = true;
 }
 
 void StatusLine::print_above(const std::string& text) {
-  std::fprintf(stderr, "%s%s\n", shown_ ? "\r\033[K" : "", text.c_str());
+  std::fprintf(out_, "%s%s\n", shown_ ? "\r\033[K" : "", text.c_str());
   shown_ = false;
 }
 
 void StatusLine::clear() {
-  if (shown_) std::fprintf(stderr, "\r\033[K");
+  if (shown_) std::fprintf(out_, "\r\033[K");
   shown_ = false;
 }
 
 Progress::Progress(std::string label, double end_time)
-    : Progress(std::move(label), end_time, isatty(STDERR_FILENO) == 1) {}
-
-Progress::Progress(std::string label, double end_time, bool enabled)
     : label_(std::move(label)),
       end_time_(end_time),
-      status_(enabled),
+      status_(true),
       start_(std::chrono::steady_clock::now()) {}
 
 std::string Progress::line(const std::string& label, double time, double end_time, long steps,
@@ -55,8 +91,9 @@ std::string Progress::line(const std::string& label, double time, double end_tim
   char buf[256];
   if (fraction > 0 && seconds > 0) {
     const double left = seconds * (1.0 - fraction) / fraction;
-    std::snprintf(buf, sizeof buf, "%s: %3.0f %% of %.3g s simulated, %.0f steps/s, ETA %.0f s",
-                  label.c_str(), 100 * fraction, end_time, rate, left);
+    std::snprintf(buf, sizeof buf,
+                  "%s: %3.0f %% of %.3g s simulated, %.0f steps/s, %.0f s elapsed, ETA %.0f s",
+                  label.c_str(), 100 * fraction, end_time, rate, seconds, left);
   } else {
     std::snprintf(buf, sizeof buf, "%s: %3.0f %% of %.3g s simulated", label.c_str(),
                   100 * fraction, end_time);
@@ -90,7 +127,7 @@ void Progress::update(double time, long steps) {
   if (!estimated_ && seconds >= kEstimateAfterSeconds) {
     estimated_ = true;
     const std::string e = estimate(label_, time, end_time_, seconds);
-    if (!e.empty()) status_.print_above(e);
+    if (!e.empty() && progress_mode() != ProgressMode::None) status_.print_above(e);
   }
   status_.show(line(label_, time, end_time_, steps, seconds));
 }
@@ -100,7 +137,7 @@ void Progress::finish() { status_.clear(); }
 SampleProgress::SampleProgress(std::string label, std::uint64_t total, bool enabled)
     : label_(std::move(label)),
       total_(total),
-      status_(enabled && isatty(STDERR_FILENO) == 1),
+      status_(enabled),
       start_(std::chrono::steady_clock::now()) {}
 
 std::string SampleProgress::line(const std::string& label, std::uint64_t done, std::uint64_t total,
@@ -108,10 +145,11 @@ std::string SampleProgress::line(const std::string& label, std::uint64_t done, s
   const double rate = seconds > 0 ? double(done_here) / seconds : 0.0;
   const double left = rate > 0 ? double(total - std::min(done, total)) / rate : 0.0;
   char buf[256];
-  std::snprintf(buf, sizeof buf, "%s: %llu of %llu samples (%.0f %%), %.3g samples/s, ETA %.0f s",
+  std::snprintf(buf, sizeof buf,
+                "%s: %llu of %llu samples (%.0f %%), %.3g samples/s, %.0f s elapsed, ETA %.0f s",
                 label.c_str(), static_cast<unsigned long long>(done),
                 static_cast<unsigned long long>(total),
-                total > 0 ? 100.0 * double(done) / double(total) : 100.0, rate, left);
+                total > 0 ? 100.0 * double(done) / double(total) : 100.0, rate, seconds, left);
   return buf;
 }
 

@@ -1,39 +1,62 @@
-// Progress of long work on a terminal: one status line rewritten in place on standard error at
-// most twice a second, silent when standard error is not a terminal (logs, pipes, tests).
+// Progress of long work on standard error, in one of three modes (set_progress_mode; the command
+// line's --progress):
+//   auto  on a terminal one status line rewritten in place at most twice a second; elsewhere
+//         (logs of Slurm, mpirun, CI) a heartbeat: the same text as a line of its own every
+//         kHeartbeatSeconds;
+//   log   the heartbeat, on terminals too;
+//   none  nothing.
+// The two kinds of work:
 //   Progress        an MPM run: percent of simulated time, steps per second, the time left; and
-//                   one line, on terminals and in logs alike, when a run projects to more than
+//                   one line, in every mode but none, when a run projects to more than
 //                   kLongRunSeconds to its end time: after kEstimateAfterSeconds of wall time it
 //                   states the run time to the end time at the rate so far.
 //   SampleProgress  a sweep: samples done of the total, samples per second, the time left.
 #pragma once
 #include <chrono>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 
 namespace lsi {
 
-// The line both progress kinds rewrite.
+enum class ProgressMode { Auto, Log, None };
+void set_progress_mode(ProgressMode mode);
+ProgressMode progress_mode();
+// "auto", "log", "none"; throws InputError naming --progress for anything else.
+ProgressMode progress_mode_from(const std::string& text);
+
+inline constexpr double kHeartbeatSeconds = 30.0;
+
+// The line both progress kinds show: rewritten in place (Kind::Line) or printed as a heartbeat.
 class StatusLine {
  public:
-  explicit StatusLine(bool enabled);  // disabled: shows nothing
+  enum class Kind { Off, Line, Heartbeat };
+  // wanted: the caller's choice; the mode and whether `out` is a terminal decide the kind.
+  explicit StatusLine(bool wanted);
+  StatusLine(Kind kind, double heartbeat_seconds, std::FILE* out);
   ~StatusLine() { clear(); }
-  bool enabled() const { return enabled_; }
+  bool enabled() const { return kind_ != Kind::Off; }
+  Kind kind() const { return kind_; }
   // True at most twice a second (the first call after construction is not due).
   bool due();
+  // Shows the text (Line), or prints it as a line of its own if the last heartbeat (or the start)
+  // is at least heartbeat_seconds ago (Heartbeat).
   void show(const std::string& text);
   // A line that stays (the status line is cleared first, and shown again by the next show()).
   void print_above(const std::string& text);
   void clear();  // removes the status line (if one was shown)
 
  private:
-  bool enabled_, shown_ = false;
-  std::chrono::steady_clock::time_point last_;
+  Kind kind_;
+  double heartbeat_seconds_ = kHeartbeatSeconds;
+  std::FILE* out_ = stderr;
+  bool shown_ = false;
+  std::chrono::steady_clock::time_point last_, last_beat_;
 };
 
 class Progress {
  public:
-  Progress(std::string label, double end_time);  // enabled iff stderr is a terminal
-  Progress(std::string label, double end_time, bool enabled);
+  Progress(std::string label, double end_time);
   void update(double time, long steps);
   void finish();  // ends the line (if anything was printed)
   // The line update() prints, for the given state (exposed for tests).

@@ -201,6 +201,23 @@ TEST(Cli, SetOverridesAValueAsTheFileWould) {
   }
 }
 
+// --progress before or after the subcommand; an unknown mode is a one-line error (exit 2).
+TEST(Cli, ProgressModeIsAnOptionOfEverySubcommand) {
+  const std::string scene = (source_dir / "scenes/tutorial/my-scene.json").string();
+  const Outcome plain = run("run " + scene + " --methods empirical");
+  ASSERT_EQ(plain.code, 0) << plain.out;
+  for (const std::string& args : {"--progress log run " + scene + " --methods empirical",
+                                  "run " + scene + " --methods empirical --progress none"}) {
+    const Outcome r = run(args);
+    EXPECT_EQ(r.code, 0) << args << ": " << r.out;
+    EXPECT_EQ(r.out, plain.out) << args;  // a short run: no heartbeat within 30 s
+  }
+  const Outcome bad = run("run " + scene + " --progress verbose");
+  EXPECT_EQ(bad.code, 2) << bad.out;
+  EXPECT_NE(bad.out.find("--progress verbose: allowed: auto, log, none"), std::string::npos)
+      << bad.out;
+}
+
 // A safety factor is infinite where no load of the history tips the barrier (its resultant acts
 // below the height at which it could): the table says "inf", not the displacement's "never stops".
 TEST(Cli, DesignTableWritesAnInfiniteSafetyFactorAsInf) {

@@ -2,8 +2,10 @@
 // Progress::kLongRunSeconds (model/progress.hpp).
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
 
+#include "model/input_error.hpp"
 #include "model/progress.hpp"
 
 namespace {
@@ -11,7 +13,7 @@ namespace {
 TEST(Progress, LineShowsTheFractionRateAndTimeLeft) {
   // A quarter of 2 s simulated in 10 s with 500 steps: 50 steps/s, 30 s left.
   const std::string line = lsi::Progress::line("mpm x", 0.5, 2.0, 500, 10.0);
-  EXPECT_EQ(line, "mpm x:  25 % of 2 s simulated, 50 steps/s, ETA 30 s");
+  EXPECT_EQ(line, "mpm x:  25 % of 2 s simulated, 50 steps/s, 10 s elapsed, ETA 30 s");
 }
 
 TEST(Progress, EstimateOnlyForLongRuns) {
@@ -34,10 +36,46 @@ TEST(Progress, EstimateOnlyForLongRuns) {
 TEST(SampleProgress, LineShowsTheSamplesRateAndTimeLeft) {
   // 300 of 1000 done, 200 of them by this run in 4 s: 50 samples/s, 700 left: 14 s.
   EXPECT_EQ(lsi::SampleProgress::line("sweep s", 300, 1000, 200, 4.0),
-            "sweep s: 300 of 1000 samples (30 %), 50 samples/s, ETA 14 s");
+            "sweep s: 300 of 1000 samples (30 %), 50 samples/s, 4 s elapsed, ETA 14 s");
   // Nothing run yet: no rate, no estimate; an empty study is complete.
   EXPECT_EQ(lsi::SampleProgress::line("s", 0, 10, 0, 0.0),
-            "s: 0 of 10 samples (0 %), 0 samples/s, ETA 0 s");
+            "s: 0 of 10 samples (0 %), 0 samples/s, 0 s elapsed, ETA 0 s");
   EXPECT_EQ(lsi::SampleProgress::line("s", 0, 0, 0, 1.0),
-            "s: 0 of 0 samples (100 %), 0 samples/s, ETA 0 s");
+            "s: 0 of 0 samples (100 %), 0 samples/s, 1 s elapsed, ETA 0 s");
+}
+
+// The heartbeat of logs: the text as a line of its own, at most once per interval (none before the
+// first interval has passed); a status line on a terminal is rewritten in place instead.
+TEST(StatusLine, HeartbeatPrintsLinesAtMostOncePerInterval) {
+  std::FILE* f = std::tmpfile();
+  ASSERT_NE(f, nullptr);
+  {
+    lsi::StatusLine beat(lsi::StatusLine::Kind::Heartbeat, 0.0, f);  // every call is due
+    beat.show("one");
+    beat.show("two");
+    lsi::StatusLine slow(lsi::StatusLine::Kind::Heartbeat, 3600.0, f);  // never within the test
+    slow.show("never");
+    lsi::StatusLine off(lsi::StatusLine::Kind::Off, 0.0, f);
+    off.show("off");
+    lsi::StatusLine line(lsi::StatusLine::Kind::Line, 0.0, f);
+    line.show("a");
+    line.show("b");
+  }  // the line is cleared when it goes
+  std::rewind(f);
+  std::string text;
+  for (int c; (c = std::fgetc(f)) != EOF;) text += static_cast<char>(c);
+  std::fclose(f);
+  EXPECT_EQ(text, "one\ntwo\n\ra\033[K\rb\033[K\r\033[K");
+}
+
+TEST(ProgressMode, ParsesTheThreeModesAndRefusesOthers) {
+  EXPECT_EQ(lsi::progress_mode_from("auto"), lsi::ProgressMode::Auto);
+  EXPECT_EQ(lsi::progress_mode_from("log"), lsi::ProgressMode::Log);
+  EXPECT_EQ(lsi::progress_mode_from("none"), lsi::ProgressMode::None);
+  try {
+    lsi::progress_mode_from("verbose");
+    ADD_FAILURE() << "no error";
+  } catch (const lsi::InputError& e) {
+    EXPECT_STREQ(e.what(), "--progress verbose: allowed: auto, log, none");
+  }
 }
