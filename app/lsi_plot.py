@@ -9,7 +9,9 @@ For each result file writes DIR/<stem>.png: three stacked panels sharing the tim
   3. barrier displacement                           (m)
 with every method group of the file drawn on the same axes (legend = method name) and the scene
 name (root attribute `scene`, JSON) as the title. A method lacking a dataset is left out of that
-panel. Prints the path of every PNG written. Exits with 1 if any file is missing, unreadable or
+panel. Where the MPM reported the face's pressure in height bands (methods.mpm.face_band_m), also
+writes DIR/<stem>-face.png: the normal stress on the upstream face against the height above the
+base at the time of the peak force, with the resultant's height marked. Prints the path of every PNG written. Exits with 1 if any file is missing, unreadable or
 has no method groups (the other files are still plotted), 2 on bad usage.
 
 Uses Debian's /usr/bin/python3 (python3-matplotlib, python3-h5py).
@@ -59,6 +61,57 @@ def scene_name(f, fallback):
     return fallback
 
 
+def scene_of(f):
+    try:
+        scene = json.loads(_as_str(f.attrs.get("scene", "{}")))
+    except (ValueError, TypeError):
+        return {}
+    return scene if isinstance(scene, dict) else {}
+
+
+def plot_face_bands(f, title, out):
+    """The face's pressure bands of the mpm group at the peak force, or None without bands."""
+    if "mpm" not in f or not isinstance(f["mpm"], h5py.Group):
+        return None
+    g = f["mpm"]
+    names = sorted(n for n in g if n.startswith("face_pressure_band_"))
+    scene = scene_of(f)
+    try:
+        band = float(scene["methods"]["mpm"]["face_band_m"])
+        height = float(scene["barrier"]["height_m"])
+    except (KeyError, TypeError, ValueError):
+        return None
+    if not names or "force" not in g or band <= 0:
+        return None
+    force = g["force"][()]
+    if force.size == 0:
+        return None
+    peak = int(force.argmax())
+    z, p = [], []
+    for k, name in enumerate(names):
+        z0, z1 = k * band, min((k + 1) * band, height)
+        value = g[name][()][peak] * 1e-3
+        z += [z0, z1]
+        p += [value, value]
+    fig, ax = plt.subplots(figsize=(5, 6), dpi=120)
+    ax.plot(p, z, color="C2")
+    ax.fill_betweenx(z, 0, p, color="C2", alpha=0.3)
+    if "face_resultant_height" in g:
+        zr = float(g["face_resultant_height"][()][peak])
+        ax.axhline(zr, color="k", linestyle="--", linewidth=1, label=f"resultant at {zr:.2f} m")
+        ax.legend(loc="best", fontsize="small")
+    t = float(g["time"][()][peak]) if "time" in g else float("nan")
+    ax.set_xlabel("normal stress on the upstream face (kPa)")
+    ax.set_ylabel("height above the base (m)")
+    ax.set_ylim(0, height)
+    ax.grid(True, alpha=0.3)
+    ax.set_title(f"{title}: MPM at the peak force, t = {t:.3g} s", fontsize="medium")
+    fig.tight_layout()
+    fig.savefig(out)
+    plt.close(fig)
+    return out
+
+
 def plot_file(path, out_dir):
     if not os.path.isfile(path):
         raise PlotError(f"{path}: no such file")
@@ -102,6 +155,9 @@ def plot_file(path, out_dir):
         out = os.path.join(out_dir, stem + ".png")
         fig.savefig(out)
         plt.close(fig)
+        face = plot_face_bands(f, title, os.path.join(out_dir, stem + "-face.png"))
+        if face:
+            print(face)
     return out
 
 

@@ -33,6 +33,15 @@ if [ "$size" -le 10240 ]; then
   exit 1
 fi
 
+# LSI_FACE_PNG=1: the result has the face's pressure bands, and their plot must be written too.
+if [ "${LSI_FACE_PNG:-0}" = 1 ]; then
+  face="$out_dir/png/sample-face.png"
+  if [ ! -f "$face" ] || [ "$(stat -c %s "$face")" -le 10240 ]; then
+    echo "FAIL: $face was not written (or is under 10 kB)" >&2
+    exit 1
+  fi
+fi
+
 # A missing file must be an error with a message.
 if /usr/bin/python3 "$plot_script" "$out_dir/does_not_exist.h5" --out-dir "$out_dir/png" 2>"$out_dir/err.txt"; then
   echo "FAIL: lsi_plot.py succeeded on a missing file" >&2
