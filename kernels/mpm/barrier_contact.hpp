@@ -12,9 +12,9 @@
 // for the walls (grid_update.hpp), and the moment of the upstream face's forces about the
 // barrier's downstream toe (the overturning moment of the face load, from where along the face
 // each node pushes). With face bands (band_force of n > 0 entries, band_height > 0), each upstream
-// face node's normal force on the barrier is also added into the band of its height above the
-// base, floor((y - y_toe) / band_height) (the top band takes what lies above): the face load's
-// distribution, whose bands add up to the face's normal force.
+// face node's normal force on the barrier is also shared among the height bands above the base
+// that its tributary height dx overlaps (the lowest band takes what lies below, the top band what
+// lies above): the face load's distribution, whose bands add up to the face's normal force.
 #pragma once
 #include <Kokkos_Core.hpp>
 
@@ -92,11 +92,22 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
             f1 += fy;
             mo += (y - b.toe[1]) * fx - (x - x_downstream_toe) * fy;
             if (bands > 0) {
-              const int band = static_cast<int>((y - b.toe[1]) / band_height);
-              Kokkos::atomic_add(&band_force(band < 0       ? 0
-                                             : band < bands ? band
-                                                            : bands - 1),
-                                 -(fx * nxk + fy * nyk));
+              // The node carries the face over its tributary height [z - dx/2, z + dx/2]: its
+              // normal force goes to the bands in proportion to their overlap with it (the
+              // lowest band reaching down, the top band up, without end), so that a band gets
+              // the share of its height whatever the grid's alignment with the band edges.
+              const double fn = -(fx * nxk + fy * nyk), z = y - b.toe[1];
+              const double lo = z - 0.5 * dx, hi = z + 0.5 * dx;
+              int k0 = static_cast<int>(math::floor(lo / band_height));
+              int k1 = static_cast<int>(math::floor(hi / band_height));
+              k0 = k0 < 0 ? 0 : k0 < bands ? k0 : bands - 1;
+              k1 = k1 < 0 ? 0 : k1 < bands ? k1 : bands - 1;
+              for (int kb = k0; kb <= k1; ++kb) {
+                const double b0 = kb == 0 ? lo : kb * band_height;
+                const double b1 = kb == bands - 1 ? hi : (kb + 1) * band_height;
+                const double overlap = (hi < b1 ? hi : b1) - (lo > b0 ? lo : b0);
+                if (overlap > 0.0) Kokkos::atomic_add(&band_force(kb), fn * overlap / dx);
+              }
             }
           } else if (k == 1) {
             f2 += fx;
