@@ -1,9 +1,7 @@
 // How lsi's OpenMP threads wait between parallel regions, unless the user says otherwise:
-// spin briefly, then sleep. Measured on two 2-vCPU machines (docs/notes/performance.md, "OpenMP
-// threads between regions"): spinning without limit (libgomp's default of 300 000 spins) made an
-// MPM run on cores shared with other work 10-40 times slower; sleeping at once
-// (OMP_WAIT_POLICY=passive) pays a wake-up at each of a step's ~10 regions, 1.4x slower than 300
-// spins on an idle machine (the reference study: 33 s against 24 s) and no faster on a busy one.
+// spin briefly, then sleep. Spinning without limit (libgomp's default) makes an MPM run on cores
+// shared with other work many times slower; sleeping at once pays a wake-up at each of a step's
+// parallel regions. The measurements: docs/notes/performance.md, "OpenMP threads between regions".
 // On a dedicated machine GOMP_SPINCOUNT=1000 (or OMP_WAIT_POLICY=active) is faster still.
 #pragma once
 #include <cstdlib>

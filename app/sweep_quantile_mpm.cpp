@@ -17,10 +17,6 @@ namespace {
 
 using nlohmann::json;
 
-double mpm_value(const MethodResult& r, const std::string& output) {
-  return scalar_by_name(r, output);
-}
-
 int column_index(const SweepTable& t, const std::string& name) {
   for (std::size_t c = 0; c < t.output_columns.size(); ++c)
     if (t.output_columns[c] == name) return static_cast<int>(c);
@@ -74,12 +70,12 @@ json mpm_at_quantiles(const Study& study, const SweepTable& t) {
       e["mpm_end_state"] = end_state_token(o.result.end_state);  // at_rest, or how it was cut short
       json mpm = json::object(), errors = json::object();
       for (const auto& output : study.outputs)
-        mpm[output] = json_number(mpm_value(o.result, output));
+        mpm[output] = json_number(scalar_by_name(o.result, output));
       if (o.finished()) {
         for (std::size_t c = 0; c < t.output_columns.size(); ++c) {
           const std::string& name = t.output_columns[c];
           if (name.rfind("mpm/", 0) == 0) continue;
-          const double m = mpm_value(o.result, name.substr(name.find('/') + 1));
+          const double m = scalar_by_name(o.result, name.substr(name.find('/') + 1));
           const double v = t.outputs[c][row];
           errors[name] = (std::isfinite(m) && m != 0.0 && std::isfinite(v))
                              ? json_number((v - m) / m)

@@ -17,10 +17,6 @@ const std::vector<std::string>& convergence_outputs() {
   return names;
 }
 
-double output_value(const MethodResult& r, const std::string& output) {
-  return scalar_by_name(r, output);
-}
-
 ConvergenceStudy load_convergence_study(const std::string& path) {
   const nlohmann::json doc = read_scene_document(path, "convergence study");
   ConvergenceStudy st;
@@ -88,7 +84,7 @@ std::string attach_convergence(const ConvergenceStudy& study, const Scene& scene
     return std::string("this run ended ") + end_state_token(mpm.end_state) +
            ", not at rest as the study's runs";
   for (const auto& [key, s] : c.outputs) {
-    const double v = output_value(mpm, key);
+    const double v = scalar_by_name(mpm, key);
     if (!(std::fabs(v - s.value) <= kConvergenceStaleRelative * std::fabs(s.value) + 1e-12))
       return "stale: " + key + " is " + jf::format_number(v) + " here and " +
              jf::format_number(s.value) + " in the study (rerun ci/reference_convergence.py)";

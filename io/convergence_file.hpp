@@ -51,7 +51,4 @@ inline constexpr double kConvergenceStaleRelative = 0.02;
 std::string attach_convergence(const ConvergenceStudy& study, const Scene& scene,
                                MethodResult& mpm);
 
-// The value of an output of a result (a scalar or an extra), NaN if it has none.
-double output_value(const MethodResult& r, const std::string& output);
-
 }  // namespace lsi

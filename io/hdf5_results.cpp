@@ -60,28 +60,7 @@ std::vector<double> read_dataset(hid_t group, const std::string& name) {
 // ---------------------------------------------------------------------------------------------
 // The layout.
 
-struct HistorySpec {
-  const char* name;
-  std::vector<double> MethodResult::*member;
-  const char* units;
-  const char* description;
-};
-
-const HistorySpec kHistories[] = {
-    {"time", &MethodResult::time, "s", "time of each sample"},
-    {"force", &MethodResult::force, "N/m",
-     "impact force per metre of barrier width, normal to the impacted face"},
-    {"force_horizontal", &MethodResult::force_horizontal, "N/m",
-     "horizontal component of the impact force per metre of barrier width"},
-    {"force_vertical", &MethodResult::force_vertical, "N/m",
-     "vertical component of the impact force per metre of barrier width, positive downwards on "
-     "the barrier"},
-    {"landslide_kinetic_energy", &MethodResult::landslide_kinetic_energy, "J/m",
-     "kinetic energy of the landslide per metre of width"},
-    {"barrier_velocity", &MethodResult::barrier_velocity, "m/s", "velocity of the barrier"},
-    {"barrier_displacement", &MethodResult::barrier_displacement, "m",
-     "displacement of the barrier"},
-};
+const std::vector<HistoryField>& kHistories = history_fields();
 
 struct ScalarSpec {
   const char* name;

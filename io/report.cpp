@@ -258,7 +258,6 @@ constexpr MpmColumn kMpmColumns[] = {
     {"face_pore_pressure_max_pa", "face pore p. [kPa]", 1e3, "%.0f"},
 };
 
-double value_of(const MethodResult& r, const std::string& key) { return scalar_by_name(r, key); }
 }  // namespace
 
 std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_displacement_m) {
@@ -296,7 +295,7 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_
       std::string out;
       for (const char* m : methods) {
         const MethodResult* r = find(row.results, m);
-        std::string cell = r ? fmt(value_of(*r, key) / scale, format) : "-";
+        std::string cell = r ? fmt(scalar_by_name(*r, key) / scale, format) : "-";
         if (r && key == "final_displacement") cell = displacement_cell(*r);
         if (r) cell = with_spread(*r, key, cell, scale, format);
         out += pad(cell, width(m));
@@ -365,7 +364,7 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows, double max_
       if (!r) continue;
       o << pad(row.scene, case_w);
       for (const auto& c : kMpmColumns) {
-        std::string cell = fmt(value_of(*r, c.key) / c.scale, c.format);
+        std::string cell = fmt(scalar_by_name(*r, c.key) / c.scale, c.format);
         if (std::string(c.key) == "final_displacement") cell = displacement_cell(*r);
         o << pad(with_spread(*r, c.key, cell, c.scale, c.format), 20);
       }

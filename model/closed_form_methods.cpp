@@ -289,17 +289,9 @@ void require_computable(const MethodResult& r, const Scene& scene) {
                                  key == "min_overturning_safety";
     if (!(std::isfinite(*v) || (may_be_infinite && *v == INFINITY))) fail(key, *v);
   }
-  const std::pair<const char*, const std::vector<double>*> histories[] = {
-      {"time", &r.time},
-      {"force", &r.force},
-      {"force_horizontal", &r.force_horizontal},
-      {"force_vertical", &r.force_vertical},
-      {"landslide_kinetic_energy", &r.landslide_kinetic_energy},
-      {"barrier_velocity", &r.barrier_velocity},
-      {"barrier_displacement", &r.barrier_displacement}};
-  for (const auto& [name, values] : histories)
-    for (const double v : *values)
-      if (!std::isfinite(v)) fail(std::string("the history ") + name + " holds", v);
+  for (const HistoryField& h : history_fields())
+    for (const double v : r.*(h.member))
+      if (!std::isfinite(v)) fail(std::string("the history ") + h.name + " holds", v);
   for (const auto& [name, series] : r.series)
     for (const double v : series.values)
       if (!std::isfinite(v)) fail("the history " + name + " holds", v);

@@ -30,4 +30,23 @@ EndState end_state_from_token(const std::string& token) {
   throw std::invalid_argument("unknown end state '" + token + "'");
 }
 
+const std::vector<HistoryField>& history_fields() {
+  static const std::vector<HistoryField> fields = {
+      {"time", &MethodResult::time, "s", "time of each sample"},
+      {"force", &MethodResult::force, "N/m",
+       "impact force per metre of barrier width, normal to the impacted face"},
+      {"force_horizontal", &MethodResult::force_horizontal, "N/m",
+       "horizontal component of the impact force per metre of barrier width"},
+      {"force_vertical", &MethodResult::force_vertical, "N/m",
+       "vertical component of the impact force per metre of barrier width, positive downwards on "
+       "the barrier"},
+      {"landslide_kinetic_energy", &MethodResult::landslide_kinetic_energy, "J/m",
+       "kinetic energy of the landslide per metre of width"},
+      {"barrier_velocity", &MethodResult::barrier_velocity, "m/s", "velocity of the barrier"},
+      {"barrier_displacement", &MethodResult::barrier_displacement, "m",
+       "displacement of the barrier"},
+  };
+  return fields;
+}
+
 }  // namespace lsi

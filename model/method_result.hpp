@@ -68,4 +68,14 @@ struct MethodResult {
   std::map<std::string, Series> series;
 };
 
+// The standard histories of a MethodResult by name, in file order, with their units: the one list
+// that result files, checks and tests go through.
+struct HistoryField {
+  const char* name;
+  std::vector<double> MethodResult::*member;
+  const char* units;
+  const char* description;
+};
+const std::vector<HistoryField>& history_fields();
+
 }  // namespace lsi

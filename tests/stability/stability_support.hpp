@@ -71,15 +71,9 @@ struct NonFiniteAllowed {
 // Checks every history, series and scalar of `r` (gtest failures name the field).
 inline void expect_no_nan(const MethodResult& r, const std::string& where,
                           NonFiniteAllowed allowed = {}) {
-  const std::vector<std::pair<const char*, const std::vector<double>*>> histories = {
-      {"time", &r.time},
-      {"force", &r.force},
-      {"force_horizontal", &r.force_horizontal},
-      {"force_vertical", &r.force_vertical},
-      {"landslide_kinetic_energy", &r.landslide_kinetic_energy},
-      {"barrier_velocity", &r.barrier_velocity},
-      {"barrier_displacement", &r.barrier_displacement}};
-  for (const auto& [name, h] : histories) {
+  for (const HistoryField& field : history_fields()) {
+    const char* name = field.name;
+    const std::vector<double>* h = &(r.*(field.member));
     size_t bad = 0;
     EXPECT_TRUE(all_finite(*h, &bad)) << where << ": " << name << "[" << bad << "] = " << (*h)[bad];
     if (!h->empty()) {

@@ -1,4 +1,4 @@
-// The MPM stability matrix (issue 6; docs/vv/stability.md): one small impact scene (a 1 m flow at
+// The MPM stability matrix (docs/vv/stability.md): one small impact scene (a 1 m flow at
 // 4 m/s, 45 deg front, against a 2 m barrier, 4 cells through the flow) and one case per extreme
 // (stiff soil, stiff liquid, low conductivity with both drags, very fast and very thin flows,
 // very light and very heavy barriers, zero and high base friction, a rough flow base, low face
