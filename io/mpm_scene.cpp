@@ -40,6 +40,8 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
   if (impact)
     keys.insert(keys.end(), {"phases", "drag", "pore_pressure", "pore_pressure_output",
                              "peak_force_window_s", "face_band_m"});
+  else
+    keys.push_back("wall_band_m");
   if (impact && block.is_object() && block.contains("base_friction"))
     jf::fail(jf::join_path(path, "base_friction") + " = " +
              jf::format_value(block["base_friction"]) +
@@ -80,6 +82,7 @@ MpmSettings parse_mpm_settings(const nlohmann::json& block, const std::string& p
     s.face_band_m = r.optional_number("face_band_m", jf::greater_than(0, "m")).value_or(0.0);
   } else {
     s.end_time_s = r.number("end_time_s", jf::greater_than(0, "s"));
+    s.wall_band_m = r.optional_number("wall_band_m", jf::greater_than(0, "m")).value_or(0.0);
   }
   // Not below the solvers' smallest step, under which a run stops as "the time step collapsed".
   s.max_time_step_s =
@@ -233,6 +236,14 @@ MpmCase parse_mpm_case(const nlohmann::json& scene) {
                " nodes, more than " + jf::format_number(std::floor(most)) +
                " (the solver's int indices / particles_per_cell): use a larger cell or a "
                "smaller domain");
+    // At most kMaxWallBands bands along the longer side: each is a history of the result.
+    constexpr double kMaxWallBands = 1000;
+    const double longest = std::max(c.upper[0] - c.lower[0], c.upper[1] - c.lower[1]);
+    const double band = c.settings.wall_band_m;
+    if (band > 0.0 && band < longest / kMaxWallBands)
+      jf::fail("methods.mpm.wall_band_m = " + jf::format_number(band) + ": must be >= " +
+               jf::format_number(longest / kMaxWallBands) + " m (the domain's longer side / " +
+               jf::format_number(kMaxWallBands) + ": at most that many bands along a wall)");
   }
   // Material points must stay more than one cell inside the grid (quadratic B-splines reach one
   // node beyond their cell): bodies start at least two cells inside the domain.

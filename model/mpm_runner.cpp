@@ -349,6 +349,31 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
     add("momentum_x", "kg m/s per m", "horizontal momentum of the material (both phases)", p[0]);
     last_output = t;
   };
+  // The walls' normal stress in bands (methods.mpm.wall_band_m): each band's normal impulse over
+  // the output interval and the band's length; a wall's bands add up to its normal reaction.
+  double last_band_output = 0.0;
+  auto wall_band_outputs = [&](double t) {
+    const auto impulse = solver.take_wall_band_impulse();
+    const double span = t - last_band_output;
+    last_band_output = t;
+    const auto& bands = solver.wall_bands();
+    static const char* const side_names[4] = {"left", "right", "bottom", "top"};
+    for (int side = 0; side < 4; ++side)
+      for (std::size_t k = 0; k < impulse[side].size(); ++k) {
+        const double s0 = bands.start[side] + k * bands.band;
+        const double s1 = std::min(s0 + bands.band, bands.end[side]);
+        char name[48], what[200];
+        std::snprintf(name, sizeof name, "wall_pressure_%s_band_%03zu", side_names[side], k);
+        std::snprintf(what, sizeof what,
+                      "mean normal stress on the %s wall between %s %.6g and %.6g m; mean over "
+                      "the output interval",
+                      side_names[side], side < 2 ? "y =" : "x =", s0, s1);
+        auto& sr = r.series[name];
+        sr.units = "Pa";
+        sr.description = what;
+        sr.values.push_back(span > 0.0 ? impulse[side][k] / span / (s1 - s0) : 0.0);
+      }
+  };
   const mpm::Status status = solver.run(
       c.settings.end_time_s, c.settings.output_interval_s,
       [&](const SolverT& sv) {
@@ -359,6 +384,9 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
         add_step_outputs(sv, add);
         add("wall_force_x", "N/m", "reaction of the walls on the material, x", -sv.wall_force()[0]);
         add("wall_force_y", "N/m", "reaction of the walls on the material, y", -sv.wall_force()[1]);
+        wall_band_outputs(sv.time());
+        add("front_x", "m", "largest x of a material point's centre",
+            mpm::largest_coordinate<Exec>(solid_points(sv).position, solid_points(sv).count, 0));
         if (c.barrier) impact_outputs(sv.time(), kinetic);
         const double t = sv.time();
         // The solver's own test for its last output (Solver::run).
@@ -468,6 +496,7 @@ SettingsT solver_settings(const MpmCase& c) {
   s.flip_ratio = c.settings.flip_ratio;
   s.atomic_scatter = c.settings.atomic_scatter;
   s.track_transfer_dissipation = c.settings.transfer_dissipation;
+  s.wall_band = c.settings.wall_band_m;
   return s;
 }
 }  // namespace

@@ -37,6 +37,9 @@ struct MpmSettings {
   // Impact scenes: > 0, the upstream face's normal stress in height bands of this size (m), as
   // histories face_pressure_band_<k>; 0 = not reported.
   double face_band_m = 0.0;
+  // Verification scenes: > 0, each wall's normal stress in bands of this length along it (m), as
+  // histories wall_pressure_<wall>_band_<k>; 0 = not reported.
+  double wall_band_m = 0.0;
   bool end_time_given = true;  // false: end_time_s is the impact scene's default
 
   bool operator==(const MpmSettings&) const = default;

@@ -20,6 +20,7 @@
 
 #include "kernels/common/math.hpp"
 #include "kernels/mpm/barrier_shape.hpp"
+#include "kernels/mpm/height_bands.hpp"
 #include "kernels/mpm/grid.hpp"
 
 namespace lsi::mpm {
@@ -92,22 +93,10 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
             f1 += fy;
             mo += (y - b.toe[1]) * fx - (x - x_downstream_toe) * fy;
             if (bands > 0) {
-              // The node carries the face over its tributary height [z - dx/2, z + dx/2]: its
-              // normal force goes to the bands in proportion to their overlap with it (the
-              // lowest band reaching down, the top band up, without end), so that a band gets
-              // the share of its height whatever the grid's alignment with the band edges.
-              const double fn = -(fx * nxk + fy * nyk), z = y - b.toe[1];
-              const double lo = z - 0.5 * dx, hi = z + 0.5 * dx;
-              int k0 = static_cast<int>(math::floor(lo / band_height));
-              int k1 = static_cast<int>(math::floor(hi / band_height));
-              k0 = k0 < 0 ? 0 : k0 < bands ? k0 : bands - 1;
-              k1 = k1 < 0 ? 0 : k1 < bands ? k1 : bands - 1;
-              for (int kb = k0; kb <= k1; ++kb) {
-                const double b0 = kb == 0 ? lo : kb * band_height;
-                const double b1 = kb == bands - 1 ? hi : (kb + 1) * band_height;
-                const double overlap = (hi < b1 ? hi : b1) - (lo > b0 ? lo : b0);
-                if (overlap > 0.0) Kokkos::atomic_add(&band_force(kb), fn * overlap / dx);
-              }
+              // The face's normal force in height bands above the base (height_bands.hpp).
+              const double fn = -(fx * nxk + fy * nyk);
+              share_among_bands(bands, band_height, y - b.toe[1], dx, fn,
+                                [&](int kb, double f) { Kokkos::atomic_add(&band_force(kb), f); });
             }
           } else if (k == 1) {
             f2 += fx;

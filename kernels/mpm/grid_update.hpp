@@ -3,7 +3,8 @@
 // mid-step velocity (v_old + v) / 2 that moves the particles (g2p.hpp), so that the node's kinetic
 // energy change is exactly dt (f + R) . v_mid: a head-on stop from V dissipates m V^2 / 2, a node
 // held at rest by the wall dissipates nothing, Coulomb sliding dissipates mu |R_n| |v_t| dt.
-// Adds the walls' reaction force (N/m, force on the walls) to `wall_force`.
+// Adds the walls' reaction force (N/m, force on the walls) to `wall_force`, and with wall bands
+// (wall_bands.hpp) books each wall node's normal impulse to its wall's bands.
 // Optional (small_mass > 0): nodes with less mass than `small_mass` get gravity but no internal
 // force: at the edge of a
 // point's support the quadratic B-spline's weight falls as (1.5 - r)^2 but its gradient only as
@@ -19,12 +20,14 @@
 
 #include "kernels/mpm/boundary.hpp"
 #include "kernels/mpm/grid.hpp"
+#include "kernels/mpm/wall_bands.hpp"
 
 namespace lsi::mpm {
 
 template <class ExecSpace, class MemorySpace>
 double grid_update(const Grid<MemorySpace>& g, const Boundaries& walls, double dt,
-                   double wall_force[2], double small_mass = 0.0, const double* gravity = nullptr) {
+                   double wall_force[2], double small_mass = 0.0, const double* gravity = nullptr,
+                   const WallBands<MemorySpace>& bands = {}) {
   const double ox = g.origin[0], oy = g.origin[1], dx = g.dx, tol = 1e-9 * g.dx;
   const int nx = g.nx;
   // Only the nodes whose fields may be nonzero (Grid::active): outside them nothing moves.
@@ -38,6 +41,7 @@ double grid_update(const Grid<MemorySpace>& g, const Boundaries& walls, double d
   const auto velocity = g.velocity;
   const auto velocity_old = g.velocity_old;
   const double gx = gravity ? gravity[0] : 0.0, gy = gravity ? gravity[1] : 0.0;
+  const bool banded = bands.active();
   Kokkos::parallel_reduce(
       "lsi::mpm::grid_update", Kokkos::RangePolicy<ExecSpace>(0, items.count()),
       KOKKOS_LAMBDA(const int t, double& lost, double& rx, double& ry) {
@@ -57,10 +61,13 @@ double grid_update(const Grid<MemorySpace>& g, const Boundaries& walls, double d
             v[d] = vo[d] + dt * (m < small_mass ? (d == 0 ? gx : gy) : force(n, d) / m);
           }
           const double before[2] = {v[0], v[1]};
-          if (apply_walls(walls, ox + i * dx, oy + j * dx, v, tol)) {
+          const double x = ox + i * dx, y = oy + j * dx;
+          if (apply_walls(walls, x, y, v, tol)) {
             for (int d = 0; d < 2; ++d) lost -= m * (v[d] - before[d]) * 0.5 * (vo[d] + v[d]);
-            rx += -m * (v[0] - before[0]) / dt;
-            ry += -m * (v[1] - before[1]) / dt;
+            const double Ix = -m * (v[0] - before[0]), Iy = -m * (v[1] - before[1]);  // on walls
+            rx += Ix / dt;
+            ry += Iy / dt;
+            if (banded) bands.add(walls, x, y, tol, dx, Ix, Iy);
           }
           velocity_old(n, 0) = vo[0];
           velocity_old(n, 1) = vo[1];

@@ -1,6 +1,6 @@
 // Extrema over the material points that the solvers need once, at construction: the largest
 // speed and the largest expansion V / V0 (the first time step, time_step.hpp) and the lightest
-// point's mass (the small-mass threshold). Free
+// point's mass (the small-mass threshold), and the material's front. Free
 // functions rather than lambdas in the constructors: nvcc does not accept an extended
 // __host__ __device__ lambda whose enclosing function is a constructor.
 #pragma once
@@ -22,6 +22,20 @@ double largest_speed(const VelocityView& v, int count) {
       },
       Kokkos::Max<double>(vmax));
   return count > 0 ? vmax : 0.0;
+}
+
+// Largest coordinate `axis` (0: x, 1: y) of the points' centres (m): the material's front along
+// that axis (an output of every run); the lowest double with no points.
+template <class ExecSpace, class PositionView>
+double largest_coordinate(const PositionView& x, int count, int axis) {
+  double most = 0.0;
+  Kokkos::parallel_reduce(
+      "lsi::mpm::largest_coordinate", Kokkos::RangePolicy<ExecSpace>(0, count),
+      KOKKOS_LAMBDA(const int q, double& m) {
+        if (x(q, axis) > m) m = x(q, axis);
+      },
+      Kokkos::Max<double>(most));
+  return most;
 }
 
 // Largest V / V0 over the points, at least 1 (time_step.hpp); 1 with no points.

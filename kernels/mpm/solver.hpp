@@ -57,6 +57,7 @@ class Solver : public SolverBase<Solver<ExecSpace>, ExecSpace, Settings> {
         walls_(walls),
         scatter_(grid_, settings.atomic_scatter, settings.scatter_tile_points) {
     wave_speed_ = this->prepare_materials(materials, "materials");
+    this->prepare_wall_bands(walls_, grid_);
     this->max_speed_ = largest_speed<ExecSpace>(particles_.velocity, particles_.count);
     expansion_ =
         largest_expansion<ExecSpace>(particles_.volume, particles_.volume0, particles_.count);
@@ -111,8 +112,9 @@ class Solver : public SolverBase<Solver<ExecSpace>, ExecSpace, Settings> {
   // The grid update with the walls (grid_update.hpp).
   void update_grid() {
     this->wall_force_[0] = this->wall_force_[1] = 0.0;
-    this->boundary_ += grid_update<ExecSpace>(grid_, walls_, this->dt_, this->wall_force_,
-                                              small_mass_, this->settings_.gravity);
+    this->boundary_ +=
+        grid_update<ExecSpace>(grid_, walls_, this->dt_, this->wall_force_, small_mass_,
+                               this->settings_.gravity, this->wall_bands_);
   }
   // Contact with the rigid barrier, which moves under it (barrier_coupling.hpp).
   void contact_barrier() {

@@ -6,6 +6,7 @@
 //   double points_kinetic_energy() const;  double grid_kinetic_energy(GridState) const;
 #pragma once
 #include <Kokkos_Core.hpp>
+#include <array>
 #include <functional>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "kernels/mpm/run_loop.hpp"
 #include "kernels/mpm/status.hpp"
 #include "kernels/mpm/transfer_dissipation.hpp"
+#include "kernels/mpm/wall_bands.hpp"
 
 namespace lsi::mpm {
 
@@ -52,6 +54,13 @@ class SolverBase {
   // face_band_height; empty without bands).
   std::vector<double> take_barrier_band_impulse() { return barrier_.take_band_impulse(); }
 
+  // The walls' normal impulse per wall (left, right, bottom, top) and band since the last call
+  // (N s/m; wall_bands.hpp); empty vectors without bands or for an inactive wall.
+  std::array<std::vector<double>, 4> take_wall_band_impulse() {
+    return mpm::take_wall_band_impulse(wall_bands_);
+  }
+  const WallBands<Mem>& wall_bands() const { return wall_bands_; }
+
   double time() const { return time_; }
   double time_step() const { return dt_; }
   long steps() const { return steps_; }
@@ -65,6 +74,14 @@ class SolverBase {
       : settings_(settings), user_max_dt_(settings.max_time_step) {}
 
   Derived& derived() { return static_cast<Derived&>(*this); }
+
+  // The walls' bands (settings().wall_band > 0) for a grid with these walls.
+  template <class GridT>
+  void prepare_wall_bands(const Boundaries& walls, const GridT& grid) {
+    const double lower[2] = {grid.origin[0], grid.origin[1]};
+    const double upper[2] = {grid.upper(0), grid.upper(1)};
+    wall_bands_ = make_wall_bands<Mem>(walls, lower, upper, settings_.wall_band);
+  }
 
   // The materials on the device; notes whether any is plastic. Returns the largest elastic wave
   // speed among them (m/s).
@@ -132,6 +149,7 @@ class SolverBase {
   Status status_ = Status::Running;
   double max_mechanical_ = 0.0;  // largest kinetic + stored energy seen (J/m)
   BarrierCoupling<Mem> barrier_;
+  WallBands<Mem> wall_bands_;
   TransferDissipation transfer_;
 };
 

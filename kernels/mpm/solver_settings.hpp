@@ -24,6 +24,9 @@ struct SolverSettings {
   // Account the kinetic energy lost in the grid transfers (transfer_dissipation.hpp): a few
   // reductions a step, off by default.
   bool track_transfer_dissipation = false;
+  // > 0: the walls' normal load is also booked in bands of this length along each wall (m;
+  // wall_bands.hpp), taken with SolverBase::take_wall_band_impulse.
+  double wall_band = 0.0;
 };
 
 }  // namespace lsi::mpm
