@@ -9,9 +9,10 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${LSI_BUILD_DIR:-$root/build}"
 # libopenmpi-dev openmpi-bin: OpenMPI from Debian, as the issue asks, for lsi-mpi (docs/guide/mpi.md).
 # clang-format: the style check of the tests (ci/format_check.sh, .clang-format).
+# python3-openturns: the test of tools/openturns_wrapper.py (lsi as an OpenTURNS function).
 packages=(g++ cmake make libeigen3-dev libbenchmark-dev libgtest-dev libhdf5-dev libcli11-dev
           nlohmann-json3-dev python3-matplotlib python3-h5py libopenmpi-dev openmpi-bin
-          clang-format)
+          clang-format python3-openturns)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

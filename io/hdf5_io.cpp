@@ -101,6 +101,8 @@ std::string read_string_attribute(hid_t obj, const std::string& name) {
   if (is_vlen < 0) fail("cannot inspect the type of attribute '" + name + "'");
   if (is_vlen > 0) {
     Handle mem_type = vlen_string_type();
+    // ASCII or UTF-8 as written (HDF5 converts between variable-length strings of one set only).
+    check(H5Tset_cset(mem_type, H5Tget_cset(file_type)), "cannot set the string type's set");
     char* buf = nullptr;
     check(H5Aread(attr, mem_type, &buf), "cannot read attribute '" + name + "'");
     std::string value = buf != nullptr ? std::string(buf) : std::string();

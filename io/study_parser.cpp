@@ -7,11 +7,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <string_view>
 
 #include "io/json_fields.hpp"
-#include "model/mpm_runner.hpp"  // ensure_kokkos
-#include "io/scene_reference.hpp"
+#include "io/points_file.hpp"
 #include "io/scene_parser.hpp"
+#include "io/scene_reference.hpp"
+#include "io/study_points.hpp"
+#include "model/mpm_runner.hpp"  // ensure_kokkos
 
 namespace lsi {
 namespace {
@@ -20,10 +23,11 @@ using nlohmann::json;
 using namespace json_fields;
 
 const std::vector<std::string> kStudyKeys = {
-    "name",       "scene", "inputs",        "correlation",     "design",
-    "samples",    "seed",  "methods",       "outputs",         "thresholds",
-    "confidence", "stop",  "chunk_samples", "mpm_at_quantiles"};
-const std::vector<std::string> kDesigns = {"monte-carlo", "latin-hypercube", "sobol", "grid"};
+    "name",       "scene", "inputs",        "correlation",      "design",
+    "samples",    "seed",  "methods",       "outputs",          "thresholds",
+    "confidence", "stop",  "chunk_samples", "mpm_at_quantiles", "points"};
+const std::vector<std::string> kDesigns = {"monte-carlo", "latin-hypercube", "sobol", "grid",
+                                           "points"};
 const std::vector<std::string> kDistributions = {
     "constant", "uniform", "normal", "lognormal", "truncated-normal", "discrete", "grid"};
 const std::vector<std::string> kSweepMethods = {"empirical", "analytical", "mpm"};
@@ -48,12 +52,15 @@ std::string method_reading(int field) {
   return "";  // every method
 }
 
-std::string fingerprint_of(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;  // FNV-1a, 64 bit
-  for (unsigned char c : text) {
+// FNV-1a, 64 bit, of `bytes`, continuing from `h`.
+std::uint64_t fingerprint_hash(std::string_view bytes, std::uint64_t h = 1469598103934665603ull) {
+  for (unsigned char c : bytes) {
     h ^= c;
     h *= 1099511628211ull;
   }
+  return h;
+}
+std::string hex_of(std::uint64_t h) {
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
   return buf;
@@ -92,6 +99,49 @@ std::vector<double> number_list(const ObjectReader& r, const std::string& key, c
   return out;
 }
 
+// The scene field `path` sets (sweeps::SceneField, or -1 for one key of methods.mpm) into
+// `field`; returns why a study cannot sample the path, or "" if it can.
+std::string unsampleable_path(const std::string& path, int& field) {
+  field = -1;
+  for (int f = 0; f < sweeps::scene_field_count; ++f)
+    if (path == sweeps::scene_field_pointer[f]) field = f;
+  // An MPM setting is one key of methods.mpm: "/methods/mpm/KEY", KEY a plain name (letters,
+  // digits, '_'). Deeper or escaped pointers ("/methods/mpm/a/0", "/methods/mpm/a~2") name no
+  // setting, and some are not even valid JSON pointers (nlohmann::json would throw writing a
+  // sample's value there).
+  const std::string mpm_prefix = "/methods/mpm/";
+  const bool mpm_key =
+      path.rfind(mpm_prefix, 0) == 0 && path.size() > mpm_prefix.size() &&
+      std::all_of(path.begin() + static_cast<std::ptrdiff_t>(mpm_prefix.size()), path.end(),
+                  [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  if (field >= 0 || mpm_key) return "";
+  std::string allowed;
+  for (const char* p : sweeps::scene_field_pointer) allowed += std::string(p) + ", ";
+  return "not a numeric scene key a study can sample (allowed: " + allowed +
+         "or /methods/mpm/KEY, one key of the MPM settings)";
+}
+
+// Refuses an input that only a method the study does not run reads; `what` names it.
+void require_a_reader(const Study& s, const StudyInput& in, const std::string& what) {
+  const std::string reader = method_reading(in.field);
+  // The face friction also enters the closed forms that move the barrier by momentum.
+  bool read_by_momentum = false;
+  if (in.field == sweeps::face_friction) {
+    try {
+      const Scene base = parse_scene(s.scene_document);
+      read_by_momentum = (s.runs("empirical") && base.methods.empirical &&
+                          base.methods.empirical->barrier_model == BarrierModel::Momentum) ||
+                         (s.runs("analytical") && base.methods.analytical &&
+                          base.methods.analytical->barrier_model == BarrierModel::Momentum);
+    } catch (const InputError&) {
+      // an invalid base scene is reported by the caller's check of the sampled scene
+    }
+  }
+  if (!reader.empty() && !s.runs(reader) && !read_by_momentum)
+    fail(what + ": only the " + reader +
+         " method reads it, and the study does not run it (methods: " + join(s.methods) + ")");
+}
+
 // One input: its path, the scene field it sets, and its distribution.
 StudyInput parse_input(const json& j, const std::string& at) {
   static const std::vector<std::string> keys = {
@@ -99,23 +149,8 @@ StudyInput parse_input(const json& j, const std::string& at) {
   const ObjectReader r(j, at, keys);
   StudyInput in;
   in.path = r.string("path");
-  for (int f = 0; f < sweeps::scene_field_count; ++f)
-    if (in.path == sweeps::scene_field_pointer[f]) in.field = f;
-  // An MPM setting is one key of methods.mpm: "/methods/mpm/KEY", KEY a plain name (letters,
-  // digits, '_'). Deeper or escaped pointers ("/methods/mpm/a/0", "/methods/mpm/a~2") name no
-  // setting, and some are not even valid JSON pointers (nlohmann::json would throw writing a
-  // sample's value there).
-  const std::string mpm_prefix = "/methods/mpm/";
-  const bool mpm_key =
-      in.path.rfind(mpm_prefix, 0) == 0 && in.path.size() > mpm_prefix.size() &&
-      std::all_of(in.path.begin() + static_cast<std::ptrdiff_t>(mpm_prefix.size()), in.path.end(),
-                  [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
-  if (in.field < 0 && !mpm_key) {
-    std::string allowed;
-    for (const char* p : sweeps::scene_field_pointer) allowed += std::string(p) + ", ";
-    r.fail_at("path", "not a numeric scene key a study can sample (allowed: " + allowed +
-                          "or /methods/mpm/KEY, one key of the MPM settings)");
-  }
+  const std::string why = unsampleable_path(in.path, in.field);
+  if (!why.empty()) r.fail_at("path", why);
   const std::string kind = r.choice("distribution", kDistributions);
   // Keys each distribution takes; any other is an error (a forgotten "sd" must not pass silently).
   const std::vector<std::string> takes =
@@ -298,6 +333,161 @@ void require_some_valid_samples(const Study& s, const sweeps::Sampler<Kokkos::Ho
        first_reason + "); check the distributions against the scene's allowed ranges");
 }
 
+// The inputs drawn from distributions (every design but "points"), their correlation, the
+// sample count and the seed.
+void parse_drawn_inputs(const ObjectReader& root, const std::string& design, Study& s) {
+  const json* inputs = root.find("inputs");
+  if (!inputs) root.fail_missing("inputs", "non-empty array of {path, distribution, ...}");
+  if (!inputs->is_array() || inputs->empty() ||
+      inputs->size() > static_cast<std::size_t>(sweeps::Sampler<Kokkos::HostSpace>::max_dimensions))
+    root.fail_at("inputs", "must be an array of 1 to " +
+                               std::to_string(sweeps::Sampler<Kokkos::HostSpace>::max_dimensions) +
+                               " inputs");
+  for (std::size_t k = 0; k < inputs->size(); ++k) {
+    const std::string at = "inputs[" + std::to_string(k) + "]";
+    StudyInput in = parse_input((*inputs)[k], at);
+    for (const auto& other : s.inputs)
+      if (other.path == in.path) fail(at + ".path = \"" + in.path + "\": sampled twice");
+    require_a_reader(s, in, at + ".path = \"" + in.path + "\"");
+    // The scene must accept the key: check once with a typical value.
+    json doc = s.scene_document;
+    const double v = typical_value(in.distribution);
+    set_value(doc, in, v);
+    try {
+      parse_scene(doc);
+    } catch (const InputError& e) {
+      fail(at + ".path = \"" + in.path + "\": the scene with its typical value " +
+           format_number(v) + " is invalid: " + e.what());
+    }
+    s.inputs.push_back(std::move(in));
+  }
+  if (root.has("correlation")) s.correlation = parse_correlation(root, s.inputs);
+
+  // Design and sample count.
+  s.design = design == "monte-carlo"       ? sweeps::Design::MonteCarlo
+             : design == "latin-hypercube" ? sweeps::Design::LatinHypercube
+             : design == "sobol"           ? sweeps::Design::Sobol
+                                           : sweeps::Design::Grid;
+  if (s.design == sweeps::Design::Grid) {
+    double product = 1.0;
+    for (std::size_t k = 0; k < s.inputs.size(); ++k) {
+      const auto& d = s.inputs[k].distribution;
+      if (d.kind == sweeps::DistributionKind::Constant) {
+        s.inputs[k].distribution.kind = sweeps::DistributionKind::Discrete;
+        s.inputs[k].distribution.values = {d.value};
+      } else if (d.kind != sweeps::DistributionKind::Discrete || !d.weights.empty()) {
+        fail("inputs[" + std::to_string(k) +
+             "].distribution: the grid design takes \"grid\", "
+             "\"discrete\" (without weights) or \"constant\" inputs");
+      }
+      product *= static_cast<double>(s.inputs[k].distribution.values.size());
+    }
+    if (product > kMaxSamples) root.fail_at("design", "the grid has more than 9e15 points");
+    if (root.has("samples") && root.integer("samples", interval('[', 1, kMaxSamples, ']')) !=
+                                   static_cast<long long>(product))
+      root.fail_at("samples", "a grid design runs every grid point: " + format_number(product) +
+                                  " (or leave samples out)");
+    if (root.has("correlation")) root.fail_at("correlation", "not used by the grid design");
+    s.samples = static_cast<std::uint64_t>(product);
+  } else {
+    s.samples =
+        static_cast<std::uint64_t>(root.integer("samples", interval('[', 1, kMaxSamples, ']')));
+  }
+  s.seed =
+      root.has("seed")
+          ? static_cast<std::uint64_t>(root.integer("seed", interval('[', 0, kMaxSamples, ']')))
+          : 0;
+}
+
+std::vector<std::string> input_paths(const Study& s) {
+  std::vector<std::string> paths;
+  for (const auto& in : s.inputs) paths.push_back(in.path);
+  return paths;
+}
+
+// The Points design: the inputs are the columns of the points file (those `inputs` lists, each
+// {"path": P}, when it is given), the samples its rows, every value checked as the scene's.
+void parse_given_points(const ObjectReader& root, const std::string& base_dir, Study& s) {
+  namespace fs = std::filesystem;
+  for (const char* key : {"correlation", "seed"})
+    if (root.has(key))
+      root.fail_at(key, "not used by the points design (its samples are the rows of points.file)");
+  if (!root.has("points"))
+    root.fail_missing("points",
+                      "{\"file\": PATH}, the CSV or HDF5 file of the points, relative to the "
+                      "study file");
+  const ObjectReader r = root.object("points", {"file", "dataset"});
+  fs::path file(r.string("file"));
+  if (file.is_relative() && !base_dir.empty()) file = fs::path(base_dir) / file;
+  const PointsTable t =
+      read_points_file(file.string(), file.string(), r.optional_string("dataset").value_or(""));
+
+  const auto max_inputs =
+      static_cast<std::size_t>(sweeps::Sampler<Kokkos::HostSpace>::max_dimensions);
+  std::vector<std::size_t> column_of_input;
+  if (const json* inputs = root.find("inputs")) {
+    if (!inputs->is_array() || inputs->empty() || inputs->size() > max_inputs)
+      root.fail_at("inputs", "must be an array of 1 to " + std::to_string(max_inputs) +
+                                 " inputs {\"path\": P}, each a column of the points file");
+    for (std::size_t k = 0; k < inputs->size(); ++k) {
+      const std::string at = "inputs[" + std::to_string(k) + "]";
+      if ((*inputs)[k].is_object())
+        for (const auto& item : (*inputs)[k].items())
+          if (item.key() != "path")
+            fail(join_path(at, item.key()) +
+                 ": not used by the points design (an input of given points is {\"path\": P}; "
+                 "its values are the column P of points.file)");
+      const ObjectReader ir((*inputs)[k], at, {"path"});
+      StudyInput in;
+      in.path = ir.string("path");
+      const std::string why = unsampleable_path(in.path, in.field);
+      if (!why.empty()) ir.fail_at("path", why);
+      for (const auto& other : s.inputs)
+        if (other.path == in.path) ir.fail_at("path", "listed twice");
+      require_a_reader(s, in, at + ".path = \"" + in.path + "\"");
+      const auto column = std::find(t.columns.begin(), t.columns.end(), in.path);
+      if (column == t.columns.end())
+        fail(t.shown + ": no column " + in.path + " for " + at +
+             " (the header names: " + join(t.columns) + ")");
+      column_of_input.push_back(static_cast<std::size_t>(column - t.columns.begin()));
+      s.inputs.push_back(std::move(in));
+    }
+    for (const auto& name : t.columns)
+      if (std::none_of(s.inputs.begin(), s.inputs.end(),
+                       [&](const StudyInput& in) { return in.path == name; }))
+        fail(t.shown + ": column " + format_value(json(name)) +
+             ": not one of the study's inputs (inputs: " + join(input_paths(s)) + ")");
+  } else {
+    if (t.columns.size() > max_inputs)
+      fail(t.shown + ": " + std::to_string(t.columns.size()) + " columns: at most " +
+           std::to_string(max_inputs) + " inputs");
+    for (std::size_t c = 0; c < t.columns.size(); ++c) {
+      StudyInput in;
+      in.path = t.columns[c];
+      const std::string column = t.shown + ": column " + format_value(json(in.path));
+      const std::string why = unsampleable_path(in.path, in.field);
+      if (!why.empty()) fail(column + ": " + why);
+      require_a_reader(s, in, column);
+      column_of_input.push_back(c);
+      s.inputs.push_back(std::move(in));
+    }
+  }
+
+  const std::size_t n = t.columns.size(), dims = s.inputs.size();
+  s.points.file = fs::absolute(file).lexically_normal().string();
+  s.points.value.resize(t.rows * dims);
+  for (std::size_t i = 0; i < t.rows; ++i)
+    for (std::size_t d = 0; d < dims; ++d)
+      s.points.value[i * dims + d] = t.value[i * n + column_of_input[d]];
+  if (root.has("samples") &&
+      root.integer("samples", interval('[', 1, kMaxSamples, ']')) != static_cast<long long>(t.rows))
+    root.fail_at("samples", "the points file has " + std::to_string(t.rows) +
+                                " rows, the design runs each once (or leave samples out)");
+  s.samples = t.rows;
+  s.design = sweeps::Design::Points;
+  check_given_points(s, t);
+}
+
 }  // namespace
 
 sweeps::SceneValues scene_values(const Scene& sc) {
@@ -379,85 +569,14 @@ Study parse_study(const json& j, const std::string& base_dir) {
                  "docs/reference/scene_schema.md)");
   s.outputs = root.has("outputs") ? string_list(root, "outputs", kOutputs) : kOutputs;
 
-  // Inputs.
-  const json* inputs = root.find("inputs");
-  if (!inputs) root.fail_missing("inputs", "non-empty array of {path, distribution, ...}");
-  if (!inputs->is_array() || inputs->empty() ||
-      inputs->size() > static_cast<std::size_t>(sweeps::Sampler<Kokkos::HostSpace>::max_dimensions))
-    root.fail_at("inputs", "must be an array of 1 to " +
-                               std::to_string(sweeps::Sampler<Kokkos::HostSpace>::max_dimensions) +
-                               " inputs");
-  for (std::size_t k = 0; k < inputs->size(); ++k) {
-    const std::string at = "inputs[" + std::to_string(k) + "]";
-    StudyInput in = parse_input((*inputs)[k], at);
-    for (const auto& other : s.inputs)
-      if (other.path == in.path) fail(at + ".path = \"" + in.path + "\": sampled twice");
-    const std::string reader = method_reading(in.field);
-    // The face friction also enters the closed forms that move the barrier by momentum.
-    bool read_by_momentum = false;
-    if (in.field == sweeps::face_friction) {
-      try {
-        const Scene base = parse_scene(s.scene_document);
-        read_by_momentum = (s.runs("empirical") && base.methods.empirical &&
-                            base.methods.empirical->barrier_model == BarrierModel::Momentum) ||
-                           (s.runs("analytical") && base.methods.analytical &&
-                            base.methods.analytical->barrier_model == BarrierModel::Momentum);
-      } catch (const InputError&) {
-        // an invalid base scene is reported below, with the typical value
-      }
-    }
-    if (!reader.empty() && !s.runs(reader) && !read_by_momentum)
-      fail(at + ".path = \"" + in.path + "\": only the " + reader +
-           " method reads it, and the study does not run it (methods: " + join(s.methods) + ")");
-    // The scene must accept the key: check once with a typical value.
-    json doc = s.scene_document;
-    const double v = typical_value(in.distribution);
-    set_value(doc, in, v);
-    try {
-      parse_scene(doc);
-    } catch (const InputError& e) {
-      fail(at + ".path = \"" + in.path + "\": the scene with its typical value " +
-           format_number(v) + " is invalid: " + e.what());
-    }
-    s.inputs.push_back(std::move(in));
-  }
-  if (root.has("correlation")) s.correlation = parse_correlation(root, s.inputs);
-
-  // Design and sample count.
   const std::string design = root.choice("design", kDesigns, std::string("monte-carlo"));
-  s.design = design == "monte-carlo"       ? sweeps::Design::MonteCarlo
-             : design == "latin-hypercube" ? sweeps::Design::LatinHypercube
-             : design == "sobol"           ? sweeps::Design::Sobol
-                                           : sweeps::Design::Grid;
-  if (s.design == sweeps::Design::Grid) {
-    double product = 1.0;
-    for (std::size_t k = 0; k < s.inputs.size(); ++k) {
-      const auto& d = s.inputs[k].distribution;
-      if (d.kind == sweeps::DistributionKind::Constant) {
-        s.inputs[k].distribution.kind = sweeps::DistributionKind::Discrete;
-        s.inputs[k].distribution.values = {d.value};
-      } else if (d.kind != sweeps::DistributionKind::Discrete || !d.weights.empty()) {
-        fail("inputs[" + std::to_string(k) +
-             "].distribution: the grid design takes \"grid\", "
-             "\"discrete\" (without weights) or \"constant\" inputs");
-      }
-      product *= static_cast<double>(s.inputs[k].distribution.values.size());
-    }
-    if (product > kMaxSamples) root.fail_at("design", "the grid has more than 9e15 points");
-    if (root.has("samples") && root.integer("samples", interval('[', 1, kMaxSamples, ']')) !=
-                                   static_cast<long long>(product))
-      root.fail_at("samples", "a grid design runs every grid point: " + format_number(product) +
-                                  " (or leave samples out)");
-    if (root.has("correlation")) root.fail_at("correlation", "not used by the grid design");
-    s.samples = static_cast<std::uint64_t>(product);
+  if (design == "points") {
+    parse_given_points(root, base_dir, s);
   } else {
-    s.samples =
-        static_cast<std::uint64_t>(root.integer("samples", interval('[', 1, kMaxSamples, ']')));
+    if (root.has("points"))
+      root.fail_at("points", "used only by design \"points\" (the file of the given points)");
+    parse_drawn_inputs(root, design, s);
   }
-  s.seed =
-      root.has("seed")
-          ? static_cast<std::uint64_t>(root.integer("seed", interval('[', 0, kMaxSamples, ']')))
-          : 0;
   s.confidence = root.number_or("confidence", s.confidence, interval('(', 0.5, 1, ')'));
 
   if (root.has("thresholds")) {
@@ -501,18 +620,32 @@ Study parse_study(const json& j, const std::string& base_dir) {
   } catch (const std::invalid_argument& e) {
     fail(std::string(root.has("correlation") ? "correlation" : "design") + ": " + e.what());
   }
-  require_some_valid_samples(s, *sampler);
+  if (s.design != sweeps::Design::Points)  // given points were each checked as a scene
+    require_some_valid_samples(s, *sampler);
 
   // What the results store: the study as read, with its scene inlined and the resolved values.
   s.source = j;
   s.source["scene"] = s.scene_document;
   s.source["design"] = design;
   s.source["samples"] = s.samples;
-  s.source["seed"] = s.seed;
+  if (s.design != sweeps::Design::Points) s.source["seed"] = s.seed;
   s.source["methods"] = s.methods;
   s.source["outputs"] = s.outputs;
   s.source["chunk_samples"] = s.chunk_samples;
-  s.fingerprint = fingerprint_of(s.source.dump());
+  std::uint64_t hash = fingerprint_hash(s.source.dump());
+  if (s.design == sweeps::Design::Points) {
+    // The file by its absolute path (`lsi merge` reads it again), the inputs by their columns,
+    // and the values themselves in the fingerprint: a points file changed since a run started is
+    // another study to `--resume`.
+    s.source["points"]["file"] = s.points.file;
+    s.source["inputs"] = json::array();
+    for (const auto& in : s.inputs) s.source["inputs"].push_back({{"path", in.path}});
+    hash = fingerprint_hash(s.source.dump());
+    hash = fingerprint_hash(std::string_view(reinterpret_cast<const char*>(s.points.value.data()),
+                                             s.points.value.size() * sizeof(double)),
+                            hash);
+  }
+  s.fingerprint = hex_of(hash);
   return s;
 }
 

@@ -7,8 +7,9 @@
 
 namespace lsi {
 
-// Parses and validates; `base_dir` resolves a scene given as a relative path. Throws InputError
-// naming the study key (e.g. `inputs[1].sd = -2: must be > 0`).
+// Parses and validates; `base_dir` resolves a scene or a points file given as a relative path.
+// Throws InputError naming the study key (e.g. `inputs[1].sd = -2: must be > 0`), or for a
+// points file the file, row, column and value (io/study_points.hpp).
 Study parse_study(const nlohmann::json& j, const std::string& base_dir);
 Study load_study(const std::string& path);
 

@@ -20,7 +20,13 @@ namespace lsi {
 struct StudyInput {
   std::string path;  // JSON pointer into the scene, e.g. /landslide/thickness_m
   int field = -1;    // sweeps::SceneField, or -1 for an MPM-only key (/methods/mpm/...)
-  sweeps::DistributionSpec distribution;
+  sweeps::DistributionSpec distribution;  // unused by the Points design
+};
+
+// The Points design's samples: the rows of a points file, as given.
+struct StudyPoints {
+  std::string file;           // the file read (absolute path)
+  std::vector<double> value;  // samples x inputs, row-major, in the order of Study::inputs
 };
 
 // P(output > above) is estimated for each method that gives the output (or only `method`).
@@ -67,15 +73,19 @@ struct Study {
   double confidence = 0.95;
   StudyStop stop;
   std::optional<StudyQuantileMpm> mpm_at_quantiles;
+  StudyPoints points;               // the Points design only
   std::uint64_t chunk_samples = 0;  // samples per chunk (the unit of work and of resume)
   nlohmann::json source;            // the study with its scene inlined (stored in results)
   std::string fingerprint;          // hash of `source`: results of other studies are refused
 
   bool runs(const std::string& method) const;
   // The study's sampler: counter-based, sample i's inputs depend on i alone (every sampler of
-  // the study draws the same). Throws std::invalid_argument as sweeps::Sampler does.
+  // the study draws the same; the Points design reads row i). Throws std::invalid_argument as
+  // sweeps::Sampler does.
   template <class MemorySpace>
   sweeps::Sampler<MemorySpace> sampler() const {
+    if (design == sweeps::Design::Points)
+      return sweeps::Sampler<MemorySpace>(points.value, static_cast<int>(inputs.size()), samples);
     std::vector<sweeps::DistributionSpec> specs;
     for (const auto& in : inputs) specs.push_back(in.distribution);
     return sweeps::Sampler<MemorySpace>(specs, correlation, design, seed, samples);

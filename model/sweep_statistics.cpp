@@ -38,6 +38,8 @@ const char* design_name(sweeps::Design d) {
       return "sobol";
     case sweeps::Design::Grid:
       return "grid";
+    case sweeps::Design::Points:
+      return "points";
   }
   return "?";
 }
@@ -81,7 +83,7 @@ json sweep_statistics(const Study& study, const SweepTable& table) {
   if (study.design != sweeps::Design::MonteCarlo)
     j["note"] =
         "confidence intervals assume independent samples; for Latin-hypercube, Sobol "
-        "and grid designs they are indicative only";
+        "and grid designs and for given points they are indicative only";
   // Each column is described on its own (a sort of its ok values, then the sums in sorted
   // order), so the columns run in parallel and the results do not depend on the thread count.
   const std::size_t columns = table.output_columns.size();

@@ -16,6 +16,8 @@
 //                   counts as the single point `value`), the FIRST input varying fastest; the
 //                   marginals are neither used nor validated (only the grid points, which must be
 //                   finite); sample_count must be the product of the sizes.
+//   Points          given points (a study's points file): sample i is row i of the table handed
+//                   to the constructor, as given; no marginals, no copula. Indices < sample_count.
 // Reproducibility: the uniforms of sample i depend only on (design, seed, i, N, the inputs' count);
 // they are computed with integer arithmetic, so they are bitwise identical on every backend and for
 // any batch, thread count or sharding. The transforms after them (copula, quantiles) are the same
@@ -48,7 +50,7 @@
 
 namespace lsi::sweeps {
 
-enum class Design : int { MonteCarlo, LatinHypercube, Sobol, Grid };
+enum class Design : int { MonteCarlo, LatinHypercube, Sobol, Grid, Points };
 
 inline const char* to_string(Design d) {
   switch (d) {
@@ -60,6 +62,8 @@ inline const char* to_string(Design d) {
       return "sobol";
     case Design::Grid:
       return "grid";
+    case Design::Points:
+      return "points";
   }
   return "unknown";
 }
@@ -147,7 +151,9 @@ class Sampler {
     dims_ = static_cast<int>(inputs.size());
     if (design != Design::MonteCarlo && design != Design::LatinHypercube &&
         design != Design::Sobol && design != Design::Grid)
-      invalid("design = " + std::to_string(static_cast<int>(design)) + ": not a design");
+      invalid("design = " + std::to_string(static_cast<int>(design)) +
+              ": not a design drawn from distributions" +
+              (design == Design::Points ? " (given points take the points constructor)" : ""));
 
     std::vector<Marginal> marginals;
     std::vector<double> values, cdf;
@@ -199,6 +205,7 @@ class Sampler {
     std::vector<double> grid(1, 0.0);
     switch (design) {
       case Design::MonteCarlo:
+      case Design::Points:  // refused above: given points take the points constructor
         break;
       case Design::LatinHypercube:
         if (sample_count == 0)
@@ -252,6 +259,44 @@ class Sampler {
     grid_values_ = detail::to_view<double, MemorySpace>("lsi::sweeps::grid_values", grid);
   }
 
+  // The Points design: sample i is row i of `points`, a row-major table of sample_count rows of
+  // `dims` values each. Throws std::invalid_argument for a table of another size, more
+  // dimensions than max_dimensions, no rows, or a value that is not finite.
+  Sampler(const std::vector<double>& points, int dims, std::uint64_t sample_count)
+      : dims_(dims), design_(Design::Points), count_(sample_count) {
+    using detail::invalid;
+    if (dims < 1 || dims > max_dimensions)
+      invalid(std::to_string(dims) + " columns of given points: 1 to " +
+              std::to_string(max_dimensions) + " are supported");
+    if (sample_count == 0) invalid("no given points: at least one row is needed");
+    if (points.size() / static_cast<std::size_t>(dims) != sample_count ||
+        points.size() % static_cast<std::size_t>(dims) != 0)
+      invalid(std::to_string(points.size()) + " values given for " + std::to_string(sample_count) +
+              " points of " + std::to_string(dims) + " values");
+    for (std::size_t k = 0; k < points.size(); ++k)
+      if (!std::isfinite(points[k]))
+        invalid("point " + std::to_string(k / static_cast<std::size_t>(dims)) + ", value " +
+                std::to_string(k % static_cast<std::size_t>(dims)) + " = " +
+                detail::format_number(points[k]) + ": must be finite");
+    // Column-major on the device: the threads of a kernel read one column side by side.
+    points_ = Kokkos::View<double**, Kokkos::LayoutLeft, MemorySpace>("lsi::sweeps::points",
+                                                                      sample_count, dims);
+    const auto host = Kokkos::create_mirror_view(points_);
+    for (std::uint64_t i = 0; i < sample_count; ++i)
+      for (int d = 0; d < dims; ++d) host(i, d) = points[i * static_cast<std::size_t>(dims) + d];
+    Kokkos::deep_copy(points_, host);
+    // The tables the other designs read stay valid (one dummy entry each).
+    const std::vector<double> one(1, 1.0);
+    marginals_ =
+        detail::to_view<Marginal, MemorySpace>("lsi::sweeps::marginals", std::vector<Marginal>(1));
+    discrete_values_ = detail::to_view<double, MemorySpace>("lsi::sweeps::discrete_values", one);
+    discrete_cdf_ = detail::to_view<double, MemorySpace>("lsi::sweeps::discrete_cdf", one);
+    cholesky_ = detail::to_view<double, MemorySpace>("lsi::sweeps::cholesky", one);
+    grid_values_ = detail::to_view<double, MemorySpace>("lsi::sweeps::grid_values", one);
+    sobol_directions_ = detail::to_view<std::uint64_t, MemorySpace>(
+        "lsi::sweeps::sobol_directions", std::vector<std::uint64_t>(1, 0));
+  }
+
   int dimensions() const { return dims_; }
   std::uint64_t sample_count() const { return count_; }
   Design design() const { return design_; }
@@ -259,7 +304,7 @@ class Sampler {
   bool correlated() const { return correlated_mask_ != 0; }
 
   // The uniforms of sample `index` before the copula (what the design draws), u[0..dimensions()).
-  // For the Grid design: the grid indices (as doubles) instead.
+  // For the Grid design: the grid indices (as doubles) instead; for Points: the point itself.
   KOKKOS_INLINE_FUNCTION void design_uniforms(std::uint64_t index, double* u) const {
     switch (design_) {
       case Design::MonteCarlo:
@@ -283,12 +328,19 @@ class Sampler {
         }
         break;
       }
+      case Design::Points:
+        for (int d = 0; d < dims_; ++d) u[d] = points_(index, d);
+        break;
     }
   }
 
   // Fills out[0..dimensions()) with the inputs of sample `index` (any index < sample_count; for
   // MonteCarlo and Sobol any index at all). Device-callable; the object is cheap to copy into a lambda.
   KOKKOS_INLINE_FUNCTION void sample(std::uint64_t index, double* out) const {
+    if (design_ == Design::Points) {
+      for (int d = 0; d < dims_; ++d) out[d] = points_(index, d);
+      return;
+    }
     double u[max_dimensions];
     design_uniforms(index, u);
     if (design_ == Design::Grid) {
@@ -330,6 +382,7 @@ class Sampler {
   Kokkos::View<Marginal*, MemorySpace> marginals_;
   Kokkos::View<double*, MemorySpace> discrete_values_, discrete_cdf_, cholesky_, grid_values_;
   Kokkos::View<std::uint64_t*, MemorySpace> sobol_directions_;
+  Kokkos::View<double**, Kokkos::LayoutLeft, MemorySpace> points_;  // Points: sample x input
 };
 
 // Fills out(i, d) = inputs of sample first + i, in one parallel_for on `space`. out must have

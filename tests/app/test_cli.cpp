@@ -1074,3 +1074,79 @@ TEST(Cli, MpmUnstableImpactStoresItsStatusAndNoSummary) {
   EXPECT_FALSE(m.run->finished);
   EXPECT_FALSE(m.time.empty());  // the histories up to the stop
 }
+
+// `lsi sweep` on given points (a study of design "points"): the points file is found beside the
+// study, every point's outputs come back in --table-csv in the file's order, and they are the
+// scalar models' (`lsi run`) for that point; a point out of range is refused before anything
+// runs, naming the file, row, column, value and range.
+TEST(Cli, SweepOfGivenPointsWritesEachPointsOutputsInItsOrder) {
+  const fs::path dir = temp_dir() / "given_points";
+  fs::create_directories(dir);
+  const double points[4][2] = {{7.5, 0.2}, {4.25, 0.45}, {9.0, 0.3}, {5.5, 0.6}};
+  {
+    std::ofstream f(dir / "points.csv");
+    f << "/landslide/velocity_m_s,/barrier/base_friction\n";
+    for (const auto& p : points) f << p[0] << "," << p[1] << "\n";
+  }
+  const nlohmann::json study = {{"name", "given"},
+                                {"scene", reference("L1-B1")},
+                                {"design", "points"},
+                                {"points", {{"file", "points.csv"}}},
+                                {"methods", {"empirical", "analytical"}},
+                                {"outputs", {"peak_force", "final_displacement"}}};
+  std::ofstream(dir / "study.json") << study.dump();
+  const fs::path table = dir / "table.csv";
+  const Outcome r = run("sweep " + (dir / "study.json").string() + " --out " +
+                        (dir / "given.h5").string() + " --table-csv " + table.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::ifstream in(table);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line,
+            "index,/landslide/velocity_m_s,/barrier/base_friction,empirical/peak_force,"
+            "empirical/final_displacement,analytical/peak_force,analytical/final_displacement,"
+            "status");
+  const nlohmann::json base = nlohmann::json::parse(std::ifstream(reference("L1-B1")));
+  int sliding = 0;
+  for (int i = 0; i < 4; ++i) {
+    ASSERT_TRUE(std::getline(in, line)) << "row " << i;
+    std::vector<double> v;
+    for (std::size_t start = 0;;) {
+      const std::size_t comma = line.find(',', start);
+      v.push_back(std::stod(line.substr(start, comma - start)));
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+    ASSERT_EQ(v.size(), 8u) << line;
+    EXPECT_EQ(v[0], i);
+    EXPECT_EQ(v[1], points[i][0]);
+    EXPECT_EQ(v[2], points[i][1]);
+    EXPECT_EQ(v[7], 0.0) << "status ok";
+    nlohmann::json doc = base;
+    doc["landslide"]["velocity_m_s"] = points[i][0];
+    doc["barrier"]["base_friction"] = points[i][1];
+    const lsi::Scene scene = lsi::parse_scene(doc);
+    const lsi::MethodResult e = lsi::run_empirical(scene), a = lsi::run_analytical(scene);
+    // The sweep's kernel and the scalar methods compile the same formulas; multiply-adds may be
+    // contracted differently: 1e-12 relative.
+    const double want[4] = {e.peak_force, e.final_displacement, a.peak_force, a.final_displacement};
+    for (int c = 0; c < 4; ++c)
+      EXPECT_NEAR(v[3 + c], want[c], 1e-12 * std::fabs(want[c])) << "row " << i << " column " << c;
+    sliding += a.final_displacement > 0.0;
+  }
+  EXPECT_FALSE(std::getline(in, line)) << "one row per point";
+  EXPECT_GT(sliding, 0);  // the comparison covers a sliding barrier
+
+  std::ofstream(dir / "points.csv") << "/landslide/velocity_m_s,/barrier/base_friction\n"
+                                       "7.5,0.2\n4.25,-0.45\n";
+  const Outcome bad = run("sweep " + (dir / "study.json").string() + " --out " +
+                          (dir / "bad.h5").string() + " --table-csv " + (dir / "bad.csv").string());
+  EXPECT_EQ(bad.code, 2) << bad.out;
+  EXPECT_NE(bad.out.find("points.csv: row 2 (line 3), column /barrier/base_friction = -0.45: must "
+                         "be >= 0"),
+            std::string::npos)
+      << bad.out;
+  EXPECT_EQ(bad.out.find('\n'), bad.out.size() - 1) << "one line:\n" << bad.out;
+  EXPECT_FALSE(fs::exists(dir / "bad.h5"));
+  EXPECT_FALSE(fs::exists(dir / "bad.csv"));
+}

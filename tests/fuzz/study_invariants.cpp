@@ -48,6 +48,7 @@ void check_input(const StudyInput& in, const Study& s) {
             at + ": not a sampleable path");
     require(s.base.methods.mpm.has_value() && s.runs("mpm"), at + ": an MPM key without the MPM");
   }
+  if (s.design == sweeps::Design::Points) return;  // given points: no distribution
   const sweeps::DistributionSpec& d = in.distribution;
   try {
     sweeps::validate(d);
@@ -109,19 +110,22 @@ void check_rules(const Study& s) {
 }
 
 // What `lsi sweep` does with each sample: draw it, write it into the scene, parse that scene
-// (an invalid sample is recorded with the parser's message, not an error of the study).
+// (an invalid sample is recorded with the parser's message, not an error of the study). Given
+// points were each checked by the parser: every one must be a valid scene.
 void check_first_samples(const Study& s) {
-  std::vector<sweeps::DistributionSpec> specs;
-  for (const auto& in : s.inputs) specs.push_back(in.distribution);
-  const sweeps::Sampler<Kokkos::HostSpace> sampler(specs, s.correlation, s.design, s.seed,
-                                                   s.samples);
+  const sweeps::Sampler<Kokkos::HostSpace> sampler = s.sampler<Kokkos::HostSpace>();
   std::vector<double> x(s.inputs.size());
   const std::uint64_t n = std::min<std::uint64_t>(s.samples, 2);
   for (std::uint64_t i = 0; i < n; ++i) {
     sampler.sample(i, x.data());
     const std::string reason = invalid_sample_reason(s, x.data());
     require(reason.find('\n') == std::string::npos, "an invalid sample's reason is not one line");
+    require(s.design != sweeps::Design::Points || reason.empty(),
+            "a given point that is not a valid scene was accepted: " + reason);
   }
+  if (s.design == sweeps::Design::Points)
+    require(s.points.value.size() == s.samples * s.inputs.size(),
+            "given points of another size than samples x inputs");
 }
 
 }  // namespace
