@@ -75,6 +75,21 @@ void dataset(hid_t group, const char* name, const std::vector<double>& data, siz
   if (components != nullptr) string_attribute(dset, "components", components);
 }
 
+// An n integer dataset (int64 on disk) with a `units` attribute.
+template <class Int>
+void int_dataset(hid_t group, const char* name, const std::vector<Int>& data, const char* units) {
+  const hsize_t dims[1] = {static_cast<hsize_t>(data.size())};
+  Id space(H5Screate_simple(1, dims, nullptr), H5Sclose,
+           std::string("cannot create the dataspace of '") + name + "'");
+  Id dset(H5Dcreate2(group, name, H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+          H5Dclose, std::string("cannot create dataset '") + name + "'");
+  const std::vector<long long> wide(data.begin(), data.end());
+  if (!wide.empty())
+    check(H5Dwrite(dset, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, wide.data()),
+          std::string("cannot write dataset '") + name + "'");
+  string_attribute(dset, "units", units);
+}
+
 // n x 2 -> n x 3 with z = 0.
 std::vector<double> with_zero_z(const std::vector<double>& xy, size_t n) {
   std::vector<double> xyz(3 * n, 0.0);
@@ -132,11 +147,21 @@ void write_mpm_snapshots(long long file_id, const std::vector<MpmSnapshot>& snap
   Id root(H5Gcreate2(mpm, "snapshots", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
           "cannot create group 'mpm/snapshots'");
   double_attribute(root, "count", static_cast<double>(snapshots.size()));
+  if (!snapshots.empty()) {
+    std::string names;
+    for (size_t m = 0; m < snapshots.front().material_names.size(); ++m)
+      names += (m ? "," : "") + snapshots.front().material_names[m];
+    // `material` of a point indexes this comma-separated list.
+    string_attribute(root, "materials", names);
+  }
   for (size_t k = 0; k < snapshots.size(); ++k) {
     const MpmSnapshot& s = snapshots[k];
     const size_t n = static_cast<size_t>(s.count);
     if (s.position.size() != 2 * n || s.velocity.size() != 2 * n || s.stress.size() != 4 * n ||
-        s.deviatoric_strain.size() != n || s.plastic_work.size() != n)
+        s.deviatoric_strain.size() != n || s.plastic_work.size() != n || s.id.size() != n ||
+        s.material.size() != n || s.mass.size() != n || s.volume.size() != n ||
+        s.volumetric_strain.size() != n || s.displacement.size() != 2 * n ||
+        (!s.barrier_outline.empty() && s.barrier_outline.size() != 8))
       throw std::runtime_error("mpm snapshots: snapshot " + std::to_string(k) +
                                ": array sizes do not match its particle count");
     const std::string name = group_name(k);
@@ -149,6 +174,14 @@ void write_mpm_snapshots(long long file_id, const std::vector<MpmSnapshot>& snap
     dataset(g, "deviatoric_strain", s.deviatoric_strain, n, 0, "1");
     dataset(g, "plastic_work", s.plastic_work, n, 0, "J/m");
     if (s.pore_pressure.size() == n) dataset(g, "pore_pressure", s.pore_pressure, n, 0, "Pa");
+    int_dataset(g, "id", s.id, "1");
+    int_dataset(g, "material", s.material, "1");
+    dataset(g, "displacement", with_zero_z(s.displacement, n), n, 3, "m", "x y z(=0)");
+    dataset(g, "mass", s.mass, n, 0, "kg/m");
+    dataset(g, "volume", s.volume, n, 0, "m^2");
+    dataset(g, "volumetric_strain", s.volumetric_strain, n, 0, "1");
+    if (!s.barrier_outline.empty())
+      dataset(g, "barrier_outline", with_zero_z(s.barrier_outline, 4), 4, 3, "m", "x y z(=0)");
   }
 }
 
@@ -177,6 +210,10 @@ void write_mpm_snapshots_xdmf(const std::string& h5_path,
              "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + at + dataset +
              "</DataItem>";
     };
+    const auto int_item = [&](const std::string& dims, const std::string& dataset) {
+      return "<DataItem Dimensions=\"" + dims +
+             "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" + at + dataset + "</DataItem>";
+    };
     x << "      <Grid Name=\"particles_" << group_name(k) << "\" GridType=\"Uniform\">\n"
       << "        <Time Value=\"" << exact(s.time) << "\"/>\n"
       << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
@@ -186,7 +223,15 @@ void write_mpm_snapshots_xdmf(const std::string& h5_path,
       << "        </Geometry>\n"
       << "        <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n"
       << "          " << item(n + " 3", "velocity") << "\n"
+      << "        </Attribute>\n"
+      << "        <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n"
+      << "          " << item(n + " 3", "displacement") << "\n"
       << "        </Attribute>\n";
+    for (const char* integer : {"id", "material"})
+      x << "        <Attribute Name=\"" << integer
+        << "\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+        << "          " << int_item(n, integer) << "\n"
+        << "        </Attribute>\n";
     const char* components[] = {"xx", "yy", "xy", "zz"};
     for (int c = 0; c < 4; ++c) {
       x << "        <Attribute Name=\"stress_" << components[c]
@@ -198,7 +243,8 @@ void write_mpm_snapshots_xdmf(const std::string& h5_path,
         << "          </DataItem>\n"
         << "        </Attribute>\n";
     }
-    std::vector<const char*> scalars = {"deviatoric_strain", "plastic_work"};
+    std::vector<const char*> scalars = {"mass", "volume", "volumetric_strain", "deviatoric_strain",
+                                        "plastic_work"};
     if (!snapshots[k].pore_pressure.empty()) scalars.push_back("pore_pressure");
     for (const char* scalar : scalars)
       x << "        <Attribute Name=\"" << scalar
@@ -207,8 +253,26 @@ void write_mpm_snapshots_xdmf(const std::string& h5_path,
         << "        </Attribute>\n";
     x << "      </Grid>\n";
   }
-  x << "    </Grid>\n"
-    << "  </Domain>\n"
+  x << "    </Grid>\n";
+  // The barrier, where it stands at each snapshot: one quadrilateral.
+  if (!snapshots.empty() && !snapshots.front().barrier_outline.empty()) {
+    x << "    <Grid Name=\"barrier\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (size_t k = 0; k < snapshots.size(); ++k)
+      x << "      <Grid Name=\"barrier_" << group_name(k) << "\" GridType=\"Uniform\">\n"
+        << "        <Time Value=\"" << exact(snapshots[k].time) << "\"/>\n"
+        << "        <Topology TopologyType=\"Quadrilateral\" NumberOfElements=\"1\">\n"
+        << "          <DataItem Dimensions=\"1 4\" NumberType=\"Int\" Format=\"XML\">0 1 2 3"
+        << "</DataItem>\n"
+        << "        </Topology>\n"
+        << "        <Geometry GeometryType=\"XYZ\">\n"
+        << "          <DataItem Dimensions=\"4 3\" NumberType=\"Float\" Precision=\"8\" "
+        << "Format=\"HDF\">" << h5 << ":/mpm/snapshots/" << group_name(k)
+        << "/barrier_outline</DataItem>\n"
+        << "        </Geometry>\n"
+        << "      </Grid>\n";
+    x << "    </Grid>\n";
+  }
+  x << "  </Domain>\n"
     << "</Xdmf>\n";
 
   write_text_atomically(path, x.str());

@@ -2,20 +2,31 @@
 // lets ParaView (or VisIt) open them as a time series of point clouds.
 //
 // HDF5 layout, inside the `mpm` method group (written through write_results' `extra` callback):
-//   /mpm/snapshots                  group; attribute count (number of snapshots)
+//   /mpm/snapshots                  group; attributes count (number of snapshots), materials (the
+//                                   material names, comma-separated, indexed by `material`)
 //   /mpm/snapshots/NNNNNN           one group per snapshot, NNNNNN = 000000, 000001, ...;
 //                                   attribute time (double, s)
+//     id                 n      1     int64: the point's index among the run's initial points
+//     material           n      1     int64: index into the root's `materials`
 //     position           n x 3  m     x, y, 0 (z = 0: XDMF geometry and vectors are 3-D)
+//     displacement       n x 3  m     since the first snapshot (t = 0)
 //     velocity           n x 3  m/s   vx, vy, 0
+//     mass               n      kg/m
+//     volume             n      m^2   current
+//     volumetric_strain  n      1     V / V0 - 1 (expansion positive)
 //     stress             n x 4  Pa    xx, yy, xy, zz (Cauchy, tension positive)
 //     deviatoric_strain  n      1     accumulated equivalent shear strain
 //     plastic_work       n      J/m   dissipated by plastic flow (accumulated)
+//     pore_pressure      n      Pa    saturated runs only
+//     barrier_outline    4 x 3  m     impact scenes: the barrier's corners where it stands (upstream
+//                                     toe, upstream crest, downstream crest, downstream toe)
 //   every dataset has a string attribute `units`; position, velocity and stress also `components`.
 //
 // XDMF: `<stem>.xdmf` next to the HDF5 file, a temporal collection of Uniform Polyvertex grids
 // (one per snapshot) that refer to the datasets above by the HDF5 file's name (relative, so the
 // two files move together). Stress components are exposed as scalars stress_xx, stress_yy,
-// stress_xy, stress_zz through HyperSlab selections of the n x 4 dataset.
+// stress_xy, stress_zz through HyperSlab selections of the n x 4 dataset. Impact scenes add a
+// second temporal collection, `barrier`: one quadrilateral per snapshot, where the barrier stands.
 #pragma once
 #include <string>
 #include <vector>

@@ -22,8 +22,9 @@ namespace {
 constexpr double kDryPointBytes = 8.0 * 24, kSaturatedPointBytes = 8.0 * 40;
 constexpr double kDryNodeBytes = 8.0 * 12, kSaturatedNodeBytes = 8.0 * 28;
 constexpr double kDryScatterNodeBytes = 8.0 * 5, kSaturatedScatterNodeBytes = 8.0 * 10;
-// One output of the histories (about 40 series and the impact vectors), and one snapshot point.
-constexpr double kOutputBytes = 8.0 * 64, kSnapshotPointBytes = 8.0 * 12;
+// One output of the histories (about 40 series and the impact vectors), and one snapshot point
+// (16 doubles with the pore pressure, its id and material).
+constexpr double kOutputBytes = 8.0 * 64, kSnapshotPointBytes = 8.0 * 18;
 
 double polygon_area(const std::vector<std::array<double, 2>>& p) {
   double twice = 0.0;

@@ -37,6 +37,15 @@ MpmSnapshot take_snapshot(const mpm::Particles<Mem>& p, double time) {
   const auto sig = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.stress);
   const auto eps = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.deviatoric_strain);
   const auto wp = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.plastic_work);
+  const auto mass = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.mass);
+  const auto vol = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.volume);
+  const auto vol0 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.volume0);
+  const auto mat = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.material);
+  s.id.resize(n);
+  s.material.resize(n);
+  s.mass.resize(n);
+  s.volume.resize(n);
+  s.volumetric_strain.resize(n);
   s.position.resize(2 * n);
   s.velocity.resize(2 * n);
   s.stress.resize(4 * n);
@@ -50,6 +59,11 @@ MpmSnapshot take_snapshot(const mpm::Particles<Mem>& p, double time) {
     for (size_t k = 0; k < 4; ++k) s.stress[4 * i + k] = sig(i, k);
     s.deviatoric_strain[i] = eps(i);
     s.plastic_work[i] = wp(i);
+    s.id[i] = static_cast<std::int64_t>(i);  // the solvers never reorder their points
+    s.material[i] = mat(i);
+    s.mass[i] = mass(i);
+    s.volume[i] = vol(i);
+    s.volumetric_strain[i] = vol(i) / vol0(i) - 1.0;
   }
   return s;
 }
@@ -374,6 +388,31 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
         sr.values.push_back(span > 0.0 ? impulse[side][k] / span / (s1 - s0) : 0.0);
       }
   };
+  // What a snapshot takes from the run: the displacement since the first snapshot (t = 0), the
+  // material names, the barrier where it stands.
+  auto complete = [&](MpmSnapshot s) {
+    const std::vector<double>& start =
+        out.snapshots.empty() ? s.position : out.snapshots.front().position;
+    s.displacement.resize(s.position.size());
+    for (std::size_t i = 0; i < s.position.size(); ++i)
+      s.displacement[i] = s.position[i] - start[i];
+    s.material_names = c.material_names;
+    if (c.barrier) {
+      const auto& sh = c.barrier->shape;
+      const double d = solver.barrier().motion.displacement;
+      const auto& up = sh.face[mpm::BarrierShape::Crest].point;
+      const auto& down = sh.face[mpm::BarrierShape::Downstream].point;
+      s.barrier_outline = {sh.toe[0] + d,
+                           sh.toe[1],
+                           up[0] + d,
+                           up[1],
+                           down[0] + d,
+                           down[1],
+                           sh.toe[0] + sh.base_width + d,
+                           sh.toe[1]};
+    }
+    return s;
+  };
   const mpm::Status status = solver.run(
       c.settings.end_time_s, c.settings.output_interval_s,
       [&](const SolverT& sv) {
@@ -394,7 +433,7 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
             c.settings.end_time_s - t <= std::max(1e-12 * c.settings.end_time_s, min_dt);
         if (snap_dt > 0 &&
             (t + snap_tol >= next_snap * snap_dt || (at_end && out.snapshots.back().time < t))) {
-          out.snapshots.push_back(snapshot_of(sv, extra_outputs));
+          out.snapshots.push_back(complete(snapshot_of(sv, extra_outputs)));
           while (next_snap * snap_dt <= t + snap_tol) ++next_snap;
         }
         progress.update(t, sv.steps());
@@ -418,7 +457,7 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
   // written: snapshots never hold NaN).
   if (snap_dt > 0 && status == mpm::Status::LeftGrid &&
       (out.snapshots.empty() || out.snapshots.back().time < solver.time()))
-    out.snapshots.push_back(snapshot_of(solver, extra_outputs));
+    out.snapshots.push_back(complete(snapshot_of(solver, extra_outputs)));
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   RunStatistics& run = r.run.emplace();
   // A barrier pushed to the downstream end of the modelled domain is a physical outcome (far too

@@ -2,6 +2,8 @@
 // method result: energies, energy residual, time step, wall reaction forces, status. Kokkos is
 // started here, on first use only: closed-form work never starts it.
 #pragma once
+#include <cstdint>
+#include <string>
 #include <string>
 #include <vector>
 
@@ -14,12 +16,22 @@ namespace lsi {
 struct MpmSnapshot {
   double time = 0.0;  // s, the solver time of the output it was taken at
   int count = 0;
+  std::vector<std::int64_t> id;           // n, the point's index in the run's initial points
+  std::vector<int> material;              // n, index into material_names
   std::vector<double> position;           // n x 2, m
+  std::vector<double> displacement;       // n x 2, m, since the run's first snapshot (t = 0)
   std::vector<double> velocity;           // n x 2, m/s
   std::vector<double> stress;             // n x 4 (xx, yy, xy, zz), Pa, tension positive
+  std::vector<double> mass;               // n, kg/m
+  std::vector<double> volume;             // n, m^2 (current)
+  std::vector<double> volumetric_strain;  // n, V / V0 - 1 (expansion positive)
   std::vector<double> deviatoric_strain;  // n, accumulated equivalent shear strain
   std::vector<double> plastic_work;       // n, J/m dissipated (accumulated)
   std::vector<double> pore_pressure;      // n, Pa, compression positive (saturated runs only)
+  std::vector<std::string> material_names;
+  // Impact scenes: the barrier's corners at the snapshot (upstream toe, upstream crest,
+  // downstream crest, downstream toe), 4 x 2, m; empty without a barrier.
+  std::vector<double> barrier_outline;
 };
 
 struct MpmOutcome {

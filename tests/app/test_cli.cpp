@@ -380,10 +380,16 @@ TEST(Cli, MpmSnapshotsAreWrittenWithAnXdmfIndex) {
     }
     for (const auto& [name, cols] :
          std::vector<std::pair<std::string, hsize_t>>{{"position", 3},
+                                                      {"displacement", 3},
                                                       {"velocity", 3},
                                                       {"stress", 4},
+                                                      {"mass", 0},
+                                                      {"volume", 0},
+                                                      {"volumetric_strain", 0},
                                                       {"deviatoric_strain", 0},
-                                                      {"plastic_work", 0}}) {
+                                                      {"plastic_work", 0},
+                                                      {"id", 0},
+                                                      {"material", 0}}) {
       std::vector<hsize_t> dims;
       const auto v = read_h5_doubles(f, std::string(group) + "/" + name, dims);
       ASSERT_EQ(dims.size(), cols == 0 ? 1u : 2u) << group << "/" << name;
@@ -396,6 +402,38 @@ TEST(Cli, MpmSnapshotsAreWrittenWithAnXdmfIndex) {
           H5Aexists_by_name(f, (std::string(group) + "/" + name).c_str(), "units", H5P_DEFAULT), 0)
           << group << "/" << name;
     }
+  }
+  // Point data at CB-Geo's level: ids 0..n-1, one material, displacement = position - the first
+  // snapshot's position (the block settles under its weight: it has moved by the last), mass
+  // and volume that add up to the block's (0.8 x 0.6 m of 2000 kg/m^3).
+  {
+    std::vector<hsize_t> dims;
+    const auto id = read_h5_doubles(f, "/mpm/snapshots/000003/id", dims);
+    const auto material = read_h5_doubles(f, "/mpm/snapshots/000003/material", dims);
+    for (int i = 0; i < particles; ++i) {
+      EXPECT_EQ(id[i], i);
+      EXPECT_EQ(material[i], 0);
+    }
+    const auto x0 = read_h5_doubles(f, "/mpm/snapshots/000000/position", dims);
+    const auto x3 = read_h5_doubles(f, "/mpm/snapshots/000003/position", dims);
+    const auto d0 = read_h5_doubles(f, "/mpm/snapshots/000000/displacement", dims);
+    const auto d3 = read_h5_doubles(f, "/mpm/snapshots/000003/displacement", dims);
+    double moved = 0.0;
+    for (size_t i = 0; i < x3.size(); ++i) {
+      EXPECT_EQ(d0[i], 0.0);
+      EXPECT_EQ(d3[i], x3[i] - x0[i]);
+      moved = std::max(moved, std::fabs(d3[i]));
+    }
+    EXPECT_GT(moved, 0.0);
+    double mass = 0.0, volume = 0.0;
+    for (double m : read_h5_doubles(f, "/mpm/snapshots/000003/mass", dims)) mass += m;
+    for (double v : read_h5_doubles(f, "/mpm/snapshots/000003/volume", dims)) volume += v;
+    EXPECT_NEAR(mass, 2000 * 0.8 * 0.6, 1e-9 * mass);  // sum of the points' masses: round-off
+    EXPECT_NEAR(volume, 0.8 * 0.6, 0.01 * 0.48);       // an elastic block: < 1 % compression
+    const hid_t a = H5Aopen_by_name(f, "/mpm/snapshots", "materials", H5P_DEFAULT, H5P_DEFAULT);
+    ASSERT_GE(a, 0);
+    H5Aclose(a);
+    EXPECT_EQ(H5Lexists(f, "/mpm/snapshots/000000/barrier_outline", H5P_DEFAULT), 0);
   }
   H5Fclose(f);
 
@@ -413,6 +451,12 @@ TEST(Cli, MpmSnapshotsAreWrittenWithAnXdmfIndex) {
   EXPECT_EQ(x.find(temp_dir().string()), std::string::npos);  // the HDF5 file by name only
   EXPECT_NE(x.find(R"(TopologyType="Polyvertex" NumberOfElements=")" + std::to_string(particles)),
             std::string::npos);
+  EXPECT_NE(x.find(R"(<Attribute Name="displacement" AttributeType="Vector")"), std::string::npos);
+  EXPECT_NE(
+      x.find(
+          R"(NumberType="Int" Precision="8" Format="HDF">mpm_snap.h5:/mpm/snapshots/000000/material)"),
+      std::string::npos);
+  EXPECT_EQ(x.find("barrier"), std::string::npos);  // no barrier in a verification scene
 }
 
 TEST(Cli, MpmSnapshotsOffWritesNoXdmf) {
@@ -1149,4 +1193,47 @@ TEST(Cli, SweepOfGivenPointsWritesEachPointsOutputsInItsOrder) {
   EXPECT_EQ(bad.out.find('\n'), bad.out.size() - 1) << "one line:\n" << bad.out;
   EXPECT_FALSE(fs::exists(dir / "bad.h5"));
   EXPECT_FALSE(fs::exists(dir / "bad.csv"));
+}
+
+// Snapshots of an impact carry the barrier where it stands (/mpm/snapshots/NNNNNN/barrier_outline,
+// and a `barrier` collection in the XDMF): a light barrier that slides, its outline at each
+// snapshot shifted by the barrier's displacement at that time (the history at the same output),
+// exactly; its heights unchanged.
+TEST(Cli, MpmSnapshotsCarryTheBarrierWhereItStands) {
+  const fs::path scene =
+      write_file("snap_barrier.json",
+                 sliding_barrier_scene(R"({"cell_size_m": 0.25, "phases": "dry", "end_time_s": 0.4,
+                                          "snapshot_interval_s": 0.2})"));
+  const fs::path out = temp_dir() / "snap_barrier" / "snap_barrier.h5";
+  const Outcome r = run("run " + scene.string() + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto stored = lsi::read_results(out.string());
+  const auto& m = stored.results.back();
+  const hid_t f = H5Fopen(out.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  std::vector<hsize_t> dims;
+  const auto first = read_h5_doubles(f, "/mpm/snapshots/000000/barrier_outline", dims);
+  ASSERT_EQ(dims, (std::vector<hsize_t>{4, 3}));
+  EXPECT_EQ(first[0], first[3]);   // a vertical upstream face: toe and crest corner at one x
+  EXPECT_EQ(first[1], first[10]);  // both toes on the base
+  const auto last = read_h5_doubles(f, "/mpm/snapshots/000002/barrier_outline", dims);
+  double time = -1;
+  const hid_t a = H5Aopen_by_name(f, "/mpm/snapshots/000002", "time", H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(a, 0);
+  H5Aread(a, H5T_NATIVE_DOUBLE, &time);
+  H5Aclose(a);
+  H5Fclose(f);
+  const size_t k = std::lower_bound(m.time.begin(), m.time.end(), time - 1e-12) - m.time.begin();
+  ASSERT_LT(k, m.time.size());
+  const double d = m.barrier_displacement[k];
+  EXPECT_GT(d, 0.0);  // it slides
+  for (int corner = 0; corner < 4; ++corner) {
+    EXPECT_EQ(last[3 * corner], first[3 * corner] + d) << corner;
+    EXPECT_EQ(last[3 * corner + 1], first[3 * corner + 1]) << corner;
+  }
+  std::ifstream in(temp_dir() / "snap_barrier" / "snap_barrier.xdmf");
+  const std::string x((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(x.find(R"(<Grid Name="barrier" GridType="Collection" CollectionType="Temporal">)"),
+            std::string::npos);
+  EXPECT_NE(x.find("snap_barrier.h5:/mpm/snapshots/000002/barrier_outline"), std::string::npos);
 }
