@@ -84,13 +84,27 @@ Progress::Progress(std::string label, double end_time)
       status_(true),
       start_(std::chrono::steady_clock::now()) {}
 
+void RecentRate::add(double seconds, double done) {
+  samples_.emplace_back(seconds, done);
+  const double window = std::max(0.25 * seconds, kWindowSeconds);
+  while (samples_.size() > 2 && samples_[1].first <= seconds - window) samples_.pop_front();
+}
+
+double RecentRate::time_left(double total) const {
+  if (samples_.size() < 2) return -1.0;
+  const auto& [s0, d0] = samples_.front();
+  const auto& [s1, d1] = samples_.back();
+  if (!(d1 > d0) || !(s1 > s0)) return -1.0;
+  return std::max(total - d1, 0.0) * (s1 - s0) / (d1 - d0);
+}
+
 std::string Progress::line(const std::string& label, double time, double end_time, long steps,
-                           double seconds) {
+                           double seconds, double left) {
   const double fraction = end_time > 0 ? std::clamp(time / end_time, 0.0, 1.0) : 1.0;
   const double rate = seconds > 0 ? steps / seconds : 0.0;
   char buf[256];
   if (fraction > 0 && seconds > 0) {
-    const double left = seconds * (1.0 - fraction) / fraction;
+    if (left < 0.0) left = seconds * (1.0 - fraction) / fraction;
     std::snprintf(buf, sizeof buf,
                   "%s: %3.0f %% of %.3g s simulated, %.0f steps/s, %.0f s elapsed, ETA %.0f s",
                   label.c_str(), 100 * fraction, end_time, rate, seconds, left);
@@ -129,7 +143,8 @@ void Progress::update(double time, long steps) {
     const std::string e = estimate(label_, time, end_time_, seconds);
     if (!e.empty() && progress_mode() != ProgressMode::None) status_.print_above(e);
   }
-  status_.show(line(label_, time, end_time_, steps, seconds));
+  rate_.add(seconds, time);
+  status_.show(line(label_, time, end_time_, steps, seconds, rate_.time_left(end_time_)));
 }
 
 void Progress::finish() { status_.clear(); }

@@ -6,7 +6,8 @@
 //   log   the heartbeat, on terminals too;
 //   none  nothing.
 // The two kinds of work:
-//   Progress        an MPM run: percent of simulated time, steps per second, the time left; and
+//   Progress        an MPM run: percent of simulated time, steps per second, the time left at the
+//                   recent rate (RecentRate); and
 //                   one line, in every mode but none, when a run projects to more than
 //                   kLongRunSeconds to its end time: after kEstimateAfterSeconds of wall time it
 //                   states the run time to the end time at the rate so far.
@@ -15,7 +16,9 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <deque>
 #include <string>
+#include <utility>
 
 namespace lsi {
 
@@ -54,14 +57,30 @@ class StatusLine {
   std::chrono::steady_clock::time_point last_, last_beat_;
 };
 
+// The rate of recent progress: simulated time per wall second over the last quarter of the
+// elapsed time (at least kWindowSeconds), so that a run whose pace changes (a flow piling up
+// against the barrier, a shrinking time step) shows in its estimate within that window instead
+// of being diluted in the average since the start.
+class RecentRate {
+ public:
+  static constexpr double kWindowSeconds = 5.0;
+  void add(double seconds, double done);  // wall seconds since the start, work done so far
+  // Wall seconds to reach `total` at the recent rate; < 0 while unknown.
+  double time_left(double total) const;
+
+ private:
+  std::deque<std::pair<double, double>> samples_;
+};
+
 class Progress {
  public:
   Progress(std::string label, double end_time);
   void update(double time, long steps);
   void finish();  // ends the line (if anything was printed)
-  // The line update() prints, for the given state (exposed for tests).
+  // The line update() prints, for the given state (exposed for tests); `left`, the run time left
+  // (RecentRate), or < 0 for the average rate since the start.
   static std::string line(const std::string& label, double time, double end_time, long steps,
-                          double seconds);
+                          double seconds, double left = -1.0);
   // The estimate line, or "" when the run is not long (exposed for tests).
   static std::string estimate(const std::string& label, double time, double end_time,
                               double seconds);
@@ -72,6 +91,7 @@ class Progress {
   double end_time_;
   bool estimated_ = false;
   StatusLine status_;
+  RecentRate rate_;
   std::chrono::steady_clock::time_point start_;
 };
 
