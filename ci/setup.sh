@@ -10,9 +10,12 @@ build="${LSI_BUILD_DIR:-$root/build}"
 # libopenmpi-dev openmpi-bin: OpenMPI from Debian, as the issue asks, for lsi-mpi (docs/guide/mpi.md).
 # clang-format: the style check of the tests (ci/format_check.sh, .clang-format).
 # python3-openturns: the test of tools/openturns_wrapper.py (lsi as an OpenTURNS function).
+# pybind11-dev python3-dev python3-numpy python3-pytest: the Python module lsi (python/,
+# docs/guide/python.md): pybind11 and Python's headers build it, NumPy holds its arrays, pytest
+# runs its test.
 packages=(g++ cmake make libeigen3-dev libbenchmark-dev libgtest-dev libhdf5-dev libcli11-dev
           nlohmann-json3-dev python3-matplotlib python3-h5py libopenmpi-dev openmpi-bin
-          clang-format python3-openturns)
+          clang-format python3-openturns pybind11-dev python3-dev python3-numpy python3-pytest)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

@@ -9,19 +9,14 @@
 #include "sweeps/sampled_scene.hpp"
 
 namespace lsi {
-namespace {
 
-// "must be > 0", "must be an integer in [0, 1000000]": the field's own range, as the scene
-// parser words it.
-std::string requirement(int field) {
+std::string scene_field_requirement(int field) {
   const sweeps::FieldRange f = sweeps::scene_field_range(field);
   json_fields::Range r;
   if (std::isfinite(f.lo)) r.lo = json_fields::Bound{f.lo, f.lo_closed, {}};
   if (std::isfinite(f.hi)) r.hi = json_fields::Bound{f.hi, f.hi_closed, {}};
   return std::string("must be ") + (f.integer ? "an integer " : "") + r.describe();
 }
-
-}  // namespace
 
 void check_given_points(const Study& s, const PointsTable& t) {
   const std::size_t dims = s.inputs.size();
@@ -40,7 +35,7 @@ void check_given_points(const Study& s, const PointsTable& t) {
     for (std::size_t d = 0; d < dims && bad >= 0; ++d)
       if (s.inputs[d].field == bad && !sweeps::in_range(x[d], sweeps::scene_field_range(bad)))
         throw InputError(t.shown + ": " + t.where(i) + ", column " + s.inputs[d].path + " = " +
-                         format_number(x[d]) + ": " + requirement(bad));
+                         format_number(x[d]) + ": " + scene_field_requirement(bad));
     std::string reason = invalid_sample_reason(s, x);
     if (reason.empty() && bad >= 0)  // the kernel's check and the scene parser disagree: a bug
       reason = std::string("rejected by the sweep's range check at ") +

@@ -3,10 +3,16 @@
 // across keys), so that a file of given points either runs whole or is refused before anything
 // runs.
 #pragma once
+#include <string>
+
 #include "io/points_file.hpp"
 #include "model/study.hpp"
 
 namespace lsi {
+
+// "must be > 0", "must be an integer in [0, 1000000]": a scene field's own range
+// (sweeps::SceneField, sweeps/sampled_scene.hpp) as the scene parser words it.
+std::string scene_field_requirement(int field);
 
 // `study` holds the points (study.points, in the order of study.inputs); `table` is the file they
 // came from, for the messages. Throws

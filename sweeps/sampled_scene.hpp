@@ -83,6 +83,40 @@ inline constexpr const char* scene_field_pointer[scene_field_count] = {
     "/methods/analytical/lambda",
     "/methods/analytical/tau"};
 
+// The fields by name, as the enum spells them: the last key of the pointer, with the landslide's
+// or barrier's density and base friction and the methods' coefficients told apart (the keyword
+// arguments of the Python module's closed forms, python/closed_forms.cpp).
+inline constexpr const char* scene_field_name[scene_field_count] = {
+    "thickness_m",
+    "velocity_m_s",
+    "density_kg_m3",
+    "body_squares",
+    "length_m",
+    "flow_base_friction",
+    "porosity",
+    "friction_angle_deg",
+    "cohesion_kpa",
+    "young_modulus_mpa",
+    "poisson_ratio",
+    "hydraulic_conductivity_m_s",
+    "liquid_bulk_modulus_mpa",
+    "liquid_viscosity_kpa_s",
+    "height_m",
+    "base_width_m",
+    "top_width_m",
+    "face_angle_deg",
+    "barrier_density_kg_m3",
+    "barrier_mass_kg_per_m",
+    "base_friction",
+    "face_friction",
+    "empirical_a1",
+    "empirical_a2",
+    "empirical_tau",
+    "empirical_kappa",
+    "analytical_lambda",
+    "analytical_tau",
+};
+
 // Allowed range of each field: lo/hi with open or closed ends (infinite = unbounded); `integer`
 // for counts. top_width_m's upper bound is base_width_m and face_angle_deg must also fit the
 // face in the base (checked separately).

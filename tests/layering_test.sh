@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The rooms of the code depend one way (docs/reference/architecture.md): kernels/ and sweeps/ on nothing of
-# lsi's above them, model/ on those, io/ on model/, app/ on io/ and model/. Fails, naming the
-# file and the line, for an #include that runs back.
+# lsi's above them, model/ on those, io/ on model/, app/ and python/ (the Python module) beside
+# each other on io/ and model/. Fails, naming the file and the line, for an #include that runs
+# back.
 # Usage: layering_test.sh SOURCE_DIR
 set -euo pipefail
 cd "$1"
@@ -16,14 +17,16 @@ check() {   # check ROOM FORBIDDEN...
     fi
   done
 }
-check kernels sweeps model io app
-check sweeps model io app
-check model io app
-check io app
+check kernels sweeps model io app python
+check sweeps model io app python
+check model io app python
+check io app python
+check app python
+check python app
 # The methods.mpm block is parsed in io/ only.
-if grep -rn "parse_mpm_settings(" model app kernels sweeps; then
+if grep -rn "parse_mpm_settings(" model app python kernels sweeps; then
   echo "FAIL: methods.mpm parsed outside io/" >&2
   status=1
 fi
-[ "$status" -eq 0 ] && echo "layering: kernels, sweeps <- model <- io <- app; methods.mpm parsed in io/ only"
+[ "$status" -eq 0 ] && echo "layering: kernels, sweeps <- model <- io <- app, python; methods.mpm parsed in io/ only"
 exit "$status"

@@ -1,0 +1,129 @@
+#include "python/run_scene.hpp"
+
+#include <pybind11/numpy.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "io/mpm_scene.hpp"
+#include "io/scene_parser.hpp"
+#include "model/closed_form_methods.hpp"
+#include "model/input_error.hpp"
+#include "model/method_result.hpp"
+#include "model/mpm_impact.hpp"
+#include "model/mpm_runner.hpp"
+#include "python/kokkos_work.hpp"
+#include "python/method_names.hpp"
+#include "python/scene_document.hpp"
+#include "sweeps/sampled_scene.hpp"
+
+namespace py = pybind11;
+
+namespace lsi::python {
+namespace {
+
+// The methods of a scene document, as `lsi run` runs them (app/main.cpp, run_scene): a
+// verification scene (`mpm_case`) is the MPM alone; a landslide scene runs the closed forms it
+// selects (or `only` names), then the MPM if it has `methods.mpm` (or `only` names it).
+std::vector<MethodResult> run_document(const nlohmann::json& doc,
+                                       const std::vector<std::string>& only) {
+  if (is_mpm_case(doc)) {
+    for (const auto& m : only)
+      if (m != "mpm")
+        throw InputError("methods: " + m + ": a verification scene (mpm_case) runs the MPM only");
+    return {run_mpm_case(parse_mpm_case(doc)).result};
+  }
+  const Scene scene = parse_scene(doc);
+  const bool named_mpm = std::find(only.begin(), only.end(), "mpm") != only.end();
+  std::vector<std::string> closed;
+  for (const auto& m : only)
+    if (m != "mpm") closed.push_back(m);
+  std::vector<MethodResult> results;
+  if (only.empty() || !closed.empty()) results = run_closed_form_methods(scene, closed);
+  const bool want_mpm = only.empty() ? scene.methods.mpm.has_value() : named_mpm;
+  if (!want_mpm) return results;
+  if (!scene.methods.mpm)
+    throw InputError(
+        "methods: mpm: the scene has no methods.mpm block (cell_size_m, ...; "
+        "docs/reference/scene_schema.md)");
+  results.push_back(run_mpm_case(impact_case(scene)).result);
+  return results;
+}
+
+py::dict result_dict(const MethodResult& r) {
+  py::dict scalars, histories, units;
+  // The four summaries where the method gives them (NaN: not given), then every further scalar,
+  // as the JSON summary of `lsi run` lists them (io/report.hpp, summary_json).
+  const double summaries[sweeps::closed_form_output_count] = {
+      r.peak_force, r.rise_time, r.impact_duration, r.final_displacement};
+  for (int o = 0; o < sweeps::closed_form_output_count; ++o) {
+    if (std::isnan(summaries[o])) continue;
+    scalars[sweeps::closed_form_output_name[o]] = summaries[o];
+    units[sweeps::closed_form_output_name[o]] = sweeps::closed_form_output_units[o];
+  }
+  for (const auto& [name, value] : named_scalars(r)) {
+    if (scalars.contains(name)) continue;
+    scalars[name.c_str()] = value;
+    if (const ScalarField* f = find_scalar_field(name)) units[name.c_str()] = f->units;
+  }
+  for (const HistoryField& h : history_fields()) {
+    const std::vector<double>& v = r.*(h.member);
+    if (v.empty()) continue;
+    histories[h.name] = py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+    units[h.name] = h.units;
+  }
+  for (const auto& [name, s] : r.series) {
+    histories[name.c_str()] =
+        py::array_t<double>(static_cast<py::ssize_t>(s.values.size()), s.values.data());
+    units[name.c_str()] = s.units;
+  }
+  py::dict d;
+  d["scalars"] = scalars;
+  d["histories"] = histories;
+  d["units"] = units;
+  if (r.end_state != EndState::None) d["end_state"] = end_state_token(r.end_state);
+  if (!r.status.empty()) d["status"] = r.status;
+  if (!r.barrier_model.empty()) d["barrier_model"] = r.barrier_model;
+  return d;
+}
+
+py::dict run(py::handle scene, py::handle methods) {
+  const nlohmann::json doc = scene_document(scene);
+  const std::vector<std::string> only =
+      method_names(methods, {"empirical", "analytical", "literature", "mpm"});
+  const std::vector<MethodResult> results = with_kokkos([&] { return run_document(doc, only); });
+  py::dict out;
+  for (const MethodResult& r : results) out[r.method.c_str()] = result_dict(r);
+  return out;
+}
+
+}  // namespace
+
+void add_run(py::module_& m) {
+  m.def("run", &run,
+        "run(scene, methods=None) -> dict\n\n"
+        "Runs a scene as `lsi run` does: the closed forms it selects, then the MPM where it has\n"
+        "methods.mpm; a verification scene (mpm_case) runs the MPM alone.\n\n"
+        "scene: a dict (the JSON of a scene file, docs/reference/scene_schema.md) or the path\n"
+        "of a scene file. methods: as `lsi run --methods`: \"empirical\", \"analytical\",\n"
+        "\"literature\", \"mpm\", a list of them or a comma-separated string; by default the\n"
+        "scene's.\n\n"
+        "Returns {method: {\"scalars\": {name: float}, \"histories\": {name: array},\n"
+        "\"units\": {name: unit}, \"end_state\": str, \"status\": str, \"barrier_model\": str}},\n"
+        "the methods in the order they ran. The names and units are those of the HDF5 results\n"
+        "(docs/reference/results.md): histories time (s), force, force_horizontal,\n"
+        "force_vertical (N/m, per metre of barrier width), landslide_kinetic_energy (J/m),\n"
+        "barrier_velocity (m/s), barrier_displacement (m) and the MPM's further series; scalars\n"
+        "peak_force (N/m), rise_time (s), impact_duration (s), final_displacement (m; inf for a\n"
+        "barrier that never stops) and the rest, those a method does not give left out.\n"
+        "end_state and status: runs (the MPM) only; barrier_model: the closed forms that move a\n"
+        "barrier. An MPM run that stops unstable returns what it computed (end_state\n"
+        "\"unstable\", status says why) and raises nothing. Snapshots are not returned.\n\n"
+        "Raises ValueError with the scene parser's message for an invalid scene\n"
+        "(`landslide.thickness_m = -3: must be > 0 (m)`).",
+        py::arg("scene"), py::arg("methods") = py::none());
+}
+
+}  // namespace lsi::python
