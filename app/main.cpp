@@ -24,7 +24,9 @@
 #include "io/mpm_scene.hpp"
 #include "app/openmp_wait_policy.hpp"
 #include "io/output_paths.hpp"
+#include "io/provenance.hpp"
 #include "io/report.hpp"
+#include "io/resolved_scene.hpp"
 #include "model/scene.hpp"
 #include "app/subcommand.hpp"
 #include "io/text_file.hpp"
@@ -85,9 +87,11 @@ lsi::Scene load(const std::string& path, const std::vector<std::string>& overrid
 // The methods of a landslide scene: the closed forms it selects (or `only`), then the MPM if the
 // scene has `methods.mpm` (or `only` names it). An MPM run that stops unstable still returns
 // what it computed; `mpm_status` then holds the reason (empty when finished or not run).
+// `scene_resolved` gets the scene as run (io/resolved_scene.hpp), with the MPM's settings as the
+// run used them.
 std::vector<lsi::MethodResult> run_scene(const std::string& path, const lsi::Scene& scene,
                                          const std::vector<std::string>& only,
-                                         std::string& mpm_status,
+                                         std::string& mpm_status, nlohmann::json& scene_resolved,
                                          std::vector<lsi::MpmSnapshot>* snapshots = nullptr) {
   const bool named_mpm = std::find(only.begin(), only.end(), "mpm") != only.end();
   std::vector<std::string> closed;
@@ -97,12 +101,16 @@ std::vector<lsi::MethodResult> run_scene(const std::string& path, const lsi::Sce
   if (only.empty() || !closed.empty()) results = lsi::run_closed_form_methods(scene, closed);
   const bool want_mpm = only.empty() ? scene.methods.mpm.has_value() : named_mpm;
   mpm_status.clear();
+  scene_resolved = lsi::resolved_scene_json(scene);
   if (!want_mpm) return results;
   if (!scene.methods.mpm)
     throw lsi::InputError(path +
                           ": --methods mpm: the scene has no methods.mpm block "
                           "(cell_size_m, ...; docs/reference/scene_schema.md)");
   const lsi::MpmCase c = with_path(path, [&] { return lsi::impact_case(scene); });
+  lsi::MpmSettings as_run = c.settings;
+  as_run.end_time_given = true;  // the impact's default, resolved: the end time the run had
+  scene_resolved = lsi::resolved_scene_json(scene, &as_run);
   lsi::MpmOutcome o = lsi::run_mpm_case(c);
   results.push_back(o.result);
   if (!o.finished()) mpm_status = o.status();
@@ -117,13 +125,14 @@ int run_mpm_case(const std::string& path, const nlohmann::json& doc, const std::
   const lsi::MpmCase c = with_path(path, [&] { return lsi::parse_mpm_case(doc); });
   const lsi::MpmOutcome o = lsi::run_mpm_case(c);
   if (!out_path.empty()) {
+    const nlohmann::json resolved = lsi::resolved_mpm_case_json(c);
     if (o.snapshots.empty()) {
-      lsi::write_results(out_path, c.source, {o.result});
+      lsi::write_results(out_path, c.source, {o.result}, {}, resolved);
     } else {
       // Both files are written atomically; the XDMF index only after its HDF5 file is in place.
-      lsi::write_results(out_path, c.source, {o.result}, [&](long long file_id) {
-        lsi::write_mpm_snapshots(file_id, o.snapshots);
-      });
+      lsi::write_results(
+          out_path, c.source, {o.result},
+          [&](long long file_id) { lsi::write_mpm_snapshots(file_id, o.snapshots); }, resolved);
       lsi::write_mpm_snapshots_xdmf(out_path, o.snapshots);
     }
   }
@@ -171,6 +180,7 @@ int main(int argc, char** argv) {
   if (lsi::set_openmp_wait_defaults())
     execv("/proc/self/exe", argv);  // returns only on failure: then run as we are
 #endif
+  lsi::set_command_line(argc, argv);  // stored in every result file
   CLI::App app{
       "lsi: landslide-structure interaction. Empirical (Di Perna et al. 2022) and "
       "analytical (Cuomo et al. 2022) design methods for barriers hit by flow-like "
@@ -274,15 +284,16 @@ int main(int argc, char** argv) {
       if (lsi::is_mpm_case(doc)) return run_mpm_case(scene_path, doc, out_path, format);
       const lsi::Scene scene = with_path(scene_path, [&] { return lsi::parse_scene(doc); });
       std::string mpm_status;
+      nlohmann::json resolved;
       std::vector<lsi::MpmSnapshot> snapshots;
-      const auto results = run_scene(scene_path, scene, only, mpm_status, &snapshots);
+      const auto results = run_scene(scene_path, scene, only, mpm_status, resolved, &snapshots);
       if (!out_path.empty()) {
         if (snapshots.empty()) {
-          lsi::write_results(out_path, scene.source, results);
+          lsi::write_results(out_path, scene.source, results, {}, resolved);
         } else {  // as for verification scenes: the XDMF index after its HDF5 file
-          lsi::write_results(out_path, scene.source, results, [&](long long file_id) {
-            lsi::write_mpm_snapshots(file_id, snapshots);
-          });
+          lsi::write_results(
+              out_path, scene.source, results,
+              [&](long long file_id) { lsi::write_mpm_snapshots(file_id, snapshots); }, resolved);
           lsi::write_mpm_snapshots_xdmf(out_path, snapshots);
         }
       }
@@ -342,7 +353,9 @@ int main(int argc, char** argv) {
         const std::string& path = compare_scenes[k];
         const lsi::Scene& scene = scenes[k];
         std::string mpm_status;
-        lsi::ComparisonRow row{scene.name, run_scene(path, scene, only, mpm_status), {}, {}};
+        nlohmann::json resolved;
+        lsi::ComparisonRow row{
+            scene.name, run_scene(path, scene, only, mpm_status, resolved), {}, {}};
         if (!mpm_status.empty()) {
           std::cerr << "lsi: " << path << ": the MPM run stopped: " << mpm_status << "\n";
           unstable = true;
@@ -362,7 +375,7 @@ int main(int argc, char** argv) {
           });
         if (!out_dir.empty()) {
           const auto file = std::filesystem::path(out_dir) / (scene.name + ".h5");
-          lsi::write_results(file.string(), scene.source, row.results);
+          lsi::write_results(file.string(), scene.source, row.results, {}, resolved);
         }
         rows.push_back(std::move(row));
       }

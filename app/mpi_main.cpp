@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "app/openmp_wait_policy.hpp"
+#include "io/provenance.hpp"
 #include "model/scene.hpp"
 #include "model/study.hpp"
 #include "app/subcommand.hpp"
@@ -274,6 +275,7 @@ int main(int argc, char** argv) {
   }
 #endif
   MPI_Init(&argc, &argv);
+  lsi::set_command_line(argc, argv);  // stored in the result files
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);

@@ -26,6 +26,7 @@
 #include "model/sweep_table.hpp"
 #include "sweeps/closed_form_sweep.hpp"
 #include "sweeps/sampler.hpp"
+#include "io/resolved_scene.hpp"
 #include "io/scene_parser.hpp"
 #include "io/study_parser.hpp"
 #include "io/sweep_file.hpp"
@@ -195,6 +196,7 @@ void collect_rule_values(const Study& s, const SweepTable& t, std::vector<double
 SweepHeader header_of(const Study& s, int shard, int shard_count) {
   SweepHeader h;
   h.study = s.source;
+  h.scene_resolved = resolved_scene_json(s.base);
   h.fingerprint = s.fingerprint;
   h.planned_samples = s.samples;
   h.chunk_samples = s.chunk_samples;
@@ -410,7 +412,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     ts = Clock::now();
     SweepHeader h = header_of(study, opt.shard, opt.shard_count);
     h.complete = true;  // the chunk itself
-    write_sweep_file(chunk_file(parts, mine[m]), h, t);
+    write_sweep_file(chunk_file(parts, mine[m]), h, t, nullptr, SweepStorage::Plain);
     write_s += seconds_since(ts);
     done[m] = true;
     done_samples += t.rows();

@@ -10,7 +10,8 @@
 //                              only, both timed in the same iteration on the same samples; counter
 //                              overhead_ns_per_sample (sampling + scene check + the per-sample copies)
 //   BM_chunk_write / BM_chunk_read  write_sweep_file / read_sweep_file (model/sweep_table.hpp) of a
-//                              2^20-row table (5 inputs, 4 output columns) in /tmp, fsync included
+//                              2^20-row table (5 inputs, 4 output columns) in /tmp, fsync included,
+//                              stored plain as the runner stores its chunks (io/sweep_file.hpp)
 // items_per_second = samples per second; per-sample cost = 1 / items_per_second.
 // Run (docs/notes/performance.md, "Sweeps", has the numbers and the machine):
 //   OMP_NUM_THREADS=2 OMP_PROC_BIND=false OMP_WAIT_POLICY=passive build/bench/bench_sweep
@@ -282,7 +283,7 @@ void BM_chunk_write(benchmark::State& state) {
   const SweepTable t = chunk_table();
   const SweepHeader h = chunk_header();
   const std::string path = chunk_path();
-  for (auto _ : state) write_sweep_file(path, h, t);
+  for (auto _ : state) write_sweep_file(path, h, t, nullptr, SweepStorage::Plain);
   std::remove(path.c_str());
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
   state.SetBytesProcessed(static_cast<std::int64_t>(
@@ -293,7 +294,7 @@ BENCHMARK(BM_chunk_write)->Unit(benchmark::kMillisecond)->UseRealTime();
 void BM_chunk_read(benchmark::State& state) {
   const std::string path = chunk_path();
   const SweepTable t = chunk_table();
-  write_sweep_file(path, chunk_header(), t);
+  write_sweep_file(path, chunk_header(), t, nullptr, SweepStorage::Plain);
   for (auto _ : state) {
     SweepFile f = read_sweep_file(path);
     benchmark::DoNotOptimize(f.table.index.data());

@@ -123,11 +123,19 @@ def read_run(h5):
     with h5py.File(h5, "r") as f:
         m = f["mpm"]
         a = m.attrs
-        out = {k: (float(a[k]) if k in a else float("nan")) for k, *_ in OUTPUTS}
+        # The scalars are 0-d datasets of /mpm/scalars; attributes of /mpm in earlier files.
+        s = m["scalars"] if "scalars" in m else None
+
+        def scalar(k):
+            if s is not None:
+                return float(s[k][()]) if k in s else float("nan")
+            return float(a[k]) if k in a else float("nan")
+
+        out = {k: scalar(k) for k, *_ in OUTPUTS}
         out["end_state"] = a["end_state"] if "end_state" in a else ""
-        out["solver_seconds"] = float(a["solver_seconds"])
-        out["steps"] = int(a["steps"])
-        out["window"] = float(a["peak_force_window"]) if "peak_force_window" in a else float("nan")
+        out["solver_seconds"] = scalar("solver_seconds")
+        out["steps"] = int(scalar("steps"))
+        out["window"] = scalar("peak_force_window")
         t, force = [float(x) for x in m["time"][:]], [float(x) for x in m["force"][:]]
         out["history"] = (t, force)
         out["windows"] = {str(w): windowed_peak(t, force, w) for w in WINDOWS}

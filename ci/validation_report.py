@@ -59,7 +59,10 @@ def run(scene, dx, out):
                        "--progress", "none"], check=True, stdout=subprocess.DEVNULL)
     import h5py
     with h5py.File(out) as h:  # the solver's own time, stored with the run
-        return float(h["mpm"].attrs["solver_seconds"])
+        m = h["mpm"]  # scalars in /mpm/scalars; attributes of /mpm in files of earlier versions
+        if "scalars" in m:
+            return float(m["scalars/solver_seconds"][()])
+        return float(m.attrs["solver_seconds"])
 
 
 def interp(x, y, xq):

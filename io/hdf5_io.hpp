@@ -4,10 +4,13 @@
 #pragma once
 #include <hdf5.h>
 
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace lsi::hdf5 {
 
@@ -78,12 +81,54 @@ class Handle {
 };
 
 Handle vlen_string_type();
+// Booleans are stored as h5py stores numpy's bool (which it reads back as bool): an enum of a
+// signed 8-bit integer with the members FALSE = 0 and TRUE = 1.
+Handle bool_type();
 void write_string_attribute(hid_t obj, const std::string& name, const std::string& value);
+// A 1-D attribute of variable-length UTF-8 strings (h5py reads it as an array of str).
+void write_string_array_attribute(hid_t obj, const std::string& name,
+                                  const std::vector<std::string>& values);
 void write_double_attribute(hid_t obj, const std::string& name, double value);
+void write_int64_attribute(hid_t obj, const std::string& name, std::int64_t value);
+void write_bool_attribute(hid_t obj, const std::string& name, bool value);
 std::string read_string_attribute(hid_t obj, const std::string& name);
+std::vector<std::string> read_string_array_attribute(hid_t obj, const std::string& name);
+// Numeric attributes of any integer or floating type, converted; booleans also from an enum
+// (bool_type) and from a number (not 0: true), as files of earlier versions store them.
 double read_double_attribute(hid_t obj, const std::string& name);
+std::int64_t read_int64_attribute(hid_t obj, const std::string& name);
+bool read_bool_attribute(hid_t obj, const std::string& name);
 bool has_attribute(hid_t obj, const std::string& name);
 bool has_link(hid_t group, const std::string& name);
+
+// Self-describing datasets: every one carries the string attributes `units` ("1" for a pure
+// number) and `description`.
+void describe(hid_t obj, const std::string& units, const std::string& description);
+// 0-d (scalar) datasets.
+void write_scalar_double(hid_t group, const std::string& name, double value,
+                         const std::string& units, const std::string& description);
+void write_scalar_int64(hid_t group, const std::string& name, std::int64_t value,
+                        const std::string& units, const std::string& description);
+void write_scalar_bool(hid_t group, const std::string& name, bool value,
+                       const std::string& description);
+// A 0-d dataset's value as a double (floating, integer or boolean type).
+double read_scalar_number(hid_t group, const std::string& name);
+// A 1-D (dims = {n}) or 2-D (dims = {n, m}) dataset of doubles, described; `name` may be a
+// path, whose missing groups are created.
+void write_double_array(hid_t group, const std::string& name, const std::vector<double>& values,
+                        const std::vector<hsize_t>& dims, const std::string& units,
+                        const std::string& description);
+
+// Dataset-creation properties for a table that may be large: chunked along its first dimension
+// and compressed (shuffle, then deflate at level 4) where the library has deflate; the default
+// (contiguous) layout for an empty dataset.
+Handle compressed_table_properties(int rank, const hsize_t* dims, std::size_t element_size);
+
+// Dimension scales (HDF5's H5DS): makes `scale` a scale named `name`, and attaches it to
+// dimension `dim` of `dataset`, labelling that dimension with the scale's name, so that h5py
+// (`dataset.dims[dim][0]`, `dataset.dims[dim].label`) and netCDF-aware tools find the axis.
+void make_dimension_scale(hid_t scale, const std::string& name);
+void attach_dimension_scale(hid_t dataset, hid_t scale, unsigned dim);
 
 void fsync_file(const std::string& file);
 // Best effort: makes a rename durable. Failure is not an error (the file is complete).

@@ -1,6 +1,7 @@
 // HDF5 result files; layout in hdf5_results.hpp.
 #include "io/hdf5_results.hpp"
 #include "io/hdf5_io.hpp"
+#include "io/provenance.hpp"
 
 #include <cmath>
 #include <limits>
@@ -12,11 +13,6 @@
 #include <set>
 #include <stdexcept>
 #include <utility>
-#include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
-
-#ifndef LSI_VERSION
-#define LSI_VERSION "unknown"
-#endif
 
 namespace lsi {
 namespace {
@@ -29,16 +25,7 @@ using namespace hdf5;
 
 void write_dataset(hid_t group, const std::string& name, const std::vector<double>& data,
                    const std::string& units, const std::string& description) {
-  const hsize_t dims[1] = {static_cast<hsize_t>(data.size())};
-  Handle space(H5Screate_simple(1, dims, nullptr), H5Sclose,
-               "cannot create dataspace for '" + name + "'");
-  Handle dset(
-      H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-      H5Dclose, "cannot create dataset '" + name + "'");
-  check(H5Dwrite(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
-        "cannot write dataset '" + name + "'");
-  write_string_attribute(dset, "units", units);
-  write_string_attribute(dset, "description", description);
+  write_double_array(group, name, data, {static_cast<hsize_t>(data.size())}, units, description);
 }
 
 std::vector<double> read_dataset(hid_t group, const std::string& name) {
@@ -62,27 +49,53 @@ std::vector<double> read_dataset(hid_t group, const std::string& name) {
 
 const std::vector<HistoryField>& kHistories = history_fields();
 
-struct ScalarSpec {
-  const char* name;
-  double MethodResult::*member;
-};
+const std::vector<SummaryField>& kSummaries = summary_fields();
 
-const ScalarSpec kScalars[] = {
-    {"peak_force", &MethodResult::peak_force},
-    {"rise_time", &MethodResult::rise_time},
-    {"impact_duration", &MethodResult::impact_duration},
-    {"final_displacement", &MethodResult::final_displacement},
-};
+// The group of a method's scalars, one 0-d dataset each.
+constexpr const char* kScalarsGroup = "scalars";
 
-constexpr const char* kScalarUnits =
+// Deprecated: the attribute of earlier versions listing the units of the four summaries.
+constexpr const char* kLegacyScalarUnits =
     "peak_force N/m; rise_time s; impact_duration s; final_displacement m";
 
-bool is_reserved_attribute(const std::string& name) {
-  if (name == "units" || name == "end_state" || name == "status" || name == "barrier_model")
-    return true;
-  for (const auto& s : kScalars)
-    if (name == s.name) return true;
-  return false;
+void write_scalars(hid_t method_group, const MethodResult& r) {
+  Handle g(H5Gcreate2(method_group, kScalarsGroup, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+           "cannot create group 'scalars'");
+  // NaN means "not given by this method" (e.g. no impact duration from a peak-force-only
+  // family): described_scalars leaves such scalars out rather than storing NaN.
+  for (const DescribedScalar& s : described_scalars(r)) {
+    switch (s.kind) {
+      case ScalarKind::Count:
+        write_scalar_int64(g, s.name, static_cast<std::int64_t>(s.value), s.units, s.description);
+        break;
+      case ScalarKind::Flag:
+        write_scalar_bool(g, s.name, s.value != 0.0, s.description);
+        break;
+      case ScalarKind::Real:
+        write_scalar_double(g, s.name, s.value, s.units, s.description);
+        break;
+    }
+    // Deprecated copy, as earlier versions stored it.
+    write_double_attribute(method_group, s.name, s.value);
+  }
+  write_string_attribute(method_group, "units", kLegacyScalarUnits);
+  g.close("cannot close group 'scalars'");
+}
+
+// `time` becomes the dimension scale of every other history of the group (all have its length:
+// validate checks it).
+void attach_time_scale(hid_t group, const MethodResult& r) {
+  if (r.time.empty()) return;
+  Handle time(H5Dopen2(group, "time", H5P_DEFAULT), H5Dclose, "cannot open dataset 'time'");
+  make_dimension_scale(time, "time");
+  const auto attach = [&](const std::string& name) {
+    Handle d(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose,
+             "cannot open dataset '" + name + "'");
+    attach_dimension_scale(d, time, 0);
+  };
+  for (const auto& h : kHistories)
+    if (std::string(h.name) != "time" && !(r.*(h.member)).empty()) attach(h.name);
+  for (const auto& [name, sr] : r.series) attach(name);
 }
 
 void validate(const std::vector<MethodResult>& results) {
@@ -102,7 +115,7 @@ void validate(const std::vector<MethodResult>& results) {
                                     " samples but 'time' has " + std::to_string(n));
     }
     for (const auto& [name, sr] : r.series) {
-      bool clash = name.empty() || name.find('/') != std::string::npos;
+      bool clash = name.empty() || name.find('/') != std::string::npos || name == kScalarsGroup;
       for (const auto& h : kHistories) clash = clash || name == h.name;
       if (clash)
         throw std::invalid_argument("write_results: method '" + r.method + "': series '" + name +
@@ -116,7 +129,7 @@ void validate(const std::vector<MethodResult>& results) {
 }
 
 void write_file(const std::string& file, const std::string& scene_text,
-                const std::vector<MethodResult>& results,
+                const std::string& resolved_text, const std::vector<MethodResult>& results,
                 const std::function<void(long long file_id)>& extra) {
   // Track link creation order in the root group so that read_results returns the methods in the
   // order they were given.
@@ -128,8 +141,8 @@ void write_file(const std::string& file, const std::string& scene_text,
   Handle f(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, fcpl, fapl), H5Fclose, "cannot create the file");
 
   write_string_attribute(f, "scene", scene_text);
-  write_string_attribute(f, "lsi_version", LSI_VERSION);
-  write_string_attribute(f, "git_revision", LSI_GIT_REVISION);
+  if (!resolved_text.empty()) write_string_attribute(f, "scene_resolved", resolved_text);
+  write_provenance(f);
 
   for (const auto& r : results) {
     Handle g(H5Gcreate2(f, r.method.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
@@ -140,14 +153,9 @@ void write_file(const std::string& file, const std::string& scene_text,
         if (!v.empty()) write_dataset(g, h.name, v, h.units, h.description);
       }
       for (const auto& [name, sr] : r.series)
-        write_dataset(g, name.c_str(), sr.values, sr.units.c_str(), sr.description.c_str());
-      // NaN means "not given by this method" (e.g. no impact duration from a peak-force-only
-      // family): such scalars are left out rather than stored as NaN.
-      for (const auto& s : kScalars)
-        if (!std::isnan(r.*(s.member))) write_double_attribute(g, s.name, r.*(s.member));
-      for (const auto& [name, value] : named_scalars(r))
-        if (!std::isnan(value)) write_double_attribute(g, name, value);
-      write_string_attribute(g, "units", kScalarUnits);
+        write_dataset(g, name, sr.values, sr.units.empty() ? "1" : sr.units, sr.description);
+      attach_time_scale(g, r);
+      write_scalars(g, r);
       if (r.end_state != EndState::None)
         write_string_attribute(g, "end_state", end_state_token(r.end_state));
       if (!r.status.empty()) write_string_attribute(g, "status", r.status);
@@ -163,16 +171,11 @@ void write_file(const std::string& file, const std::string& scene_text,
   f.close("cannot close the file");
 }
 
-MethodResult read_group(hid_t file, const std::string& name) {
-  Handle g(H5Gopen2(file, name.c_str(), H5P_DEFAULT), H5Gclose, "cannot open group '" + name + "'");
-  MethodResult r;
-  r.method = name;
-  for (const auto& h : kHistories)
-    if (has_link(g, h.name)) r.*(h.member) = read_dataset(g, h.name);
-  // Every other dataset is a further series.
-  std::vector<std::string> links;
+// The names of a group's links (H5_INDEX_NAME order).
+std::vector<std::string> link_names(hid_t group, const std::string& what) {
+  std::vector<std::string> names;
   check(H5Literate(
-            g, H5_INDEX_NAME, H5_ITER_INC, nullptr,
+            group, H5_INDEX_NAME, H5_ITER_INC, nullptr,
             [](hid_t, const char* link_name, const H5L_info_t*, void* data) -> herr_t {
               try {
                 static_cast<std::vector<std::string>*>(data)->emplace_back(link_name);
@@ -181,25 +184,25 @@ MethodResult read_group(hid_t file, const std::string& name) {
                 return -1;
               }
             },
-            &links),
-        "cannot list the datasets of group '" + name + "'");
-  for (const auto& l : links) {
-    bool known = false;
-    for (const auto& h : kHistories) known = known || l == h.name;
-    if (known) continue;
-    // Only datasets are histories; subgroups (the MPM particle snapshots, /mpm/snapshots) are not.
-    Handle obj(H5Oopen(g, l.c_str(), H5P_DEFAULT), H5Oclose, "cannot open '" + l + "'");
-    if (H5Iget_type(obj) != H5I_DATASET) continue;
-    auto& series = r.series[l];
-    series.values = read_dataset(g, l);
-    if (has_attribute(obj, "units")) series.units = read_string_attribute(obj, "units");
-    if (has_attribute(obj, "description"))
-      series.description = read_string_attribute(obj, "description");
-  }
-  for (const auto& s : kScalars)
-    r.*(s.member) = has_attribute(g, s.name) ? read_double_attribute(g, s.name)
-                                             : std::numeric_limits<double>::quiet_NaN();
+            &names),
+        "cannot list " + what);
+  return names;
+}
 
+// Sets the scalar of that name: one of the four summaries or a named one (a name this version
+// does not know, a newer writer's, is left out).
+void set_scalar(MethodResult& r, const std::string& name, double value) {
+  for (const auto& f : kSummaries)
+    if (name == f.name) {
+      r.*(f.member) = value;
+      return;
+    }
+  set_named_scalar(r, name, value);
+}
+
+// The scalars of files without /<method>/scalars (earlier versions): the group's single double
+// attributes.
+void read_attribute_scalars(hid_t g, const std::string& name, MethodResult& r) {
   std::vector<std::string> attr_names;
   check(H5Aiterate2(
             g, H5_INDEX_NAME, H5_ITER_INC, nullptr,
@@ -213,6 +216,45 @@ MethodResult read_group(hid_t file, const std::string& name) {
             },
             &attr_names),
         "cannot list the attributes of group '" + name + "'");
+  for (const auto& a : attr_names) {
+    if (a == "units" || a == "end_state" || a == "status" || a == "barrier_model") continue;
+    Handle attr(H5Aopen(g, a.c_str(), H5P_DEFAULT), H5Aclose, "cannot open attribute '" + a + "'");
+    Handle type(H5Aget_type(attr), H5Tclose, "cannot get the type of attribute '" + a + "'");
+    Handle space(H5Aget_space(attr), H5Sclose, "cannot get the dataspace of attribute '" + a + "'");
+    if (H5Tget_class(type) != H5T_FLOAT || H5Sget_simple_extent_npoints(space) != 1) continue;
+    set_scalar(r, a, read_double_attribute(g, a));
+  }
+}
+
+MethodResult read_group(hid_t file, const std::string& name) {
+  Handle g(H5Gopen2(file, name.c_str(), H5P_DEFAULT), H5Gclose, "cannot open group '" + name + "'");
+  MethodResult r;
+  r.method = name;
+  for (const auto& h : kHistories)
+    if (has_link(g, h.name)) r.*(h.member) = read_dataset(g, h.name);
+  // Every other dataset is a further series.
+  for (const auto& l : link_names(g, "the datasets of group '" + name + "'")) {
+    bool known = false;
+    for (const auto& h : kHistories) known = known || l == h.name;
+    if (known) continue;
+    // Only datasets are histories; subgroups (the scalars, the MPM particle snapshots) are not.
+    Handle obj(H5Oopen(g, l.c_str(), H5P_DEFAULT), H5Oclose, "cannot open '" + l + "'");
+    if (H5Iget_type(obj) != H5I_DATASET) continue;
+    auto& series = r.series[l];
+    series.values = read_dataset(g, l);
+    if (has_attribute(obj, "units")) series.units = read_string_attribute(obj, "units");
+    if (has_attribute(obj, "description"))
+      series.description = read_string_attribute(obj, "description");
+  }
+  for (const auto& s : kSummaries) r.*(s.member) = std::numeric_limits<double>::quiet_NaN();
+  if (has_link(g, kScalarsGroup)) {
+    Handle sg(H5Gopen2(g, kScalarsGroup, H5P_DEFAULT), H5Gclose,
+              "cannot open group '" + name + "/scalars'");
+    for (const auto& s : link_names(sg, "the scalars of group '" + name + "'"))
+      set_scalar(r, s, read_scalar_number(sg, s));
+  } else {
+    read_attribute_scalars(g, name, r);
+  }
   if (has_attribute(g, "end_state")) {
     const std::string token = read_string_attribute(g, "end_state");
     try {
@@ -225,15 +267,6 @@ MethodResult read_group(hid_t file, const std::string& name) {
   if (has_attribute(g, "status")) r.status = read_string_attribute(g, "status");
   if (has_attribute(g, "barrier_model"))
     r.barrier_model = read_string_attribute(g, "barrier_model");
-  for (const auto& a : attr_names) {
-    if (is_reserved_attribute(a)) continue;
-    Handle attr(H5Aopen(g, a.c_str(), H5P_DEFAULT), H5Aclose, "cannot open attribute '" + a + "'");
-    Handle type(H5Aget_type(attr), H5Tclose, "cannot get the type of attribute '" + a + "'");
-    Handle space(H5Aget_space(attr), H5Sclose, "cannot get the dataspace of attribute '" + a + "'");
-    if (H5Tget_class(type) != H5T_FLOAT || H5Sget_simple_extent_npoints(space) != 1) continue;
-    // A scalar this version does not know (a newer writer's) is left out.
-    set_named_scalar(r, a, read_double_attribute(g, a));
-  }
   return r;
 }
 
@@ -241,18 +274,21 @@ MethodResult read_group(hid_t file, const std::string& name) {
 
 void write_results(const std::string& path, const nlohmann::json& scene,
                    const std::vector<MethodResult>& results,
-                   const std::function<void(long long file_id)>& extra) {
+                   const std::function<void(long long file_id)>& extra,
+                   const nlohmann::json& scene_resolved) {
   validate(results);
-  std::string scene_text;
+  std::string scene_text, resolved_text;
   try {
     scene_text = scene.dump(2);
+    if (!scene_resolved.is_null()) resolved_text = scene_resolved.dump(2);
   } catch (const std::exception& e) {
     throw std::invalid_argument(std::string("write_results: cannot serialise the scene: ") +
                                 e.what());
   }
 
-  write_atomically(path, "write_results",
-                   [&](const std::string& tmp) { write_file(tmp, scene_text, results, extra); });
+  write_atomically(path, "write_results", [&](const std::string& tmp) {
+    write_file(tmp, scene_text, resolved_text, results, extra);
+  });
 }
 
 StoredResults read_results(const std::string& path) {
@@ -269,7 +305,18 @@ StoredResults read_results(const std::string& path) {
         throw std::runtime_error(std::string("attribute 'scene' is not valid JSON: ") + e.what());
       }
     }
+    if (has_attribute(f, "scene_resolved")) {
+      try {
+        out.scene_resolved = nlohmann::json::parse(read_string_attribute(f, "scene_resolved"));
+      } catch (const nlohmann::json::exception& e) {
+        throw std::runtime_error(std::string("attribute 'scene_resolved' is not valid JSON: ") +
+                                 e.what());
+      }
+    }
     if (has_attribute(f, "lsi_version")) out.lsi_version = read_string_attribute(f, "lsi_version");
+    if (has_attribute(f, "git_revision"))
+      out.git_revision = read_string_attribute(f, "git_revision");
+    if (has_attribute(f, "argv")) out.argv = read_string_array_attribute(f, "argv");
 
     // Methods in creation order when the file tracks it (write_results does), else by name.
     H5_index_t index = H5_INDEX_NAME;

@@ -1,28 +1,56 @@
-// Sweep tables in HDF5; layout in sweep_table.hpp.
+// Sweep tables in HDF5; layout in sweep_file.hpp.
 #include "io/sweep_file.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
 #include <numeric>
 #include <stdexcept>
+#include <utility>
 
 #include "io/hdf5_io.hpp"
-#include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
-
-#ifndef LSI_VERSION
-#define LSI_VERSION "unknown"
-#endif
+#include "io/provenance.hpp"
+#include "model/result_scalars.hpp"
 
 namespace lsi {
 namespace {
 
 using namespace hdf5;
+using nlohmann::json;
 constexpr const char* kKind = "lsi sweep";
 
-const char* units_of(const std::string& column) {
-  const std::string out = column.substr(column.find('/') + 1);
-  if (out == "peak_force") return "N/m";
-  if (out == "final_displacement") return "m";
-  return "s";
+// The units of an output column "<method>/<output>".
+std::string units_of(const std::string& column) {
+  const std::string u = scalar_units(column.substr(column.find('/') + 1));
+  return u.empty() ? "1" : u;
+}
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+// The units of a scene input by its JSON pointer: the unit its key names (velocity_m_s: m/s),
+// "1" for a key without one (frictions, ratios, counts).
+std::string input_units(const std::string& path) {
+  // The last key of the pointer that is not an array index.
+  std::string key;
+  std::size_t end = path.size();
+  while (end > 0) {
+    const std::size_t slash = path.rfind('/', end - 1);
+    const std::size_t from = slash == std::string::npos ? 0 : slash + 1;
+    key = path.substr(from, end - from);
+    if (!key.empty() && key.find_first_not_of("0123456789") != std::string::npos) break;
+    if (slash == std::string::npos) break;
+    end = slash;
+  }
+  static const std::pair<const char*, const char*> kSuffixes[] = {
+      {"_kg_per_m", "kg/m"}, {"_kg_m3", "kg/m^3"}, {"_m_s2", "m/s^2"}, {"_m_s", "m/s"},
+      {"_kpa_s", "kPa s"},   {"_kpa", "kPa"},      {"_mpa", "MPa"},    {"_deg", "deg"},
+      {"_mm", "mm"},         {"_m", "m"},          {"_s", "s"}};
+  for (const auto& [suffix, units] : kSuffixes)
+    if (ends_with(key, suffix)) return units;
+  return "1";
 }
 
 Handle intermediate_groups() {
@@ -31,19 +59,34 @@ Handle intermediate_groups() {
   return lcpl;
 }
 
+// Writes a 1-D (rank 1) or 2-D dataset; returns it open, to be described.
 template <class T>
-void write_array(hid_t file, const std::string& name, hid_t file_type, hid_t mem_type,
-                 const std::vector<T>& data, int rank = 1, hsize_t columns = 1) {
+Handle write_array(hid_t file, const std::string& name, hid_t file_type, hid_t mem_type,
+                   const std::vector<T>& data, SweepStorage storage, int rank = 1,
+                   hsize_t columns = 1) {
   const hsize_t dims[2] = {static_cast<hsize_t>(rank == 1 ? data.size() : data.size() / columns),
                            columns};
   Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose,
                "cannot create dataspace for '" + name + "'");
   Handle lcpl = intermediate_groups();
-  Handle dset(H5Dcreate2(file, name.c_str(), file_type, space, lcpl, H5P_DEFAULT, H5P_DEFAULT),
-              H5Dclose, "cannot create dataset '" + name + "'");
+  Handle dcpl = storage == SweepStorage::Compressed
+                    ? compressed_table_properties(rank, dims, H5Tget_size(file_type))
+                    : Handle(H5Pcreate(H5P_DATASET_CREATE), H5Pclose,
+                             "cannot create a dataset-creation property list");
+  Handle dset(H5Dcreate2(file, name.c_str(), file_type, space, lcpl, dcpl, H5P_DEFAULT), H5Dclose,
+              "cannot create dataset '" + name + "'");
   if (!data.empty())
     check(H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
           "cannot write dataset '" + name + "'");
+  return dset;
+}
+
+// A 1-D dataset with its units and description.
+template <class T>
+void write_column(hid_t file, const std::string& name, hid_t file_type, hid_t mem_type,
+                  const std::vector<T>& data, const std::string& units,
+                  const std::string& description, SweepStorage storage) {
+  describe(write_array(file, name, file_type, mem_type, data, storage), units, description);
 }
 
 template <class T>
@@ -65,11 +108,12 @@ std::vector<T> read_array(hid_t file, const std::string& name, hid_t mem_type,
   return data;
 }
 
-void write_strings(hid_t file, const std::string& name, const std::vector<std::string>& s) {
+void write_strings(hid_t file, const std::string& name, const std::vector<std::string>& s,
+                   const std::string& description) {
   std::vector<const char*> ptr;
   for (const auto& x : s) ptr.push_back(x.c_str());
   Handle type = vlen_string_type();
-  write_array(file, name, type, type, ptr);
+  write_column(file, name, type, type, ptr, "", description, SweepStorage::Plain);
 }
 
 std::vector<std::string> read_strings(hid_t file, const std::string& name) {
@@ -83,37 +127,254 @@ std::vector<std::string> read_strings(hid_t file, const std::string& name) {
   return out;
 }
 
+// ---------------------------------------------------------------------------------------------
+// The statistics as datasets: what the `json` attribute of /statistics holds (sweep_statistics),
+// each number with its units.
+
+double number_of(const json& v) {
+  if (v.is_number()) return v.get<double>();
+  if (v.is_string()) {
+    const std::string s = v.get<std::string>();
+    if (s == "inf") return INFINITY;
+    if (s == "-inf") return -INFINITY;
+  }
+  return NAN;  // "nan" or null (no value)
+}
+
+Handle create_group(hid_t parent, const std::string& name) {
+  Handle lcpl = intermediate_groups();
+  return Handle(H5Gcreate2(parent, name.c_str(), lcpl, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                "cannot create group '" + name + "'");
+}
+
+Handle open_dataset(hid_t group, const std::string& name) {
+  return Handle(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose,
+                "cannot open dataset '" + name + "'");
+}
+
+void write_int64_array(hid_t group, const std::string& name, const std::vector<std::int64_t>& v,
+                       const std::string& description) {
+  write_column(group, name, H5T_STD_I64LE, H5T_NATIVE_INT64, v, "1", description,
+               SweepStorage::Plain);
+}
+
+// Makes `scale` the dimension scale of the first dimension of `datasets`.
+void attach_scale(hid_t group, const std::string& scale, const std::vector<std::string>& datasets) {
+  Handle s = open_dataset(group, scale);
+  make_dimension_scale(s, scale);
+  for (const auto& d : datasets) attach_dimension_scale(open_dataset(group, d), s, 0);
+}
+
+// One output column's statistics: /statistics/<method>/<output>.
+void write_output_statistics(hid_t statistics, const std::string& column, const json& o,
+                             const json& exceedance) {
+  Handle g = create_group(statistics, column);
+  const std::string units = units_of(column);
+  if (o.contains("error")) write_string_attribute(g, "error", o["error"].get<std::string>());
+  if (o.contains("count"))
+    write_scalar_int64(g, "count", o["count"].get<std::int64_t>(), "1",
+                       "ok samples (those the statistics describe)");
+  if (!o.contains("mean")) return;  // no ok samples, or an error
+  write_scalar_int64(g, "infinite_count", o.value("infinite_count", std::int64_t{0}), "1",
+                     "ok samples whose value is infinite (a barrier that never stops)");
+  write_scalar_double(g, "mean", number_of(o["mean"]), units, "mean over the ok samples");
+  write_scalar_double(g, "mean_ci_low", number_of(o["mean_ci"][0]), units,
+                      "lower end of the confidence interval of the mean");
+  write_scalar_double(g, "mean_ci_high", number_of(o["mean_ci"][1]), units,
+                      "upper end of the confidence interval of the mean");
+  write_scalar_double(g, "standard_deviation", number_of(o["standard_deviation"]), units,
+                      "sample standard deviation");
+  write_scalar_double(g, "min", number_of(o["min"]), units, "smallest value");
+  write_scalar_double(g, "max", number_of(o["max"]), units, "largest value");
+  // The quantiles the JSON names qNN (q05, q50, q95), in increasing order.
+  std::vector<double> levels, values, low, high;
+  for (const auto& [key, v] : o.items()) {
+    if (key.size() != 3 || key[0] != 'q' || key.find_first_not_of("0123456789", 1) != key.npos)
+      continue;
+    levels.push_back(std::stoi(key.substr(1)) / 100.0);
+    values.push_back(number_of(v));
+    const json ci = o.value(key + "_ci", json::array({nullptr, nullptr}));
+    low.push_back(number_of(ci[0]));
+    high.push_back(number_of(ci[1]));
+  }
+  if (!levels.empty()) {
+    const hsize_t k = levels.size();
+    write_double_array(g, "quantile_level", levels, {k}, "1",
+                       "probability p of each quantile (dimension scale of quantile)");
+    write_double_array(g, "quantile", values, {k}, units,
+                       "p-quantile of the ok samples (type 7: linear interpolation)");
+    write_double_array(g, "quantile_ci_low", low, {k}, units,
+                       "lower end of the distribution-free confidence interval of each quantile");
+    write_double_array(g, "quantile_ci_high", high, {k}, units,
+                       "upper end of the distribution-free confidence interval of each quantile");
+    attach_scale(g, "quantile_level", {"quantile", "quantile_ci_low", "quantile_ci_high"});
+  }
+  std::vector<double> thresholds, probabilities, probability_low, probability_high;
+  std::vector<std::int64_t> above, counted;
+  for (const auto& e : exceedance) {
+    if (e.value("column", std::string()) != column) continue;
+    thresholds.push_back(number_of(e["above"]));
+    probabilities.push_back(number_of(e["probability"]));
+    probability_low.push_back(number_of(e["ci"][0]));
+    probability_high.push_back(number_of(e["ci"][1]));
+    above.push_back(e.value("count_above", std::int64_t{0}));
+    counted.push_back(e.value("count", std::int64_t{0}));
+  }
+  if (!thresholds.empty()) {
+    const hsize_t k = thresholds.size();
+    write_double_array(g, "exceedance_threshold", thresholds, {k}, units,
+                       "threshold of each exceedance probability (dimension scale)");
+    write_double_array(g, "exceedance_probability", probabilities, {k}, "1",
+                       "fraction of the ok samples above the threshold");
+    write_double_array(g, "exceedance_probability_ci_low", probability_low, {k}, "1",
+                       "lower end of the Wilson confidence interval of the exceedance probability");
+    write_double_array(g, "exceedance_probability_ci_high", probability_high, {k}, "1",
+                       "upper end of the Wilson confidence interval of the exceedance probability");
+    write_int64_array(g, "exceedance_count", above, "ok samples above the threshold");
+    write_int64_array(g, "exceedance_samples", counted, "ok samples counted");
+    attach_scale(g, "exceedance_threshold",
+                 {"exceedance_probability", "exceedance_probability_ci_low",
+                  "exceedance_probability_ci_high", "exceedance_count", "exceedance_samples"});
+  }
+}
+
+// The MPM runs at quantiles of a closed form (app/sweep_quantile_mpm.hpp), one row per quantile.
+void write_mpm_at_quantiles(hid_t statistics, const json& runs) {
+  if (!runs.is_array() || runs.empty()) return;
+  Handle g = create_group(statistics, "mpm_at_quantiles");
+  const std::string column = runs[0].value("column", std::string());
+  write_string_attribute(g, "column", column);
+  const hsize_t k = runs.size();
+  std::vector<double> levels, values, seconds;
+  std::vector<std::uint64_t> samples;
+  std::vector<std::string> status, end_state;
+  std::map<std::string, std::vector<double>> mpm, closed, errors;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const json& e = runs[i];
+    levels.push_back(number_of(e["quantile"]));
+    values.push_back(number_of(e["quantile_value"]));
+    samples.push_back(e.value("sample", std::uint64_t{0}));
+    status.push_back(e.value("mpm_status", std::string()));
+    end_state.push_back(e.value("mpm_end_state", std::string()));
+    seconds.push_back(number_of(e.value("mpm_seconds", json(nullptr))));
+    const auto collect = [&](const char* key, std::map<std::string, std::vector<double>>& into) {
+      const json values = e.value(key, json::object());
+      for (const auto& [name, v] : values.items()) {
+        auto& c = into[name];
+        c.resize(runs.size(), NAN);
+        c[i] = number_of(v);
+      }
+    };
+    collect("mpm", mpm);
+    collect("closed_form", closed);
+    collect("relative_error", errors);
+  }
+  write_double_array(g, "quantile_level", levels, {k}, "1",
+                     "probability p of each quantile (dimension scale)");
+  write_double_array(g, "quantile", values, {k}, units_of(column),
+                     "p-quantile of " + column + " over the ok samples");
+  write_column(g, "sample", H5T_STD_U64LE, H5T_NATIVE_UINT64, samples, "1",
+               "index of the ok sample nearest the quantile, the one the MPM ran",
+               SweepStorage::Plain);
+  write_strings(g, "mpm_status", status, "the MPM solver's status");
+  write_strings(g, "mpm_end_state", end_state, "how the MPM run ended (at_rest, ...)");
+  write_double_array(g, "mpm_seconds", seconds, {k}, "s", "wall time of the MPM run");
+  std::vector<std::string> rows = {"quantile", "sample", "mpm_status", "mpm_end_state",
+                                   "mpm_seconds"};
+  for (auto& [name, v] : mpm) {
+    v.resize(runs.size(), NAN);
+    write_double_array(g, "mpm/" + name, v, {k}, units_of("mpm/" + name),
+                       "the MPM's " + name + " at the sample");
+    rows.push_back("mpm/" + name);
+  }
+  for (auto& [name, v] : closed) {
+    v.resize(runs.size(), NAN);
+    write_double_array(g, "closed_form/" + name, v, {k}, units_of(name),
+                       name + " of the closed form at the sample");
+    rows.push_back("closed_form/" + name);
+  }
+  for (auto& [name, v] : errors) {
+    v.resize(runs.size(), NAN);
+    write_double_array(g, "relative_error/" + name, v, {k}, "1",
+                       "(closed form - MPM) / MPM of " + name + "; NaN where it has none");
+    rows.push_back("relative_error/" + name);
+  }
+  attach_scale(g, "quantile_level", rows);
+}
+
+void write_statistics(hid_t file, const json& statistics) {
+  Handle g = create_group(file, "statistics");
+  write_string_attribute(g, "json", statistics.dump(2));
+  if (!statistics.is_object()) return;
+  write_string_attribute(g, "design", statistics.value("design", std::string()));
+  write_scalar_double(g, "confidence", statistics.value("confidence", std::nan("")), "1",
+                      "confidence level of every interval of the statistics");
+  if (statistics.contains("note"))
+    write_string_attribute(g, "note", statistics["note"].get<std::string>());
+  const std::pair<const char*, const char*> counts[] = {
+      {"samples_planned", "samples the study plans"},
+      {"samples_done", "samples done"},
+      {"samples_ok", "samples with status ok (those the statistics describe)"}};
+  for (const auto& [key, description] : counts)
+    if (statistics.contains(key))
+      write_scalar_int64(g, key, statistics[key].get<std::int64_t>(), "1", description);
+  {
+    Handle failed = create_group(g, "samples_failed");
+    const json failures = statistics.value("samples_failed", json::object());
+    for (const auto& [why, count] : failures.items())
+      write_scalar_int64(failed, why, count.get<std::int64_t>(), "1",
+                         "samples that ended so: " + why);
+  }
+  const json exceedance = statistics.value("exceedance", json::array());
+  const json outputs = statistics.value("outputs", json::object());
+  for (const auto& [column, o] : outputs.items()) write_output_statistics(g, column, o, exceedance);
+  if (statistics.contains("mpm_at_quantiles"))
+    write_mpm_at_quantiles(g, statistics["mpm_at_quantiles"]);
+}
+
 void write_file(const std::string& file, const SweepHeader& h, const SweepTable& t,
-                const nlohmann::json* statistics) {
+                const nlohmann::json* statistics, SweepStorage storage) {
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "cannot create a file-access property list");
   check(H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG), "cannot set the file close degree");
   Handle f(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose,
            "cannot create the file");
   write_string_attribute(f, "kind", kKind);
   write_string_attribute(f, "study", h.study.dump(2));
+  if (!h.scene_resolved.is_null())
+    write_string_attribute(f, "scene_resolved", h.scene_resolved.dump(2));
   write_string_attribute(f, "fingerprint", h.fingerprint);
-  write_string_attribute(f, "lsi_version", LSI_VERSION);
-  write_string_attribute(f, "git_revision", LSI_GIT_REVISION);
-  write_double_attribute(f, "planned_samples", static_cast<double>(h.planned_samples));
-  write_double_attribute(f, "chunk_samples", static_cast<double>(h.chunk_samples));
+  write_provenance(f);
+  write_int64_attribute(f, "planned_samples", static_cast<std::int64_t>(h.planned_samples));
+  write_int64_attribute(f, "chunk_samples", static_cast<std::int64_t>(h.chunk_samples));
   write_string_attribute(f, "shard", std::to_string(h.shard) + "/" + std::to_string(h.shard_count));
-  write_double_attribute(f, "samples_done", static_cast<double>(t.rows()));
-  write_double_attribute(f, "complete", h.complete ? 1.0 : 0.0);
+  write_int64_attribute(f, "samples_done", static_cast<std::int64_t>(t.rows()));
+  write_bool_attribute(f, "complete", h.complete);
   write_string_attribute(f, "stopped_by", h.stopped_by);
   write_double_attribute(f, "wall_seconds", h.wall_seconds);
 
   const std::size_t n = t.rows();
-  write_array(f, "/samples/index", H5T_STD_U64LE, H5T_NATIVE_UINT64, t.index);
-  write_array(f, "/samples/status", H5T_STD_I8LE, H5T_NATIVE_INT8, t.status);
-  write_array(f, "/samples/wall_time", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, t.wall_time);
+  write_column(f, "/samples/index", H5T_STD_U64LE, H5T_NATIVE_UINT64, t.index, "1",
+               "sample index in the study", storage);
+  write_column(f, "/samples/status", H5T_STD_I8LE, H5T_NATIVE_INT8, t.status, "1",
+               "0 ok, 1 invalid input, 2 MPM unstable, 3 failed, 4 MPM cut short while the "
+               "barrier slid",
+               storage);
+  write_column(f, "/samples/wall_time", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, t.wall_time, "s",
+               "wall time spent on the sample (closed forms: their chunk's time shared)", storage);
   const std::size_t d = t.input_paths.size();
   std::vector<double> rows(n * d);
   for (std::size_t k = 0; k < d; ++k)
     for (std::size_t i = 0; i < n; ++i) rows[i * d + k] = t.inputs[k][i];
-  write_array(f, "/samples/inputs", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows, 2, d);
   {
-    Handle ds(H5Dopen2(f, "/samples/inputs", H5P_DEFAULT), H5Dclose, "cannot open /samples/inputs");
+    Handle ds =
+        write_array(f, "/samples/inputs", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows, storage, 2, d);
     write_string_attribute(ds, "paths", nlohmann::json(t.input_paths).dump());
+    // One unit per column, in the scene's units (those its keys name).
+    std::vector<std::string> units;
+    for (const auto& p : t.input_paths) units.push_back(input_units(p));
+    write_string_array_attribute(ds, "units", units);
+    write_string_attribute(ds, "description",
+                           "the sample's inputs, one column per scene path (attribute paths)");
   }
   nlohmann::json columns = t.output_columns;
   {
@@ -125,18 +386,18 @@ void write_file(const std::string& file, const SweepHeader& h, const SweepTable&
                            "/failures");
   }
   for (std::size_t c = 0; c < t.output_columns.size(); ++c) {
-    const std::string name = "/samples/" + t.output_columns[c];
-    write_array(f, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, t.outputs[c]);
-    Handle ds(H5Dopen2(f, name.c_str(), H5P_DEFAULT), H5Dclose, "cannot open " + name);
-    write_string_attribute(ds, "units", units_of(t.output_columns[c]));
+    const std::string& column = t.output_columns[c];
+    const std::string output = column.substr(column.find('/') + 1);
+    write_column(f, "/samples/" + column, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, t.outputs[c],
+                 units_of(column),
+                 output + " of the method " + column.substr(0, column.find('/')) +
+                     "; NaN where status is not 0",
+                 storage);
   }
-  write_array(f, "/failures/index", H5T_STD_U64LE, H5T_NATIVE_UINT64, t.failure_index);
-  write_strings(f, "/failures/reason", t.failure_reason);
-  if (statistics) {
-    Handle g(H5Gcreate2(f, "/statistics", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
-             "cannot create /statistics");
-    write_string_attribute(g, "json", statistics->dump(2));
-  }
+  write_column(f, "/failures/index", H5T_STD_U64LE, H5T_NATIVE_UINT64, t.failure_index, "1",
+               "index of each sample whose status is not 0", SweepStorage::Plain);
+  write_strings(f, "/failures/reason", t.failure_reason, "why the sample failed (one line)");
+  if (statistics) write_statistics(f, *statistics);
   check(H5Fflush(f, H5F_SCOPE_GLOBAL), "cannot flush the file");
   f.close("cannot close the file");
 }
@@ -152,7 +413,7 @@ nlohmann::json parse_json_attribute(hid_t obj, const std::string& name) {
 }  // namespace
 
 void write_sweep_file(const std::string& path, const SweepHeader& header, const SweepTable& table,
-                      const nlohmann::json* statistics) {
+                      const nlohmann::json* statistics, SweepStorage storage) {
   const std::size_t n = table.rows();
   bool ok = table.status.size() == n && table.wall_time.size() == n &&
             table.inputs.size() == table.input_paths.size() &&
@@ -161,8 +422,9 @@ void write_sweep_file(const std::string& path, const SweepHeader& header, const 
   for (const auto& c : table.inputs) ok = ok && c.size() == n;
   for (const auto& c : table.outputs) ok = ok && c.size() == n;
   if (!ok) throw std::invalid_argument("write_sweep_file: columns of different lengths");
-  write_atomically(path, "write_sweep_file",
-                   [&](const std::string& tmp) { write_file(tmp, header, table, statistics); });
+  write_atomically(path, "write_sweep_file", [&](const std::string& tmp) {
+    write_file(tmp, header, table, statistics, storage);
+  });
 }
 
 SweepFile read_sweep_file(const std::string& path) {
@@ -175,12 +437,15 @@ SweepFile read_sweep_file(const std::string& path) {
     SweepHeader& h = out.header;
     h.study = parse_json_attribute(f, "study");
     h.fingerprint = read_string_attribute(f, "fingerprint");
-    h.planned_samples = static_cast<std::uint64_t>(read_double_attribute(f, "planned_samples"));
-    h.chunk_samples = static_cast<std::uint64_t>(read_double_attribute(f, "chunk_samples"));
+    if (has_attribute(f, "scene_resolved"))
+      h.scene_resolved = parse_json_attribute(f, "scene_resolved");
+    // Counts and flags: integers and booleans, or doubles in files of earlier versions.
+    h.planned_samples = static_cast<std::uint64_t>(read_int64_attribute(f, "planned_samples"));
+    h.chunk_samples = static_cast<std::uint64_t>(read_int64_attribute(f, "chunk_samples"));
     const std::string shard = read_string_attribute(f, "shard");
     if (std::sscanf(shard.c_str(), "%d/%d", &h.shard, &h.shard_count) != 2)
       throw std::runtime_error("attribute shard = \"" + shard + "\" is not i/N");
-    h.complete = read_double_attribute(f, "complete") != 0.0;
+    h.complete = read_bool_attribute(f, "complete");
     h.stopped_by = read_string_attribute(f, "stopped_by");
     h.wall_seconds = read_double_attribute(f, "wall_seconds");
 

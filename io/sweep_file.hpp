@@ -1,21 +1,28 @@
 // The per-sample table of a sweep and its HDF5 files: the chunk files a running sweep writes as
-// work finishes (app/sweep_runner.hpp) and the result file they are gathered into.
+// work finishes (app/sweep_runner.hpp) and the result file they are gathered into. Documented
+// for users in docs/reference/results.md.
 //
-// HDF5 layout (chunk files and result files alike):
+// HDF5 layout (chunk files and result files alike); every dataset has the string attributes
+// `units` ("1" for a pure number or a count, "" for text) and `description`:
 //   /                     attributes: kind = "lsi sweep", study (the study JSON with its scene
-//                         inlined), fingerprint, lsi_version, git_revision, planned_samples,
-//                         chunk_samples, shard ("i/N"), samples_done, complete (0/1),
-//                         stopped_by ("" or why the sweep stopped before planned_samples),
-//                         wall_seconds (of the run that wrote the file)
+//                         inlined), scene_resolved (the study's scene with every default filled
+//                         in, io/resolved_scene.hpp), fingerprint, lsi_version, git_revision,
+//                         command_line, argv (io/provenance.hpp), planned_samples,
+//                         chunk_samples, samples_done (int64), shard ("i/N"), complete
+//                         (boolean, hdf5_io.hpp), stopped_by ("" or why the sweep stopped before
+//                         planned_samples), wall_seconds (of the run that wrote the file)
 //   /samples/index        uint64 [n]  sample index (rows sorted by it)
-//   /samples/status       int8 [n]    0 ok, 1 invalid input, 2 MPM unstable, 3 failed
+//   /samples/status       int8 [n]    0 ok, 1 invalid input, 2 MPM unstable, 3 failed, 4 cut short
 //   /samples/wall_time    float32 [n] s; closed forms: their chunk's time shared per sample
-//   /samples/inputs       float64 [n x inputs]; attribute `paths`: JSON array of the inputs'
-//                         scene paths, in column order
-//   /samples/<method>/<output>  float64 [n], attribute units; NaN where status != 0
+//   /samples/inputs       float64 [n x inputs]; attributes `paths` (JSON array of the inputs'
+//                         scene paths, in column order) and `units` (an array of strings, one
+//                         per column: the units of the scene key)
+//   /samples/<method>/<output>  float64 [n]; NaN where status != 0
 //   /failures/index       uint64 [f]  the samples with status != 0 ...
 //   /failures/reason      string [f]  ... and why (one line, as `lsi run` would print it)
-//   /statistics           result files only: attribute `json` (model/sweep_statistics.hpp)
+//   /statistics           result files only: attribute `json` (model/sweep_statistics.hpp) and
+//                         the same as datasets (statistics_datasets in sweep_file.cpp)
+// The /samples datasets of result files are chunked and compressed (shuffle + deflate).
 #pragma once
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -27,6 +34,7 @@ namespace lsi {
 
 struct SweepHeader {
   nlohmann::json study;
+  nlohmann::json scene_resolved;  // null: not stored
   std::string fingerprint;
   std::uint64_t planned_samples = 0;
   std::uint64_t chunk_samples = 0;
@@ -36,9 +44,14 @@ struct SweepHeader {
   double wall_seconds = 0.0;
 };
 
+// How the /samples datasets are stored: compressed (result files) or plain (the chunk files of a
+// running sweep, written once and read once: compressing them would only cost time).
+enum class SweepStorage { Compressed, Plain };
+
 // Writes atomically (io/hdf5_io.hpp). `statistics` (may be null) goes to /statistics.
 void write_sweep_file(const std::string& path, const SweepHeader& header, const SweepTable& table,
-                      const nlohmann::json* statistics = nullptr);
+                      const nlohmann::json* statistics = nullptr,
+                      SweepStorage storage = SweepStorage::Compressed);
 
 struct SweepFile {
   SweepHeader header;

@@ -49,4 +49,17 @@ const std::vector<HistoryField>& history_fields() {
   return fields;
 }
 
+const std::vector<SummaryField>& summary_fields() {
+  static const std::vector<SummaryField> fields = {
+      {"peak_force", &MethodResult::peak_force, "N/m",
+       "largest impact force per metre of barrier width, normal to the impacted face"},
+      {"rise_time", &MethodResult::rise_time, "s", "time from first contact to the peak force"},
+      {"impact_duration", &MethodResult::impact_duration, "s",
+       "duration of the impact (of the force pulse)"},
+      {"final_displacement", &MethodResult::final_displacement, "m",
+       "displacement of the barrier when it has stopped; +inf for a barrier that never stops"},
+  };
+  return fields;
+}
+
 }  // namespace lsi

@@ -78,4 +78,13 @@ struct HistoryField {
 };
 const std::vector<HistoryField>& history_fields();
 
+// The four summaries of a MethodResult by name, in file order, with their units and meaning.
+struct SummaryField {
+  const char* name;
+  double MethodResult::*member;
+  const char* units;
+  const char* description;
+};
+const std::vector<SummaryField>& summary_fields();
+
 }  // namespace lsi

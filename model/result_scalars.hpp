@@ -42,8 +42,8 @@ struct ResultScalars {
   Value tau;              // -, T1 / T2
   Value reduced_mass;     // kg/m
   Value max_shortening;   // m, s1,max
-  Value K1;               // N/m^2
-  Value q1;               // 1/s
+  Value K1;               // N s/m^2 (kg/s per metre of width)
+  Value q1;               // N/m^1.5 (kg m^0.5/s^2 per metre of width)
   Value common_velocity;  // m/s
   // Literature peak-force families.
   Value hydrostatic_k;       // -
@@ -89,19 +89,38 @@ struct ConvergenceBars {
 
 // One row of the table that names the scalars.
 struct ScalarField {
-  const char* name;  // in result files and summaries
-  const char* units;
+  const char* name;   // in result files and summaries
+  const char* units;  // "1" for a pure number
   std::optional<double> ResultScalars::*member;
+  const char* description;
 };
 const std::vector<ScalarField>& scalar_fields();
 const ScalarField* find_scalar_field(std::string_view name);
 
+// How a scalar is stored: a real number, a count (an integer) or a flag (a boolean).
+enum class ScalarKind { Real, Count, Flag };
+
+// One scalar of a result with what a result file stores beside its value.
+struct DescribedScalar {
+  std::string name;
+  double value = 0.0;
+  std::string units;  // "1" for a pure number, a count or a flag
+  std::string description;
+  ScalarKind kind = ScalarKind::Real;
+};
+
 struct MethodResult;
-// Every scalar a result gives, by its file name, in one order: the four summaries (those given),
-// the ResultScalars, the run statistics and the error bars (`<output>_spread`,
-// `<output>_converged`, `convergence_finer_cells`, `convergence_finer_courant`). What result
-// files store as attributes and summaries list.
+// Every scalar a result gives beside the four summaries, by its file name, in one order: the
+// ResultScalars (those given), the run statistics and the error bars (`<output>_spread`,
+// `<output>_converged`, `convergence_finer_cells`, `convergence_finer_courant`). What summaries
+// list.
 std::vector<std::pair<std::string, double>> named_scalars(const MethodResult& r);
+// Every scalar a result gives, described: the four summaries (those given, i.e. not NaN), then
+// those of named_scalars in its order. What result files store, each with its units.
+std::vector<DescribedScalar> described_scalars(const MethodResult& r);
+// The units of a scalar by name (the four summaries, ResultScalars, run statistics); "" for a
+// name it does not know.
+std::string scalar_units(std::string_view name);
 // Sets the scalar of that name (as named_scalars gives it); false for a name it does not know.
 bool set_named_scalar(MethodResult& r, const std::string& name, double value);
 // One scalar by name (the summaries, ResultScalars, run statistics); NaN where not given.
