@@ -4,9 +4,10 @@
 # the paper's, the closed forms' errors against the MPM with each method's run time, and the
 # misfit maps, for both objectives.
 #
-#   bash ci/calibrate.sh    -> results/calibration/<model>-<objective>.{h5,txt}, *_maps.png for
-#                              both barrier models (paper, momentum) and both objectives (nrms,
-#                              peak-duration), and the tables of docs/vv/calibration_results.md
+#   bash ci/calibrate.sh    -> results/calibration/<model>-<objective>.{h5,txt}, *_maps.png and
+#                              *_errors.png for both barrier models (paper, momentum) and both
+#                              objectives (nrms, peak-duration), and the tables of
+#                              docs/vv/calibration_results.md
 #
 # The MPM histories are those of results/reference/ (bash ci/main.sh, run first if they are
 # missing); `lsi calibrate` runs the MPM itself for any case whose stored run is of other settings.

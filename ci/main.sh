@@ -51,6 +51,6 @@ mkdir -p "$out"
   "${bars[@]}" --verify-design analytical --summary-json "$out/comparison.json" \
   | tee "$out/comparison.txt"
 MPLCONFIGDIR="$out/.mplconfig" /usr/bin/python3 "$root/app/lsi_plot.py" "$out"/L?-B?*.h5 \
-  --out-dir "$out/plots" >/dev/null
+  --out-dir "$out/plots" --max-displacement 0.5 >/dev/null
 rm -rf "$out/.mplconfig"
 echo "results, comparison tables and plots written to ${out#$root/}/"
