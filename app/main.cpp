@@ -28,6 +28,7 @@
 #include "io/report.hpp"
 #include "io/resolved_scene.hpp"
 #include "model/scene.hpp"
+#include "model/scene_methods.hpp"
 #include "app/subcommand.hpp"
 #include "io/text_file.hpp"
 #include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
@@ -84,38 +85,20 @@ lsi::Scene load(const std::string& path, const std::vector<std::string>& overrid
   return with_path(path, [&] { return lsi::parse_scene(doc); });
 }
 
-// The methods of a landslide scene: the closed forms it selects (or `only`), then the MPM if the
-// scene has `methods.mpm` (or `only` names it). An MPM run that stops unstable still returns
-// what it computed; `mpm_status` then holds the reason (empty when finished or not run).
-// `scene_resolved` gets the scene as run (io/resolved_scene.hpp), with the MPM's settings as the
-// run used them.
+// The methods of a landslide scene (model/scene_methods.hpp). An MPM run that stops unstable
+// still returns what it computed; `mpm_status` then holds the reason (empty when finished or not
+// run). `scene_resolved` gets the scene as run (io/resolved_scene.hpp), with the MPM's settings
+// as the run used them.
 std::vector<lsi::MethodResult> run_scene(const std::string& path, const lsi::Scene& scene,
                                          const std::vector<std::string>& only,
                                          std::string& mpm_status, nlohmann::json& scene_resolved,
                                          std::vector<lsi::MpmSnapshot>* snapshots = nullptr) {
-  const bool named_mpm = std::find(only.begin(), only.end(), "mpm") != only.end();
-  std::vector<std::string> closed;
-  for (const auto& m : only)
-    if (m != "mpm") closed.push_back(m);
-  std::vector<lsi::MethodResult> results;
-  if (only.empty() || !closed.empty()) results = lsi::run_closed_form_methods(scene, closed);
-  const bool want_mpm = only.empty() ? scene.methods.mpm.has_value() : named_mpm;
-  mpm_status.clear();
-  scene_resolved = lsi::resolved_scene_json(scene);
-  if (!want_mpm) return results;
-  if (!scene.methods.mpm)
-    throw lsi::InputError(path +
-                          ": --methods mpm: the scene has no methods.mpm block "
-                          "(cell_size_m, ...; docs/reference/scene_schema.md)");
-  const lsi::MpmCase c = with_path(path, [&] { return lsi::impact_case(scene); });
-  lsi::MpmSettings as_run = c.settings;
-  as_run.end_time_given = true;  // the impact's default, resolved: the end time the run had
-  scene_resolved = lsi::resolved_scene_json(scene, &as_run);
-  lsi::MpmOutcome o = lsi::run_mpm_case(c);
-  results.push_back(o.result);
-  if (!o.finished()) mpm_status = o.status();
-  if (snapshots) *snapshots = std::move(o.snapshots);
-  return results;
+  lsi::SceneRun run =
+      with_path(path, [&] { return lsi::run_scene_methods(scene, only, "--methods"); });
+  mpm_status = run.mpm_status;
+  scene_resolved = lsi::resolved_scene_json(scene, run.mpm_settings ? &*run.mpm_settings : nullptr);
+  if (snapshots) *snapshots = std::move(run.snapshots);
+  return std::move(run.results);
 }
 
 // An MPM verification scene (`mpm_case`): runs it, writes /mpm, prints a summary. Returns the

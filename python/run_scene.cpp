@@ -14,6 +14,7 @@
 #include "model/method_result.hpp"
 #include "model/mpm_impact.hpp"
 #include "model/mpm_runner.hpp"
+#include "model/scene_methods.hpp"
 #include "python/kokkos_work.hpp"
 #include "python/method_names.hpp"
 #include "python/scene_document.hpp"
@@ -24,9 +25,8 @@ namespace py = pybind11;
 namespace lsi::python {
 namespace {
 
-// The methods of a scene document, as `lsi run` runs them (app/main.cpp, run_scene): a
-// verification scene (`mpm_case`) is the MPM alone; a landslide scene runs the closed forms it
-// selects (or `only` names), then the MPM if it has `methods.mpm` (or `only` names it).
+// The methods of a scene document, as `lsi run` runs them: a verification scene (`mpm_case`) is
+// the MPM alone; a landslide scene's methods are model/scene_methods.hpp's.
 std::vector<MethodResult> run_document(const nlohmann::json& doc,
                                        const std::vector<std::string>& only) {
   if (is_mpm_case(doc)) {
@@ -35,21 +35,7 @@ std::vector<MethodResult> run_document(const nlohmann::json& doc,
         throw InputError("methods: " + m + ": a verification scene (mpm_case) runs the MPM only");
     return {run_mpm_case(parse_mpm_case(doc)).result};
   }
-  const Scene scene = parse_scene(doc);
-  const bool named_mpm = std::find(only.begin(), only.end(), "mpm") != only.end();
-  std::vector<std::string> closed;
-  for (const auto& m : only)
-    if (m != "mpm") closed.push_back(m);
-  std::vector<MethodResult> results;
-  if (only.empty() || !closed.empty()) results = run_closed_form_methods(scene, closed);
-  const bool want_mpm = only.empty() ? scene.methods.mpm.has_value() : named_mpm;
-  if (!want_mpm) return results;
-  if (!scene.methods.mpm)
-    throw InputError(
-        "methods: mpm: the scene has no methods.mpm block (cell_size_m, ...; "
-        "docs/reference/scene_schema.md)");
-  results.push_back(run_mpm_case(impact_case(scene)).result);
-  return results;
+  return run_scene_methods(parse_scene(doc), only, "methods:").results;
 }
 
 py::dict result_dict(const MethodResult& r) {
