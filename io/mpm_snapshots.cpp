@@ -59,10 +59,18 @@ void double_attribute(hid_t obj, const char* name, double value) {
         std::string("cannot write attribute '") + name + "'");
 }
 
-// An n (cols == 0) or n x cols double dataset from row-major `data`, with a `units` attribute and,
-// if given, a `components` attribute.
+void int_attribute(hid_t obj, const char* name, long long value) {
+  Id space(H5Screate(H5S_SCALAR), H5Sclose, "cannot create a scalar dataspace");
+  Id attr(H5Acreate2(obj, name, H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+          std::string("cannot create attribute '") + name + "'");
+  check(H5Awrite(attr, H5T_NATIVE_LLONG, &value),
+        std::string("cannot write attribute '") + name + "'");
+}
+
+// An n (cols == 0) or n x cols double dataset from row-major `data`, with `units` and
+// `description` attributes and, if given, a `components` attribute.
 void dataset(hid_t group, const char* name, const std::vector<double>& data, size_t n, size_t cols,
-             const char* units, const char* components = nullptr) {
+             const char* units, const char* description, const char* components = nullptr) {
   const hsize_t dims[2] = {static_cast<hsize_t>(n), static_cast<hsize_t>(cols)};
   Id space(H5Screate_simple(cols == 0 ? 1 : 2, dims, nullptr), H5Sclose,
            std::string("cannot create the dataspace of '") + name + "'");
@@ -72,12 +80,14 @@ void dataset(hid_t group, const char* name, const std::vector<double>& data, siz
     check(H5Dwrite(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
           std::string("cannot write dataset '") + name + "'");
   string_attribute(dset, "units", units);
+  string_attribute(dset, "description", description);
   if (components != nullptr) string_attribute(dset, "components", components);
 }
 
-// An n integer dataset (int64 on disk) with a `units` attribute.
+// An n integer dataset (int64 on disk) with `units` and `description` attributes.
 template <class Int>
-void int_dataset(hid_t group, const char* name, const std::vector<Int>& data, const char* units) {
+void int_dataset(hid_t group, const char* name, const std::vector<Int>& data, const char* units,
+                 const char* description) {
   const hsize_t dims[1] = {static_cast<hsize_t>(data.size())};
   Id space(H5Screate_simple(1, dims, nullptr), H5Sclose,
            std::string("cannot create the dataspace of '") + name + "'");
@@ -88,6 +98,7 @@ void int_dataset(hid_t group, const char* name, const std::vector<Int>& data, co
     check(H5Dwrite(dset, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, wide.data()),
           std::string("cannot write dataset '") + name + "'");
   string_attribute(dset, "units", units);
+  string_attribute(dset, "description", description);
 }
 
 // n x 2 -> n x 3 with z = 0.
@@ -146,7 +157,7 @@ void write_mpm_snapshots(long long file_id, const std::vector<MpmSnapshot>& snap
   Id mpm(H5Gopen2(file, "mpm", H5P_DEFAULT), H5Gclose, "cannot open group 'mpm'");
   Id root(H5Gcreate2(mpm, "snapshots", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
           "cannot create group 'mpm/snapshots'");
-  double_attribute(root, "count", static_cast<double>(snapshots.size()));
+  int_attribute(root, "count", static_cast<long long>(snapshots.size()));
   if (!snapshots.empty()) {
     std::string names;
     for (size_t m = 0; m < snapshots.front().material_names.size(); ++m)
@@ -168,20 +179,34 @@ void write_mpm_snapshots(long long file_id, const std::vector<MpmSnapshot>& snap
     Id g(H5Gcreate2(root, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
          "cannot create group 'mpm/snapshots/" + name + "'");
     double_attribute(g, "time", s.time);
-    dataset(g, "position", with_zero_z(s.position, n), n, 3, "m", "x y z(=0)");
-    dataset(g, "velocity", with_zero_z(s.velocity, n), n, 3, "m/s", "x y z(=0)");
-    dataset(g, "stress", s.stress, n, 4, "Pa", "xx yy xy zz");
-    dataset(g, "deviatoric_strain", s.deviatoric_strain, n, 0, "1");
-    dataset(g, "plastic_work", s.plastic_work, n, 0, "J/m");
-    if (s.pore_pressure.size() == n) dataset(g, "pore_pressure", s.pore_pressure, n, 0, "Pa");
-    int_dataset(g, "id", s.id, "1");
-    int_dataset(g, "material", s.material, "1");
-    dataset(g, "displacement", with_zero_z(s.displacement, n), n, 3, "m", "x y z(=0)");
-    dataset(g, "mass", s.mass, n, 0, "kg/m");
-    dataset(g, "volume", s.volume, n, 0, "m^2");
-    dataset(g, "volumetric_strain", s.volumetric_strain, n, 0, "1");
+    string_attribute(g, "time_units", "s");
+    dataset(g, "position", with_zero_z(s.position, n), n, 3, "m", "position of each point",
+            "x y z(=0)");
+    dataset(g, "velocity", with_zero_z(s.velocity, n), n, 3, "m/s", "velocity of each point",
+            "x y z(=0)");
+    dataset(g, "stress", s.stress, n, 4, "Pa", "Cauchy stress of each point, tension positive",
+            "xx yy xy zz");
+    dataset(g, "deviatoric_strain", s.deviatoric_strain, n, 0, "1",
+            "accumulated equivalent shear strain of each point");
+    dataset(g, "plastic_work", s.plastic_work, n, 0, "J/m",
+            "work dissipated by plastic flow in each point, accumulated");
+    if (s.pore_pressure.size() == n)
+      dataset(g, "pore_pressure", s.pore_pressure, n, 0, "Pa",
+              "pore pressure of each point, compression positive");
+    int_dataset(g, "id", s.id, "1", "index of each point among the run's initial points");
+    int_dataset(g, "material", s.material, "1",
+                "material of each point: index into /mpm/snapshots' materials");
+    dataset(g, "displacement", with_zero_z(s.displacement, n), n, 3, "m",
+            "displacement of each point since the first snapshot", "x y z(=0)");
+    dataset(g, "mass", s.mass, n, 0, "kg/m", "mass of each point per metre of width");
+    dataset(g, "volume", s.volume, n, 0, "m^2", "current volume of each point per metre of width");
+    dataset(g, "volumetric_strain", s.volumetric_strain, n, 0, "1",
+            "V / V0 - 1 of each point (expansion positive)");
     if (!s.barrier_outline.empty())
-      dataset(g, "barrier_outline", with_zero_z(s.barrier_outline, 4), 4, 3, "m", "x y z(=0)");
+      dataset(g, "barrier_outline", with_zero_z(s.barrier_outline, 4), 4, 3, "m",
+              "the barrier's corners where it stands: upstream toe, upstream crest, downstream "
+              "crest, downstream toe",
+              "x y z(=0)");
   }
 }
 

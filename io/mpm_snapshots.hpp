@@ -2,10 +2,11 @@
 // lets ParaView (or VisIt) open them as a time series of point clouds.
 //
 // HDF5 layout, inside the `mpm` method group (written through write_results' `extra` callback):
-//   /mpm/snapshots                  group; attributes count (number of snapshots), materials (the
-//                                   material names, comma-separated, indexed by `material`)
+//   /mpm/snapshots                  group; attributes count (int64, number of snapshots) and
+//                                   materials (the material names, comma-separated, indexed by
+//                                   `material`)
 //   /mpm/snapshots/NNNNNN           one group per snapshot, NNNNNN = 000000, 000001, ...;
-//                                   attribute time (double, s)
+//                                   attributes time (double) and time_units ("s")
 //     id                 n      1     int64: the point's index among the run's initial points
 //     material           n      1     int64: index into the root's `materials`
 //     position           n x 3  m     x, y, 0 (z = 0: XDMF geometry and vectors are 3-D)
@@ -20,7 +21,8 @@
 //     pore_pressure      n      Pa    saturated runs only
 //     barrier_outline    4 x 3  m     impact scenes: the barrier's corners where it stands (upstream
 //                                     toe, upstream crest, downstream crest, downstream toe)
-//   every dataset has a string attribute `units`; position, velocity and stress also `components`.
+//   every dataset has string attributes `units` and `description`; the vectors and stress also
+//   `components`.
 //
 // XDMF: `<stem>.xdmf` next to the HDF5 file, a temporal collection of Uniform Polyvertex grids
 // (one per snapshot) that refer to the datasets above by the HDF5 file's name (relative, so the

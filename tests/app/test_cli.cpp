@@ -401,6 +401,10 @@ TEST(Cli, MpmSnapshotsAreWrittenWithAnXdmfIndex) {
       EXPECT_GT(
           H5Aexists_by_name(f, (std::string(group) + "/" + name).c_str(), "units", H5P_DEFAULT), 0)
           << group << "/" << name;
+      EXPECT_GT(H5Aexists_by_name(f, (std::string(group) + "/" + name).c_str(), "description",
+                                  H5P_DEFAULT),
+                0)
+          << group << "/" << name;
     }
   }
   // Point data at CB-Geo's level: ids 0..n-1, one material, displacement = position - the first
@@ -433,6 +437,16 @@ TEST(Cli, MpmSnapshotsAreWrittenWithAnXdmfIndex) {
     const hid_t a = H5Aopen_by_name(f, "/mpm/snapshots", "materials", H5P_DEFAULT, H5P_DEFAULT);
     ASSERT_GE(a, 0);
     H5Aclose(a);
+    // The snapshot count is an integer.
+    const hid_t c = H5Aopen_by_name(f, "/mpm/snapshots", "count", H5P_DEFAULT, H5P_DEFAULT);
+    ASSERT_GE(c, 0);
+    const hid_t type = H5Aget_type(c);
+    EXPECT_EQ(H5Tget_class(type), H5T_INTEGER);
+    long long count = 0;
+    H5Aread(c, H5T_NATIVE_LLONG, &count);
+    EXPECT_EQ(count, 4);
+    H5Tclose(type);
+    H5Aclose(c);
     EXPECT_EQ(H5Lexists(f, "/mpm/snapshots/000000/barrier_outline", H5P_DEFAULT), 0);
   }
   H5Fclose(f);
