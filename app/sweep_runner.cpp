@@ -143,7 +143,11 @@ class ChunkEvaluator {
     const auto t0 = Clock::now();
     try {
       const Scene scene = parse_scene(sample_scene_document(study_, x));
-      const MpmOutcome o = run_mpm_case(impact_case(scene));
+      MpmCase c = impact_case(scene);
+      // The run's progress line names the sample: "mpm <scene> (sample k of n)".
+      c.name += " (sample " + std::to_string(t.index[i] + 1) + " of " +
+                std::to_string(study_.samples) + ")";
+      const MpmOutcome o = run_mpm_case(c);
       const double v[sweeps::closed_form_output_count] = {o.result.peak_force, o.result.rise_time,
                                                           o.result.impact_duration,
                                                           o.result.final_displacement};
@@ -432,6 +436,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   }
 
   // Gather the chunks, in sample order: those run now from memory, the others from their files.
+  progress.finishing("writing the result file");
   auto ts = Clock::now();
   std::vector<std::string> paths;
   for (const auto& in : study.inputs) paths.push_back(in.path);

@@ -156,9 +156,9 @@ SampleProgress::SampleProgress(std::string label, std::uint64_t total, bool enab
       start_(std::chrono::steady_clock::now()) {}
 
 std::string SampleProgress::line(const std::string& label, std::uint64_t done, std::uint64_t total,
-                                 std::uint64_t done_here, double seconds) {
+                                 std::uint64_t done_here, double seconds, double left) {
   const double rate = seconds > 0 ? double(done_here) / seconds : 0.0;
-  const double left = rate > 0 ? double(total - std::min(done, total)) / rate : 0.0;
+  if (left < 0.0) left = rate > 0 ? double(total - std::min(done, total)) / rate : 0.0;
   char buf[256];
   std::snprintf(buf, sizeof buf,
                 "%s: %llu of %llu samples (%.0f %%), %.3g samples/s, %.0f s elapsed, ETA %.0f s",
@@ -169,9 +169,34 @@ std::string SampleProgress::line(const std::string& label, std::uint64_t done, s
 }
 
 void SampleProgress::update(std::uint64_t done, std::uint64_t done_here) {
+  done_ = done;
   if (!status_.enabled()) return;
-  status_.show(line(label_, done, total_, done_here,
-                    seconds_between(start_, std::chrono::steady_clock::now())));
+  const double seconds = seconds_between(start_, std::chrono::steady_clock::now());
+  rate_.add(seconds, double(done_here));
+  const double here_total = double(done_here) + double(total_ - std::min(done, total_));
+  status_.show(line(label_, done, total_, done_here, seconds, rate_.time_left(here_total)));
+}
+
+std::string SampleProgress::finishing_line(const std::string& label, std::uint64_t done,
+                                           std::uint64_t total, double seconds,
+                                           const std::string& what) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%s: %llu of %llu samples run, %.0f s elapsed; %s", label.c_str(),
+                static_cast<unsigned long long>(done), static_cast<unsigned long long>(total),
+                seconds, what.c_str());
+  return buf;
+}
+
+void SampleProgress::finishing(const std::string& what) {
+  if (!status_.enabled()) return;
+  const double seconds = seconds_between(start_, std::chrono::steady_clock::now());
+  const std::string text = finishing_line(label_, done_, total_, seconds, what);
+  // A log gets it at once, as a terminal does, when the run was long enough to have heartbeats.
+  if (status_.kind() == StatusLine::Kind::Heartbeat) {
+    if (seconds >= kHeartbeatSeconds) status_.print_above(text);
+  } else {
+    status_.show(text);
+  }
 }
 
 }  // namespace lsi

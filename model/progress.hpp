@@ -11,7 +11,8 @@
 //                   one line, in every mode but none, when a run projects to more than
 //                   kLongRunSeconds to its end time: after kEstimateAfterSeconds of wall time it
 //                   states the run time to the end time at the rate so far.
-//   SampleProgress  a sweep: samples done of the total, samples per second, the time left.
+//   SampleProgress  a sweep: samples done of the total, samples per second, the time left at the
+//                   recent rate; then what follows the samples (the result file being written).
 #pragma once
 #include <chrono>
 #include <cstdint>
@@ -100,14 +101,22 @@ class SampleProgress {
   SampleProgress(std::string label, std::uint64_t total, bool enabled);
   // done: samples complete of the total (with earlier runs'); done_here: by this run.
   void update(std::uint64_t done, std::uint64_t done_here);
-  // The line update() prints, for the given state (exposed for tests).
+  // The samples are run and `what` (e.g. writing the result file) follows: says so at once, in
+  // place of a line at 100 % with nothing left (in a log only after a heartbeat's time).
+  void finishing(const std::string& what);
+  // The line update() prints, for the given state (exposed for tests); `left`, the time left at
+  // the recent rate (RecentRate), or < 0 for the average rate of this run.
   static std::string line(const std::string& label, std::uint64_t done, std::uint64_t total,
-                          std::uint64_t done_here, double seconds);
+                          std::uint64_t done_here, double seconds, double left = -1.0);
+  // The line finishing() prints.
+  static std::string finishing_line(const std::string& label, std::uint64_t done,
+                                    std::uint64_t total, double seconds, const std::string& what);
 
  private:
   std::string label_;
-  std::uint64_t total_;
+  std::uint64_t total_, done_ = 0;
   StatusLine status_;
+  RecentRate rate_;
   std::chrono::steady_clock::time_point start_;
 };
 

@@ -58,6 +58,16 @@ TEST(Progress, EstimateOnlyForLongRuns) {
 
 }  // namespace
 
+// Once the samples are run the line says what follows instead of "100 %, ETA 0 s".
+TEST(SampleProgress, FinishingSaysWhatFollowsTheSamples) {
+  EXPECT_EQ(
+      lsi::SampleProgress::finishing_line("sweep s", 1000, 1000, 12.0, "writing the result file"),
+      "sweep s: 1000 of 1000 samples run, 12 s elapsed; writing the result file");
+  // The time left it is given, in place of the average's.
+  EXPECT_EQ(lsi::SampleProgress::line("sweep s", 300, 1000, 200, 4.0, 20.0),
+            "sweep s: 300 of 1000 samples (30 %), 50 samples/s, 4 s elapsed, ETA 20 s");
+}
+
 TEST(SampleProgress, LineShowsTheSamplesRateAndTimeLeft) {
   // 300 of 1000 done, 200 of them by this run in 4 s: 50 samples/s, 700 left: 14 s.
   EXPECT_EQ(lsi::SampleProgress::line("sweep s", 300, 1000, 200, 4.0),
