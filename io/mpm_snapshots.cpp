@@ -172,7 +172,8 @@ void write_mpm_snapshots(long long file_id, const std::vector<MpmSnapshot>& snap
         s.deviatoric_strain.size() != n || s.plastic_work.size() != n || s.id.size() != n ||
         s.material.size() != n || s.mass.size() != n || s.volume.size() != n ||
         s.volumetric_strain.size() != n || s.displacement.size() != 2 * n ||
-        (!s.barrier_outline.empty() && s.barrier_outline.size() != 8))
+        (!s.barrier_outline.empty() && s.barrier_outline.size() != 8) ||
+        (!s.face_pressure.empty() && s.face_band_points.size() != 2 * (s.face_pressure.size() + 1)))
       throw std::runtime_error("mpm snapshots: snapshot " + std::to_string(k) +
                                ": array sizes do not match its particle count");
     const std::string name = group_name(k);
@@ -207,6 +208,15 @@ void write_mpm_snapshots(long long file_id, const std::vector<MpmSnapshot>& snap
               "the barrier's corners where it stands: upstream toe, upstream crest, downstream "
               "crest, downstream toe",
               "x y z(=0)");
+    if (!s.face_pressure.empty()) {
+      const size_t bands = s.face_pressure.size();
+      dataset(g, "face_pressure", s.face_pressure, bands, 0, "Pa",
+              "mean normal stress on each height band of the upstream face over the output "
+              "interval that ends at the snapshot, from the base up");
+      dataset(g, "face_band_points", with_zero_z(s.face_band_points, bands + 1), bands + 1, 3, "m",
+              "the bands' ends along the upstream face where the barrier stands, from the toe up",
+              "x y z(=0)");
+    }
   }
 }
 
@@ -295,6 +305,35 @@ void write_mpm_snapshots_xdmf(const std::string& h5_path,
         << "/barrier_outline</DataItem>\n"
         << "        </Geometry>\n"
         << "      </Grid>\n";
+    x << "    </Grid>\n";
+  }
+  // The upstream face's bands: one line segment each, with its normal stress.
+  if (!snapshots.empty() && !snapshots.front().face_pressure.empty()) {
+    x << "    <Grid Name=\"barrier_face\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (size_t k = 0; k < snapshots.size(); ++k) {
+      const size_t bands = snapshots[k].face_pressure.size();
+      const std::string at = h5 + ":/mpm/snapshots/" + group_name(k) + "/";
+      x << "      <Grid Name=\"barrier_face_" << group_name(k) << "\" GridType=\"Uniform\">\n"
+        << "        <Time Value=\"" << exact(snapshots[k].time) << "\"/>\n"
+        << "        <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << bands
+        << "\" NodesPerElement=\"2\">\n"
+        << "          <DataItem Dimensions=\"" << bands
+        << " 2\" NumberType=\"Int\" Format=\"XML\">";
+      for (size_t b = 0; b < bands; ++b) x << (b ? " " : "") << b << " " << b + 1;
+      x << "</DataItem>\n"
+        << "        </Topology>\n"
+        << "        <Geometry GeometryType=\"XYZ\">\n"
+        << "          <DataItem Dimensions=\"" << bands + 1
+        << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << at
+        << "face_band_points</DataItem>\n"
+        << "        </Geometry>\n"
+        << "        <Attribute Name=\"face_pressure\" AttributeType=\"Scalar\" Center=\"Cell\">\n"
+        << "          <DataItem Dimensions=\"" << bands
+        << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << at
+        << "face_pressure</DataItem>\n"
+        << "        </Attribute>\n"
+        << "      </Grid>\n";
+    }
     x << "    </Grid>\n";
   }
   x << "  </Domain>\n"

@@ -289,6 +289,8 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
   const auto extra_outputs = outputs_for(solver, c);
   // Impact outputs: the contact forces as averages over each output interval (impulse /
   // interval: the force of one step rings with the contact of single node columns).
+  // The face's band stresses of the latest output, for the snapshots.
+  std::vector<double> face_pressure;
   auto impact_outputs = [&](double t, double kinetic) {
     double imp[3][2];
     solver.take_barrier_impulse(imp);
@@ -321,6 +323,7 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
     // The face's normal stress in height bands (methods.mpm.face_band_m): each band's normal
     // force over its length along the face; the bands' forces add up to `force`.
     const std::vector<double> bands = solver.take_barrier_band_impulse();
+    face_pressure.assign(bands.size(), 0.0);
     for (std::size_t k = 0; k < bands.size(); ++k) {
       const double band = c.barrier->face_band_height;
       const double z0 = k * band, z1 = std::min((k + 1) * band, sh.height);
@@ -334,6 +337,7 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
       sr.units = "Pa";
       sr.description = what;
       sr.values.push_back(bands[k] * inv * std::sin(sh.face_angle) / (z1 - z0));
+      face_pressure[k] = sr.values.back();
     }
     r.landslide_kinetic_energy.push_back(kinetic);
     const auto& motion = solver.barrier().motion;
@@ -410,6 +414,19 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
                            down[1],
                            sh.toe[0] + sh.base_width + d,
                            sh.toe[1]};
+      // The face's bands: their stresses at this output and their ends along the face.
+      if (!face_pressure.empty()) {
+        s.face_pressure = face_pressure;
+        const double band = c.barrier->face_band_height;
+        const double cot = std::fabs(sh.face_angle - 0.5 * math::pi()) < 1e-12
+                               ? 0.0
+                               : 1.0 / std::tan(sh.face_angle);
+        for (std::size_t k = 0; k <= face_pressure.size(); ++k) {
+          const double z = std::min(k * band, sh.height);
+          s.face_band_points.push_back(sh.toe[0] + d + z * cot);
+          s.face_band_points.push_back(sh.toe[1] + z);
+        }
+      }
     }
     return s;
   };

@@ -32,6 +32,12 @@ struct MpmSnapshot {
   // Impact scenes: the barrier's corners at the snapshot (upstream toe, upstream crest,
   // downstream crest, downstream toe), 4 x 2, m; empty without a barrier.
   std::vector<double> barrier_outline;
+  // Impact scenes with face bands (methods.mpm.face_band_m): each band's mean normal stress over
+  // the output interval that ends at the snapshot (Pa, as the histories face_pressure_band_k),
+  // and the bands' ends along the upstream face where the barrier stands, from the toe up
+  // ((bands + 1) x 2, m); empty otherwise.
+  std::vector<double> face_pressure;
+  std::vector<double> face_band_points;
 };
 
 struct MpmOutcome {

@@ -3,8 +3,9 @@
 usage: pvpython paraview_snapshots.py FILE.xdmf OUT.png POINTS
 
 Checks what a user sees: the reader finds the time steps, the points block has POINTS points
-with the point fields of io/mpm_snapshots.hpp, the barrier block one quadrilateral cell, and a
-frame at the last time renders to a PNG. Exit 1 with a message on any failure.
+with the point fields of io/mpm_snapshots.hpp, the barrier block one quadrilateral cell, the
+barrier_face block one line segment per face band (2 m in 0.5 m bands) with its face_pressure,
+and a frame at the last time renders to a PNG. Exit 1 with a message on any failure.
 """
 import sys
 
@@ -41,6 +42,13 @@ for name in ("velocity", "displacement", "id", "material", "mass", "volume", "vo
         fail("point field %s missing (have %s)" % (name, sorted(fields)))
 if barrier.GetNumberOfCells() != 1 or barrier.GetNumberOfPoints() != 4:
     fail("barrier: %d cells, %d points" % (barrier.GetNumberOfCells(), barrier.GetNumberOfPoints()))
+if "barrier_face" not in names:
+    fail("expected a block barrier_face, got %r" % (names,))
+face = blocks[names.index("barrier_face")]
+if face.GetNumberOfCells() != 4 or face.GetNumberOfPoints() != 5:
+    fail("barrier_face: %d cells, %d points" % (face.GetNumberOfCells(), face.GetNumberOfPoints()))
+if face.GetCellData().GetArray("face_pressure") is None:
+    fail("barrier_face: no cell field face_pressure")
 view = pv.CreateRenderView()
 view.ViewSize = [640, 360]
 view.ViewTime = times[-1]

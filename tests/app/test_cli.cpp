@@ -584,7 +584,9 @@ nlohmann::json fast_flow_on_earth_barrier() {
 // methods.mpm.face_band_m: the upstream face's normal stress in height bands, whose forces (stress
 // times the band's length along the 60 deg face) add up to the face's normal force at every
 // output, dry and saturated (both phases push): to 1e-9 of the peak, the round-off of the summed
-// node forces. A contact only pushes, so no band is ever negative.
+// node forces. A contact only pushes, so no band is ever negative. Each snapshot holds the bands'
+// stresses of its output (the same numbers as the histories) and their ends along the face, and
+// the XDMF index draws them as the face's segments.
 TEST(Cli, MpmFaceBandsAddUpToTheFaceForce) {
   nlohmann::json s = fast_flow_on_earth_barrier();
   s["name"] = "bands";
@@ -592,6 +594,7 @@ TEST(Cli, MpmFaceBandsAddUpToTheFaceForce) {
   s["methods"]["mpm"].erase("phases");
   s["methods"]["mpm"]["end_time_s"] = 1.5;
   s["methods"]["mpm"]["face_band_m"] = 1.5;
+  s["methods"]["mpm"]["snapshot_interval_s"] = 0.5;
   const double sin60 = std::sqrt(3.0) / 2.0;
   const double lengths[] = {1.5 / sin60, 1.5 / sin60, 1.5 / sin60, 0.5 / sin60};  // top: 4.5-5 m
   for (const char* phases : {"dry", "saturated"}) {
@@ -619,6 +622,38 @@ TEST(Cli, MpmFaceBandsAddUpToTheFaceForce) {
       }
       EXPECT_NEAR(sum, m.force[i], 1e-9 * peak) << phases << " t = " << m.time[i];
     }
+    // The snapshots' bands: the histories' values at the snapshot's output, and the bands' ends
+    // on the fixed face, from its toe (x = 0, y = 0) up at 60 deg to the crest (5 m).
+    const hid_t f = H5Fopen(out.string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    for (const char* group : {"/mpm/snapshots/000001", "/mpm/snapshots/000002"}) {
+      double time = -1;
+      const hid_t a = H5Aopen_by_name(f, group, "time", H5P_DEFAULT, H5P_DEFAULT);
+      ASSERT_GE(a, 0) << phases << " " << group;
+      H5Aread(a, H5T_NATIVE_DOUBLE, &time);
+      H5Aclose(a);
+      const std::size_t i = std::find(m.time.begin(), m.time.end(), time) - m.time.begin();
+      ASSERT_LT(i, m.time.size()) << phases << " " << group << " t = " << time;
+      std::vector<hsize_t> dims;
+      const auto p = read_h5_doubles(f, std::string(group) + "/face_pressure", dims);
+      ASSERT_EQ(p.size(), 4u) << phases << " " << group;
+      for (int k = 0; k < 4; ++k) EXPECT_EQ(p[k], (*band[k])[i]) << phases << " " << group;
+      const auto ends = read_h5_doubles(f, std::string(group) + "/face_band_points", dims);
+      ASSERT_EQ(ends.size(), 15u) << phases << " " << group;  // 5 points, x y z
+      const double heights[] = {0.0, 1.5, 3.0, 4.5, 5.0};
+      for (int k = 0; k < 5; ++k) {
+        EXPECT_NEAR(ends[3 * k], heights[k] / std::tan(M_PI / 3), 1e-12) << phases << " " << k;
+        EXPECT_NEAR(ends[3 * k + 1], heights[k], 1e-12) << phases << " " << k;
+      }
+    }
+    H5Fclose(f);
+    fs::path xdmf = out;
+    xdmf.replace_extension(".xdmf");
+    std::ifstream in(xdmf);
+    const std::string x((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(x.find("<Grid Name=\"barrier_face\""), std::string::npos) << phases;
+    EXPECT_NE(x.find("/mpm/snapshots/000001/face_pressure</DataItem>"), std::string::npos)
+        << phases;
   }
   // A band too small for the barrier (more than 1000 histories) is refused.
   const Outcome bad = run("run " + write_file("bands_bad.json", s.dump()).string() +
