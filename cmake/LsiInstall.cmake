@@ -5,6 +5,8 @@
 #   P/include/lsi/{kernels,sweeps,model,io}/  the headers, included as "kernels/closed_form/..."
 #   P/lib/liblsi_{sweeps,model,io}.a         the compiled libraries
 #   P/lib/cmake/lsi/                          lsiConfig.cmake, lsiConfigVersion.cmake, lsiTargets*
+#   P/lib/pythonX.Y/site-packages/lsi*.so     the Python module where it is built
+#                                             (LSI_PYTHON_INSTALL_DIR, python/CMakeLists.txt)
 #
 # The exported targets, lsi::NAME (the build tree's lsi_NAME):
 #   closed_form  kernels/closed_form and kernels/common: header-only, on Kokkos' macros and math
@@ -54,6 +56,12 @@ endif()
 # HDF5 outside the system's folders).
 set_target_properties(${_lsi_commands} PROPERTIES INSTALL_RPATH_USE_LINK_PATH ON)
 install(TARGETS ${_lsi_commands} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The Python module `lsi` (docs/guide/python.md): one file, importable with its folder on
+# PYTHONPATH; it keeps the paths of its shared libraries as the commands do.
+if(TARGET lsi_python)
+  set_target_properties(lsi_python PROPERTIES INSTALL_RPATH_USE_LINK_PATH ON)
+  install(TARGETS lsi_python LIBRARY DESTINATION ${LSI_PYTHON_INSTALL_DIR})
+endif()
 
 install(TARGETS ${_lsi_exported} EXPORT lsiTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

@@ -6,10 +6,15 @@
 #     quantities computed here by another route, F_peak = (3/4) mu v^2 / (lambda L) and I = mu v
 #     with mu = m1 m2 / (m1 + m2) (docs/theory/models.md), for a free and a fixed barrier;
 #   scene_peaks (lsi::io, lsi::model): the peak force of every method of a small scene against
-#     the installed `lsi run` on the same scene.
-# Usage: install_test.sh CMAKE BUILD_DIR SOURCE_DIR WORK_DIR CXX_COMPILER
+#     the installed `lsi run` on the same scene;
+# and, where the build has the Python module (MODULE_DIR not empty), the installed module
+# imported with PYTHONPATH naming its folder in the prefix (PYTHON_INSTALL_DIR, relative to the
+# prefix or absolute), not the build's: its closed forms over an array against the build's
+# module's on the same scene (the same compiled code: equal to the last bit).
+# Usage: install_test.sh CMAKE BUILD_DIR SOURCE_DIR WORK_DIR CXX_COMPILER [MODULE_DIR
+#        PYTHON_INSTALL_DIR]
 set -euo pipefail
-cmake=$1 build=$2 source=$3 work=$4 cxx=$5
+cmake=$1 build=$2 source=$3 work=$4 cxx=$5 module_dir=${6:-} python_dir=${7:-}
 here="$source/tests/install"
 rm -rf "$work"
 mkdir -p "$work"
@@ -21,6 +26,61 @@ for f in bin/lsi lib/cmake/lsi/lsiConfig.cmake lib/cmake/lsi/lsiConfigVersion.cm
   [ -e "$prefix/$f" ] || { echo "FAIL: the install has no $f" >&2; exit 1; }
 done
 "$prefix/bin/lsi" --version
+
+if [ -n "$module_dir" ]; then
+  case "$python_dir" in
+    /*) installed_module_dir=$python_dir ;;
+    *) installed_module_dir=$prefix/$python_dir ;;
+  esac
+  compgen -G "$installed_module_dir/lsi*.so" >/dev/null ||
+    { echo "FAIL: the install has no Python module lsi in $installed_module_dir" >&2; exit 1; }
+  /usr/bin/python3 - "$module_dir" "$installed_module_dir" "$here/tiny-impact.json" <<'PY'
+import json
+import os
+import subprocess
+import sys
+
+build_dir, installed_dir, scene = sys.argv[1:4]
+# Each module in a fresh interpreter of its own, with only its folder on the path.
+EVALUATE = """
+import json, os, sys
+import numpy as np
+import lsi
+r = lsi.closed_forms(sys.argv[1], velocity_m_s=np.linspace(2.0, 9.0, 15),
+                     methods=["empirical", "analytical"])
+print(json.dumps({"file": os.path.realpath(lsi.__file__), "version": lsi.__version__,
+                  "values": {m: {k: [float(x).hex() for x in v] for k, v in o.items()}
+                             for m, o in r.items()}}))
+"""
+
+
+def evaluate(module_dir):
+    env = dict(os.environ, PYTHONPATH=module_dir, PYTHONNOUSERSITE="1")
+    out = subprocess.run([sys.executable, "-c", EVALUATE, scene], env=env, check=True,
+                         capture_output=True, text=True, cwd="/").stdout
+    return json.loads(out)
+
+
+built, installed = evaluate(build_dir), evaluate(installed_dir)
+failures = 0
+if not installed["file"].startswith(os.path.realpath(installed_dir) + os.sep):
+    print(f"FAIL: import lsi with PYTHONPATH={installed_dir} loaded {installed['file']}")
+    failures += 1
+if installed["version"] != built["version"]:
+    print(f"FAIL: installed lsi.__version__ {installed['version']} != {built['version']}")
+    failures += 1
+for method, outputs in built["values"].items():
+    for name, values in outputs.items():
+        got = installed["values"].get(method, {}).get(name)
+        ok = got == values
+        print(f"{'ok  ' if ok else 'FAIL'} installed module's {method} {name} over "
+              f"{len(values)} velocities equals the build's")
+        failures += not ok
+sys.exit(1 if failures else 0)
+PY
+else
+  echo "the Python module is not built: its install is not checked"
+fi
 
 "$cmake" -S "$here/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$prefix" \
          -DCMAKE_CXX_COMPILER="$cxx" >"$work/configure.log" ||

@@ -216,6 +216,82 @@ def test_run_takes_a_path_and_methods():
                  expected["analytical"]["peak_force"])
 
 
+# The snapshots of the material points: run() returns what `lsi run --out` writes under
+# /mpm/snapshots, the vectors without the file's z = 0 column. One thread: the same run in both,
+# equal but for round-off.
+SNAPSHOT_FIELDS = {"id", "material", "position", "displacement", "velocity", "stress", "mass",
+                   "volume", "volumetric_strain", "deviatoric_strain", "plastic_work"}
+
+
+def small_dam_break():
+    """A coarse, short dam break (an mpm_case verification scene): water, no barrier."""
+    doc = load("scenes/verification/dam-break-front.json")
+    doc["name"] = "small-dam-break"
+    doc["methods"]["mpm"].update(cell_size_m=0.01, end_time_s=0.05, output_interval_s=0.005)
+    return doc
+
+
+@pytest.mark.parametrize("name, interval", [("tiny-impact", 0.08), ("small-dam-break", 0.02)])
+def test_run_returns_the_snapshots_lsi_run_writes(name, interval):
+    assert os.environ.get("OMP_NUM_THREADS") == "1"
+    h5py = pytest.importorskip("h5py")
+    doc = load(TINY_MPM_SCENE) if name == "tiny-impact" else small_dam_break()
+    doc["methods"]["mpm"]["snapshot_interval_s"] = interval
+    if name == "tiny-impact":  # the face's bands too
+        doc["methods"]["mpm"]["face_band_m"] = 0.5
+    scene = os.path.join(WORK, name + "-snapshots.json")
+    h5 = os.path.join(WORK, name + "-snapshots.h5")
+    with open(scene, "w", encoding="utf-8") as f:
+        json.dump(doc, f)
+    for old in (h5, h5[:-3] + ".xdmf"):
+        if os.path.exists(old):
+            os.remove(old)
+    subprocess.run([LSI, "--progress", "none", "run", scene, "--out", h5], check=True,
+                   capture_output=True)
+    mpm = lsi.run(doc, methods="mpm")["mpm"]
+    snapshots = mpm["snapshots"]
+    # At t = 0, at the first output reaching each multiple of the interval before the end time,
+    # and at the end of the run.
+    end = mpm["histories"]["time"][-1]
+    multiples = math.floor(end / interval * (1 + 1e-9))
+    assert end > multiples * interval  # the end is not a multiple: a snapshot of its own
+    assert len(snapshots) == multiples + 2
+    assert snapshots[0]["time"] == 0.0 and snapshots[-1]["time"] == end
+    step = mpm["scalars"]["end_time"] / mpm["scalars"]["steps"] * 10  # ten mean steps
+    for k in range(1, multiples + 1):
+        assert k * interval <= snapshots[k]["time"] * (1 + 1e-12) < k * interval + step, k
+    with h5py.File(h5, "r") as f:
+        stored = f["mpm/snapshots"]
+        assert stored.attrs["count"] == len(snapshots)
+        assert mpm["snapshot_materials"] == stored.attrs["materials"].split(",")
+        for k, snapshot in enumerate(snapshots):
+            group = stored[f"{k:06d}"]
+            assert set(snapshot) - {"time"} == set(group), k
+            assert SNAPSHOT_FIELDS <= set(snapshot)
+            assert ("barrier_outline" in snapshot) == (name == "tiny-impact")
+            assert ("face_pressure" in snapshot) == (name == "tiny-impact")
+            assert math.isclose(snapshot["time"], group.attrs["time"], rel_tol=REL)
+            n = len(snapshot["id"])
+            assert n > 0
+            for key, values in snapshot.items():
+                if key == "time":
+                    continue
+                data = group[key][:]
+                assert mpm["snapshot_units"][key] == group[key].attrs["units"], key
+                if data.ndim == 2 and data.shape[1] == 3:  # x, y and the file's z = 0
+                    assert np.all(data[:, 2] == 0.0), key
+                    data = data[:, :2]
+                assert values.shape == data.shape and values.dtype == data.dtype, (k, key)
+                if values.dtype == np.int64:
+                    np.testing.assert_array_equal(values, data, err_msg=f"{k} {key}")
+                else:
+                    scale = max(np.max(np.abs(data)), np.finfo(float).tiny)
+                    assert np.max(np.abs(values - data)) <= REL * scale, (k, key)
+    # Nothing asked for, nothing returned.
+    del doc["methods"]["mpm"]["snapshot_interval_s"]
+    assert "snapshots" not in lsi.run(doc, methods="mpm")["mpm"]
+
+
 # (c) Errors: ValueError naming the field, its value or index, and the allowed range.
 
 def test_negative_and_nan_inputs_name_the_field():
