@@ -41,17 +41,8 @@ from matplotlib.colors import LogNorm  # noqa: E402
 import numpy as np  # noqa: E402
 import h5py  # noqa: E402
 
-
-class PlotError(Exception):
-    pass
-
-
-def _as_str(value):
-    if isinstance(value, bytes):
-        return value.decode("utf-8", errors="replace")
-    if hasattr(value, "item"):
-        return _as_str(value.item())
-    return str(value)
+sys.dont_write_bytecode = True   # nothing written into the source tree
+from lsi_plot_common import PlotError, as_str, check_positive  # noqa: E402
 
 
 def _attr(obj, name, default=float("nan")):
@@ -61,7 +52,7 @@ def _attr(obj, name, default=float("nan")):
     try:
         return float(v)
     except (TypeError, ValueError):
-        return _as_str(v)
+        return as_str(v)
 
 
 def _value(obj, name, default=float("nan")):
@@ -74,7 +65,7 @@ def _value(obj, name, default=float("nan")):
             try:
                 return float(v)
             except (TypeError, ValueError):
-                return _as_str(v)
+                return as_str(v)
     return _attr(obj, name, default)
 
 
@@ -91,9 +82,9 @@ def plot_errors(f, out, tolerance):
     c = f["comparison"]
     if not all(k in c for k in ("case", "method", "coefficients")):
         return None
-    case = [_as_str(v) for v in c["case"][()]]
-    method = [_as_str(v) for v in c["method"][()]]
-    coef = [_as_str(v) for v in c["coefficients"][()]]
+    case = [as_str(v) for v in c["case"][()]]
+    method = [as_str(v) for v in c["method"][()]]
+    coef = [as_str(v) for v in c["coefficients"][()]]
     rows = [i for i in range(len(case)) if method[i] != "mpm"]
     panels = [(k, label) for k, label in ERRORS if k in c]
     if not rows or not panels:
@@ -148,7 +139,7 @@ def plot_file(path, out_dir, tolerance=None):
     with f:
         if "cases" not in f or len(f["cases"]) == 0:
             raise PlotError(f"{path}: no /cases group (not an `lsi calibrate --out` file?)")
-        objective = _as_str(f.attrs.get("objective", "misfit"))
+        objective = as_str(f.attrs.get("objective", "misfit"))
         tol = _value(f, "profile_tolerance", 0.1)
         groups = {}
         for name in f.get("groups", {}):
@@ -183,7 +174,7 @@ def plot_file(path, out_dir, tolerance=None):
             if all(math.isfinite(v) for v in (l0, l1, t0, t1)):
                 ax.plot([l0, l1, l1, l0, l0], [t0, t0, t1, t1, t0], "w--", lw=0.8,
                         label="profile ranges")
-            group = _as_str(c.attrs.get("group", ""))
+            group = as_str(c.attrs.get("group", ""))
             if group in groups and all(math.isfinite(v) for v in groups[group]):
                 gl, gt = groups[group]
                 ax.plot([gl], [gt], "o", mfc="none", mec="white", ms=8, mew=1.5,
@@ -194,7 +185,7 @@ def plot_file(path, out_dir, tolerance=None):
             ax.set_ylim(0, 1)
             ax.set_xlabel("lambda = s1,max / L1,0")
             ax.set_ylabel("tau = T1 / T2")
-            ax.set_title(f"{_as_str(c.attrs.get('name', key))} ({group})")
+            ax.set_title(f"{as_str(c.attrs.get('name', key))} ({group})")
             # grey behind the legend: its markers are white, as on the map
             ax.legend(loc="upper right", fontsize=7, framealpha=0.7, facecolor="0.45",
                       labelcolor="white")
@@ -219,8 +210,7 @@ def main(argv=None):
                         help="relative error drawn as a band of +-R on the errors plot "
                              "(0.2: 20 %%)")
     args = parser.parse_args(argv)
-    if args.tolerance is not None and not (math.isfinite(args.tolerance) and args.tolerance > 0):
-        parser.error(f"--tolerance {args.tolerance}: must be a number > 0")
+    check_positive(parser, "--tolerance", args.tolerance)
     out_dir = args.out_dir or os.path.dirname(os.path.abspath(args.calibration))
     try:
         for out in plot_file(args.calibration, out_dir, args.tolerance):

@@ -47,7 +47,6 @@ are still plotted), 2 on bad usage.
 Uses Debian's /usr/bin/python3 (python3-matplotlib, python3-h5py).
 """
 
-import argparse
 import json
 import math
 import os
@@ -64,6 +63,7 @@ import h5py  # noqa: E402
 sys.dont_write_bytecode = True   # nothing written into the source tree
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import lsi_sweep_plot  # noqa: E402
+from lsi_plot_common import PlotError, as_str, open_hdf5, plot_files_main  # noqa: E402
 
 # (dataset, axis label, scale factor from SI)
 PANELS = [
@@ -114,24 +114,12 @@ WALL_BAND = re.compile(r"^wall_pressure_(left|right|bottom|top)_band_(\d+)$")
 BAND_EXTENT = re.compile(r"between [xy] = ([-+0-9.eE]+) and ([-+0-9.eE]+) m")
 
 
-class PlotError(Exception):
-    pass
-
-
-def _as_str(value):
-    if isinstance(value, bytes):
-        return value.decode("utf-8", errors="replace")
-    if hasattr(value, "item"):  # numpy scalar / 0-d array
-        return _as_str(value.item())
-    return str(value)
-
-
 def scene_name(f, fallback):
     raw = f.attrs.get("scene")
     if raw is None:
         return fallback
     try:
-        scene = json.loads(_as_str(raw))
+        scene = json.loads(as_str(raw))
     except (ValueError, TypeError):
         return fallback
     if isinstance(scene, dict) and scene.get("name"):
@@ -141,7 +129,7 @@ def scene_name(f, fallback):
 
 def scene_of(f):
     try:
-        scene = json.loads(_as_str(f.attrs.get("scene", "{}")))
+        scene = json.loads(as_str(f.attrs.get("scene", "{}")))
     except (ValueError, TypeError):
         return {}
     return scene if isinstance(scene, dict) else {}
@@ -248,7 +236,7 @@ def impact_window(curves):
 
 def truncation(name, group):
     """(end time, note) of a run cut short, or None."""
-    state = _as_str(group.attrs.get("end_state", ""))
+    state = as_str(group.attrs.get("end_state", ""))
     if state not in TRUNCATED:
         return None
     t_end = scalar(group, "end_time")
@@ -448,7 +436,7 @@ def plot_verification(f, path, stem, title, out_dir):
             if dataset == "potential_energy":
                 y = y - y[0]
             curves.append((t, y, legend))
-            units = units or _as_str(g[dataset].attrs.get("units", ""))
+            units = units or as_str(g[dataset].attrs.get("units", ""))
         if curves:
             panels.append((label, units, curves))
     if not panels:
@@ -465,7 +453,7 @@ def plot_verification(f, path, stem, title, out_dir):
         if len(curves) > 1:
             ax.legend(loc="best", fontsize="small")
     axes[-1, 0].set_xlabel("time (s)")
-    state = _as_str(g.attrs.get("status", ""))
+    state = as_str(g.attrs.get("status", ""))
     fig.suptitle(f"{title}: MPM" + (f" ({state})" if state and state != "finished" else ""))
     fig.tight_layout()
     out = os.path.join(out_dir, stem + ".png")
@@ -495,14 +483,14 @@ def plot_wall_bands(f, title, out):
         p = np.array([np.asarray(g[name][()], dtype=float) for _, name in bands])  # [band, time]
         extents = []
         for k, name in bands:
-            m = BAND_EXTENT.search(_as_str(g[name].attrs.get("description", "")))
+            m = BAND_EXTENT.search(as_str(g[name].attrs.get("description", "")))
             extents.append((float(m.group(1)), float(m.group(2))) if m else (k, k + 1.0))
         finite = np.where(np.isfinite(p), p, -np.inf)
         if p.size == 0 or not np.isfinite(finite).any():
             ax.set_visible(False)
             continue
         i = int(np.unravel_index(np.argmax(finite), finite.shape)[1])
-        units, scale = kilo(_as_str(g[bands[0][1]].attrs.get("units", "Pa")), p[:, i])
+        units, scale = kilo(as_str(g[bands[0][1]].attrs.get("units", "Pa")), p[:, i])
         s, v = [], []
         for (s0, s1), value in zip(extents, p[:, i] * scale):
             s += [s0, s1]
@@ -530,19 +518,10 @@ def plot_wall_bands(f, title, out):
 
 def plot_file(path, out_dir, tolerance=None):
     """Plots one file; returns the PNGs written."""
-    if not os.path.isfile(path):
-        raise PlotError(f"{path}: no such file")
     stem = os.path.splitext(os.path.basename(path))[0]
-    try:
-        f = h5py.File(path, "r")
-    except OSError as e:
-        raise PlotError(f"{path}: cannot open as HDF5 ({e})") from e
-    with f:
-        if _as_str(f.attrs.get("kind", "")) == lsi_sweep_plot.KIND:
-            try:
-                return lsi_sweep_plot.plot_sweep(f, path, out_dir, tolerance)
-            except lsi_sweep_plot.PlotError as e:
-                raise PlotError(str(e)) from e
+    with open_hdf5(path) as f:
+        if as_str(f.attrs.get("kind", "")) == lsi_sweep_plot.KIND:
+            return lsi_sweep_plot.plot_sweep(f, path, out_dir, tolerance)
         if not any(isinstance(obj, h5py.Group) for obj in f.values()):
             raise PlotError(f"{path}: no method groups in the file")
         title = scene_name(f, stem)
@@ -564,33 +543,14 @@ def plot_file(path, out_dir, tolerance=None):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(
+    return plot_files_main(
+        argv, "lsi_plot.py", plot_file,
         description="Plot lsi HDF5 result files: force, landslide kinetic energy and barrier "
                     "displacement of impact results; energies, wall forces, front and wall "
-                    "pressures of MPM verification scenes; distributions of sweep files.")
-    parser.add_argument("results", nargs="+", metavar="RESULT.h5", help="lsi result file(s)")
-    parser.add_argument("--out-dir", required=True, metavar="DIR",
-                        help="directory for the PNG files (created if missing)")
-    parser.add_argument("--max-displacement", type=float, metavar="X",
-                        help="the design's tolerable barrier displacement (m): a line on the "
-                             "displacement panel, and P(final displacement > X) on sweep plots")
-    args = parser.parse_args(argv)
-    if args.max_displacement is not None and not (math.isfinite(args.max_displacement)
-                                                  and args.max_displacement > 0):
-        parser.error(f"--max-displacement {args.max_displacement}: must be a number > 0")
-
-    failed = False
-    for path in args.results:
-        try:
-            for out in plot_file(path, args.out_dir, args.max_displacement):
-                print(out)
-        except PlotError as e:
-            print(f"lsi_plot.py: error: {e}", file=sys.stderr)
-            failed = True
-        except (OSError, KeyError, ValueError) as e:
-            print(f"lsi_plot.py: error: {path}: cannot read ({e})", file=sys.stderr)
-            failed = True
-    return 1 if failed else 0
+                    "pressures of MPM verification scenes; distributions of sweep files.",
+        files="results", files_metavar="RESULT.h5", files_help="lsi result file(s)",
+        max_displacement_help="the design's tolerable barrier displacement (m): a line on the "
+                              "displacement panel, and P(final displacement > X) on sweep plots")
 
 
 if __name__ == "__main__":

@@ -28,7 +28,6 @@ unreadable, not a sweep file or has no column to plot, 2 on bad usage.
 Uses Debian's /usr/bin/python3 (python3-matplotlib, python3-h5py, python3-numpy).
 """
 
-import argparse
 import json
 import math
 import os
@@ -41,6 +40,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import h5py  # noqa: E402
+
+sys.dont_write_bytecode = True   # nothing written into the source tree
+from lsi_plot_common import PlotError, as_str, open_hdf5, plot_files_main  # noqa: E402
 
 KIND = "lsi sweep"
 # Points of the CDF and exceedance curves at most (the tails are kept point by point).
@@ -60,21 +62,9 @@ LABELS = {
 }
 
 
-class PlotError(Exception):
-    pass
-
-
-def _as_str(value):
-    if isinstance(value, bytes):
-        return value.decode("utf-8", errors="replace")
-    if hasattr(value, "item"):
-        return _as_str(value.item())
-    return str(value)
-
-
 def _units(dataset):
     u = dataset.attrs.get("units", "")
-    return _as_str(u) if np.ndim(u) == 0 else ""
+    return as_str(u) if np.ndim(u) == 0 else ""
 
 
 def shown_units(units, values):
@@ -258,13 +248,13 @@ def plot_column(f, stem, method, output, out_dir, tolerance, study_name, confide
 
 def plot_sweep(f, path, out_dir, tolerance=None):
     """Plots an open sweep file; returns the PNGs written."""
-    if _as_str(f.attrs.get("kind", "")) != KIND:
+    if as_str(f.attrs.get("kind", "")) != KIND:
         raise PlotError(f"{path}: not an lsi sweep file (root attribute kind is not '{KIND}')")
     if "samples" not in f or "status" not in f["samples"]:
         raise PlotError(f"{path}: no /samples table")
     stem = os.path.splitext(os.path.basename(path))[0]
     try:
-        study_name = str(json.loads(_as_str(f.attrs.get("study", "{}"))).get("name", stem))
+        study_name = str(json.loads(as_str(f.attrs.get("study", "{}"))).get("name", stem))
     except (ValueError, TypeError, AttributeError):
         study_name = stem
     confidence = 0.95
@@ -288,42 +278,18 @@ def plot_sweep(f, path, out_dir, tolerance=None):
 
 
 def plot_file(path, out_dir, tolerance=None):
-    if not os.path.isfile(path):
-        raise PlotError(f"{path}: no such file")
-    try:
-        f = h5py.File(path, "r")
-    except OSError as e:
-        raise PlotError(f"{path}: cannot open as HDF5 ({e})") from e
-    with f:
+    with open_hdf5(path) as f:
         return plot_sweep(f, path, out_dir, tolerance)
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(
+    return plot_files_main(
+        argv, "lsi_sweep_plot.py", plot_file,
         description="Plot histogram, CDF and exceedance curve of every output of lsi sweep "
-                    "files (one PNG per method and output).")
-    parser.add_argument("sweeps", nargs="+", metavar="SWEEP.h5", help="lsi sweep result file(s)")
-    parser.add_argument("--out-dir", required=True, metavar="DIR",
-                        help="directory for the PNG files (created if missing)")
-    parser.add_argument("--max-displacement", type=float, metavar="X",
-                        help="the design's tolerable displacement (m): marked on the "
-                             "final_displacement plots with P(final displacement > X)")
-    args = parser.parse_args(argv)
-    if args.max_displacement is not None and not (math.isfinite(args.max_displacement)
-                                                  and args.max_displacement > 0):
-        parser.error(f"--max-displacement {args.max_displacement}: must be a number > 0")
-    failed = False
-    for path in args.sweeps:
-        try:
-            for out in plot_file(path, args.out_dir, args.max_displacement):
-                print(out)
-        except PlotError as e:
-            print(f"lsi_sweep_plot.py: error: {e}", file=sys.stderr)
-            failed = True
-        except (OSError, KeyError, ValueError) as e:
-            print(f"lsi_sweep_plot.py: error: {path}: cannot read ({e})", file=sys.stderr)
-            failed = True
-    return 1 if failed else 0
+                    "files (one PNG per method and output).",
+        files="sweeps", files_metavar="SWEEP.h5", files_help="lsi sweep result file(s)",
+        max_displacement_help="the design's tolerable displacement (m): marked on the "
+                              "final_displacement plots with P(final displacement > X)")
 
 
 if __name__ == "__main__":
