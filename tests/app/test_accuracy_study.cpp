@@ -2,7 +2,6 @@
 // convergence bookkeeping of a series, and the command end to end on coarse runs of L1-B1 (4-6
 // cells through the thickness, dry PIC: about a second of MPM in all), including --resume.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -15,6 +14,7 @@
 #include "io/hdf5_io.hpp"
 #include "model/scene.hpp"
 #include "support/run_command.hpp"
+#include "support/temp_files.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -23,11 +23,7 @@ using lsi::AccuracyRun;
 const fs::path source_dir = LSI_SOURCE_DIR;
 const std::string lsi_exe = LSI_EXE;
 
-fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("lsi_accuracy_" + std::to_string(getpid()));
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir() { return lsi::testing::process_temp_dir("lsi_accuracy"); }
 
 json dry_series(std::vector<double> cells, bool reference) {
   return {{"name", reference ? "dry PIC" : "dry APIC"},

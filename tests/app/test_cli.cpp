@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <unistd.h>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -20,6 +19,7 @@
 #include "io/hdf5_results.hpp"
 #include "model/scene.hpp"
 #include "support/run_command.hpp"
+#include "support/temp_files.hpp"
 #include "io/scene_parser.hpp"
 
 namespace {
@@ -29,20 +29,10 @@ const std::string lsi_exe = LSI_EXE;
 
 using Outcome = lsi::testing::CommandOutcome;  // out: stdout and stderr together
 
-Outcome run(const std::string& args) {
-  return lsi::testing::run_command(lsi_exe + " " + args + " 2>&1");
-}
-
-fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("lsi_cli_test_" + std::to_string(getpid()));
-  fs::create_directories(d);
-  return d;
-}
-
+Outcome run(const std::string& args) { return lsi::testing::run_lsi(lsi_exe, args); }
+fs::path temp_dir() { return lsi::testing::process_temp_dir("lsi_cli_test"); }
 fs::path write_file(const std::string& name, const std::string& text) {
-  const fs::path p = temp_dir() / name;
-  std::ofstream(p) << text;
-  return p;
+  return lsi::testing::write_text(temp_dir() / name, text);
 }
 
 std::string reference(const std::string& name) {

@@ -23,6 +23,7 @@
 #include "model/mpm_runner.hpp"
 #include "model/scene.hpp"
 #include "support/run_command.hpp"
+#include "support/temp_files.hpp"
 #include "io/scene_parser.hpp"
 
 namespace {
@@ -33,26 +34,16 @@ const std::string lsi_exe = LSI_EXE;
 
 using Outcome = lsi::testing::CommandOutcome;  // out: stdout and stderr together
 
-Outcome run(const std::string& args) {
-  return lsi::testing::run_command(lsi_exe + " " + args + " 2>&1");
-}
+Outcome run(const std::string& args) { return lsi::testing::run_lsi(lsi_exe, args); }
 // The command under bash, e.g. with resource limits set first.
 Outcome run_in_bash(const std::string& setup, const std::string& args) {
   return lsi::testing::run_command("bash -c '" + setup + "; exec " + lsi_exe + " " + args +
                                    "' 2>&1");
 }
 
-fs::path temp_dir() {
-  const fs::path d =
-      fs::temp_directory_path() / ("lsi_robustness_test_" + std::to_string(getpid()));
-  fs::create_directories(d);
-  return d;
-}
-
+fs::path temp_dir() { return lsi::testing::process_temp_dir("lsi_robustness_test"); }
 fs::path write_json(const std::string& name, const json& j) {
-  const fs::path p = temp_dir() / name;
-  std::ofstream(p) << j.dump(2);
-  return p;
+  return lsi::testing::write_text(temp_dir() / name, j.dump(2));
 }
 
 json read_json(const fs::path& p) {

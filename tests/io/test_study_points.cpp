@@ -4,7 +4,6 @@
 // the value and what is allowed.
 #include <gtest/gtest.h>
 #include <hdf5.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -14,22 +13,16 @@
 
 #include "io/study_parser.hpp"
 #include "model/input_error.hpp"
+#include "support/temp_files.hpp"
 
 namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 const fs::path source_dir = LSI_SOURCE_DIR;
 
-fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("lsi_study_points_" + std::to_string(getpid()));
-  fs::create_directories(d);
-  return d;
-}
-
+fs::path temp_dir() { return lsi::testing::process_temp_dir("lsi_study_points"); }
 fs::path write_text(const std::string& name, const std::string& text) {
-  const fs::path p = temp_dir() / name;
-  std::ofstream(p) << text;
-  return p;
+  return lsi::testing::write_text(temp_dir() / name, text);
 }
 
 // A study of the former reference case L1-B1 (a free barrier) over the points of `points_file`

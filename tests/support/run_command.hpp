@@ -27,6 +27,13 @@ inline CommandOutcome run_command(const std::string& command) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
+// Runs `lsi args` (`lsi` the executable's path) with its standard output and error together in
+// `out`; `env`, assignments before the command (e.g. "OMP_NUM_THREADS=1"), may be empty.
+inline CommandOutcome run_lsi(const std::string& lsi, const std::string& args,
+                              const std::string& env = "") {
+  return run_command((env.empty() ? "" : env + " ") + lsi + " " + args + " 2>&1");
+}
+
 // Starts `argv` (argv[0] the program) in a child process with its standard output and error
 // discarded, and returns the child's pid (for tests that signal or kill a run part-way).
 inline pid_t spawn_quietly(const std::vector<std::string>& argv) {

@@ -3,7 +3,6 @@
 // back as points, are that sweep's values), their table comes back as CSV in the order of the
 // points, and resume and shards work as for any design.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <charconv>
 #include <cmath>
@@ -17,6 +16,7 @@
 #include "io/sweep_file.hpp"
 #include "model/sweep_table.hpp"
 #include "support/run_command.hpp"
+#include "support/temp_files.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -26,20 +26,10 @@ const std::string lsi_exe = LSI_EXE;
 
 using Outcome = lsi::testing::CommandOutcome;  // out: stdout and stderr together
 
-Outcome run(const std::string& args) {
-  return lsi::testing::run_command(lsi_exe + " " + args + " 2>&1");
-}
-
-fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("lsi_points_test_" + std::to_string(getpid()));
-  fs::create_directories(d);
-  return d;
-}
-
+Outcome run(const std::string& args) { return lsi::testing::run_lsi(lsi_exe, args); }
+fs::path temp_dir() { return lsi::testing::process_temp_dir("lsi_points_test"); }
 fs::path write_json(const std::string& name, const json& j) {
-  const fs::path p = temp_dir() / name;
-  std::ofstream(p) << j.dump(2);
-  return p;
+  return lsi::testing::write_text(temp_dir() / name, j.dump(2));
 }
 
 std::string shortest(double v) {
@@ -58,9 +48,7 @@ fs::path write_points(const std::string& name, const lsi::SweepTable& t) {
       text += (d ? "," : "") + shortest(t.inputs[d][i]);
     text += "\n";
   }
-  const fs::path p = temp_dir() / name;
-  std::ofstream(p) << text;
-  return p;
+  return lsi::testing::write_text(temp_dir() / name, text);
 }
 
 std::vector<std::vector<std::string>> read_csv(const fs::path& p) {

@@ -23,6 +23,7 @@
 #include "model/study.hpp"
 #include "model/sweep_table.hpp"
 #include "support/run_command.hpp"
+#include "support/temp_files.hpp"
 #include "io/scene_parser.hpp"
 #include "io/study_parser.hpp"
 #include "io/sweep_file.hpp"
@@ -36,14 +37,9 @@ const std::string lsi_exe = LSI_EXE;
 using Outcome = lsi::testing::CommandOutcome;  // out: stdout and stderr together
 
 Outcome run(const std::string& args, const std::string& env = "") {
-  return lsi::testing::run_command(env + " " + lsi_exe + " " + args + " 2>&1");
+  return lsi::testing::run_lsi(lsi_exe, args, env);
 }
-
-fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("lsi_sweep_test_" + std::to_string(getpid()));
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir() { return lsi::testing::process_temp_dir("lsi_sweep_test"); }
 
 // A study of the former reference case L1-B1 (a 14.4 t/m wall: scenes/former-reference/) with `extra` keys
 // merged in.
