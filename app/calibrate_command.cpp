@@ -43,6 +43,7 @@
 #include "model/closed_form_methods.hpp"
 #include "io/hdf5_io.hpp"
 #include "io/hdf5_results.hpp"
+#include "model/concurrent_runs.hpp"
 #include "model/mpm_impact.hpp"
 #include "model/mpm_runner.hpp"
 #include "io/output_paths.hpp"
@@ -162,8 +163,11 @@ bool same_setup(const json& stored, const json& scene) {
          part(stored, "methods", "mpm") == part(scene, "methods", "mpm");
 }
 
-// Returns false (with a message on stderr) if the MPM run stopped unstable.
-bool load_mpm(Case& c, const std::string& results_dir) {
+// Where a case's MPM history comes from: a stored run (read), none usable (the case is skipped,
+// with a message on stderr), or a run still to make (run_mpm).
+enum class MpmSource { Stored, Skipped, ToRun };
+
+MpmSource stored_mpm(Case& c, const std::string& results_dir) {
   const Scene& s = c.scene;
   if (!results_dir.empty()) {
     const fs::path file = fs::path(results_dir) / (s.name + ".h5");
@@ -179,9 +183,9 @@ bool load_mpm(Case& c, const std::string& results_dir) {
         if (mpm->run && !mpm->run->finished) {
           std::cerr << "lsi: " << c.path << ": the stored MPM run in " << file.string()
                     << " stopped before its end time; case skipped\n";
-          return false;
+          return MpmSource::Skipped;
         }
-        return true;
+        return MpmSource::Stored;
       }
       std::cerr << "lsi: note: " << file.string()
                 << (mpm ? " was written for a different landslide, barrier or methods.mpm"
@@ -196,7 +200,13 @@ bool load_mpm(Case& c, const std::string& results_dir) {
         "methods.mpm block ({\"cell_size_m\": ...}, docs/reference/scene_schema.md) or give "
         "--results-dir with " +
         s.name + ".h5 holding an /mpm group");
-  const MpmCase mc = with_path(c.path, [&] { return impact_case(s); });
+  return MpmSource::ToRun;
+}
+
+// Runs the case's MPM; false (with a message on stderr) if the run stopped unstable. Runs of
+// several cases go side by side (model/concurrent_runs.hpp).
+bool run_mpm(Case& c) {
+  const MpmCase mc = with_path(c.path, [&] { return impact_case(c.scene); });
   MpmOutcome o = run_mpm_case(mc);
   c.mpm = std::move(o.result);
   c.source = "mpm run";
@@ -667,21 +677,37 @@ void write_calibration(const std::string& path, const std::vector<Case>& cases,
 int run_calibrate(const Options& opt) {
   const sweeps::CalibrationOptions co = calibration_options(opt);
   if (!opt.out.empty()) check_output_file("--out", opt.out, opt.scenes);
-  std::vector<Case> cases;
-  bool skipped = false;
+  // Every scene is read and checked, and the stored runs are read, before any MPM runs; then the
+  // runs still to make go side by side.
+  std::vector<Case> loaded;
+  std::vector<MpmSource> source;
   for (const auto& path : opt.scenes) {
     Case c;
     c.path = path;
     c.scene = with_path(path, [&] { return load_scene(path); });
     // The stored run is read from <results-dir>/<name>.h5: the name must stay inside it.
     if (!opt.results_dir.empty()) check_file_name(path + ": name", c.scene.name);
-    for (const auto& other : cases)
+    for (const auto& other : loaded)
       if (other.scene.name == c.scene.name)
         throw InputError(path + ": name = \"" + c.scene.name +
                          "\": must be unique among the "
                          "scenes (also used by " +
                          other.path + ")");
-    if (!load_mpm(c, opt.results_dir)) {
+    source.push_back(stored_mpm(c, opt.results_dir));
+    loaded.push_back(std::move(c));
+  }
+  std::vector<std::size_t> to_run;
+  for (std::size_t k = 0; k < loaded.size(); ++k)
+    if (source[k] == MpmSource::ToRun) to_run.push_back(k);
+  run_concurrently(to_run.size(), [&](std::size_t k) {
+    source[to_run[k]] = run_mpm(loaded[to_run[k]]) ? MpmSource::Stored : MpmSource::Skipped;
+  });
+  std::vector<Case> cases;
+  bool skipped = false;
+  for (std::size_t k = 0; k < loaded.size(); ++k) {
+    Case& c = loaded[k];
+    const std::string& path = c.path;
+    if (source[k] == MpmSource::Skipped) {
       skipped = true;
       continue;
     }

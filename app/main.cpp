@@ -33,6 +33,7 @@
 #include "io/text_file.hpp"
 #include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 #include "io/scene_overrides.hpp"
+#include "model/concurrent_runs.hpp"
 #include "model/progress.hpp"
 #include "io/scene_parser.hpp"
 
@@ -175,7 +176,14 @@ int main(int argc, char** argv) {
   app.add_option("--progress", progress,
                  "Progress on standard error: auto (a line rewritten on a terminal, a heartbeat "
                  "line every 30 s in logs), log (the heartbeat), none");
-  app.fallthrough();  // --progress also after the subcommand
+  int runs_at_once = 0;
+  app.add_option(
+         "--runs-at-once", runs_at_once,
+         "MPM runs of one campaign (the cases lsi calibrate runs) that run side by side, one "
+         "thread each: 0 (default) as many as threads, 1 one after the other with every "
+         "thread")
+      ->check(CLI::Range(0, 4096));
+  app.fallthrough();  // --progress and --runs-at-once also after the subcommand
 
   std::string scene_path, methods_list, out_path, format = "table";
   std::vector<std::string> overrides;
@@ -254,6 +262,7 @@ int main(int argc, char** argv) {
   try {
     lsi::reject_empty_values(app);
     lsi::set_progress_mode(lsi::progress_mode_from(progress));
+    lsi::set_runs_at_once(runs_at_once);
     for (const auto& s : subcommands)
       if (*s.command) return s.run();
     check_format(format);

@@ -50,6 +50,12 @@
 //    solver runs: the last four fused in one pass over the points).
 //    items_per_second = points / seconds per call.
 //
+// 4. campaign/...: a campaign of 8 whole impact runs (the dry fixed variant of 1. at 8 cells
+//    through the thickness, cell 0.125 m: 1024 points; and at 16 cells) one after the other with
+//    every thread (campaign/.../one_after_another) and side by side, one per thread
+//    (campaign/.../side_by_side: model/concurrent_runs.hpp). items_per_second = runs per second
+//    of the whole campaign; their ratio is what running a campaign side by side gains.
+//
 // Times: real_time (the rates: items_per_second, solver_pups) and cpu_time = the CPU time of the
 // whole process (all threads; MeasureProcessCPUTime). On a machine shared with other work the
 // real time also counts the time the threads waited for a CPU; with OMP_NUM_THREADS=1,
@@ -71,6 +77,7 @@
 #include <string>
 #include <vector>
 
+#include "model/concurrent_runs.hpp"
 #include "model/mpm_impact.hpp"
 #include "model/mpm_runner.hpp"
 #include "model/scene.hpp"
@@ -460,6 +467,49 @@ void register_column(Scatters scatters) {
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// 4. A campaign of small runs, one after the other or side by side.
+
+void bm_campaign(benchmark::State& state, double cell, bool side_by_side) {
+  ImpactVariant v{"campaign", false, true};
+  v.cell_size = cell;
+  std::vector<MpmCase> cases;
+  try {
+    const Scene scene = parse_scene(impact_scene(v));
+    for (int k = 0; k < 8; ++k) cases.push_back(impact_case(scene));
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  const int at_once = side_by_side ? 0 : 1;
+  for (auto _ : state) {
+    std::vector<int> finished(cases.size(), 0);
+    run_concurrently(
+        cases.size(), [&](std::size_t k) { finished[k] = run_mpm_case(cases[k]).finished(); },
+        at_once);
+    for (int f : finished)
+      if (!f) {
+        state.SkipWithError("an MPM run of the campaign stopped");
+        return;
+      }
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(cases.size() * state.iterations()));
+  state.counters["runs_at_once"] = concurrent_runs(cases.size(), at_once);
+  state.counters["threads"] = Kokkos::DefaultExecutionSpace().concurrency();
+}
+
+void register_campaign() {
+  for (double cell : {0.125, 0.0625})
+    for (bool side : {false, true}) {
+      const std::string name = std::string("campaign/cells:") + (cell > 0.1 ? "8" : "16") +
+                               (side ? "/side_by_side" : "/one_after_another");
+      benchmark::RegisterBenchmark(name.c_str(), bm_campaign, cell, side)
+          ->Iterations(1)
+          ->UseRealTime()
+          ->Unit(benchmark::kMillisecond);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -470,6 +520,7 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   using Host = Kokkos::DefaultHostExecutionSpace;
   register_impact();
+  register_campaign();
 #ifdef KOKKOS_ENABLE_SERIAL
   if constexpr (!std::is_same_v<Host, Kokkos::Serial>) register_column<Host>(Scatters::Both);
   register_column<Kokkos::Serial>(Scatters::Plain);

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 
 namespace lsi {
@@ -78,11 +79,22 @@ void StatusLine::clear() {
   shown_ = false;
 }
 
-Progress::Progress(std::string label, double end_time)
+namespace {
+std::atomic<int> g_quiet{0};
+}  // namespace
+
+QuietProgress::QuietProgress() { ++g_quiet; }
+QuietProgress::~QuietProgress() { --g_quiet; }
+bool progress_quiet() { return g_quiet.load() > 0; }
+
+Progress::Progress(std::string label, double end_time, bool ends_at_rest)
     : label_(std::move(label)),
       end_time_(end_time),
-      status_(true),
-      start_(std::chrono::steady_clock::now()) {}
+      ends_at_rest_(ends_at_rest),
+      status_(!progress_quiet()),
+      start_(std::chrono::steady_clock::now()) {
+  if (progress_quiet()) estimated_ = true;  // no estimate line either
+}
 
 void RecentRate::add(double seconds, double done) {
   samples_.emplace_back(seconds, done);
@@ -99,15 +111,16 @@ double RecentRate::time_left(double total) const {
 }
 
 std::string Progress::line(const std::string& label, double time, double end_time, long steps,
-                           double seconds, double left) {
+                           double seconds, double left, bool ends_at_rest) {
   const double fraction = end_time > 0 ? std::clamp(time / end_time, 0.0, 1.0) : 1.0;
   const double rate = seconds > 0 ? steps / seconds : 0.0;
   char buf[256];
   if (fraction > 0 && seconds > 0) {
     if (left < 0.0) left = seconds * (1.0 - fraction) / fraction;
     std::snprintf(buf, sizeof buf,
-                  "%s: %3.0f %% of %.3g s simulated, %.0f steps/s, %.0f s elapsed, ETA %.0f s",
-                  label.c_str(), 100 * fraction, end_time, rate, seconds, left);
+                  "%s: %3.0f %% of %.3g s simulated, %.0f steps/s, %.0f s elapsed, ETA %s%.0f s%s",
+                  label.c_str(), 100 * fraction, end_time, rate, seconds, ends_at_rest ? "<= " : "",
+                  left, ends_at_rest ? " (earlier once at rest)" : "");
   } else {
     std::snprintf(buf, sizeof buf, "%s: %3.0f %% of %.3g s simulated", label.c_str(),
                   100 * fraction, end_time);
@@ -144,7 +157,8 @@ void Progress::update(double time, long steps) {
     if (!e.empty() && progress_mode() != ProgressMode::None) status_.print_above(e);
   }
   rate_.add(seconds, time);
-  status_.show(line(label_, time, end_time_, steps, seconds, rate_.time_left(end_time_)));
+  status_.show(
+      line(label_, time, end_time_, steps, seconds, rate_.time_left(end_time_), ends_at_rest_));
 }
 
 void Progress::finish() { status_.clear(); }

@@ -31,6 +31,17 @@ ProgressMode progress_mode_from(const std::string& text);
 
 inline constexpr double kHeartbeatSeconds = 30.0;
 
+// While one exists, MPM runs show no progress (their lines would mix: runs side by side of
+// model/concurrent_runs.hpp). A sweep's SampleProgress is not affected.
+class QuietProgress {
+ public:
+  QuietProgress();
+  ~QuietProgress();
+  QuietProgress(const QuietProgress&) = delete;
+  QuietProgress& operator=(const QuietProgress&) = delete;
+};
+bool progress_quiet();
+
 // The line both progress kinds show: rewritten in place (Kind::Line) or printed as a heartbeat.
 class StatusLine {
  public:
@@ -75,13 +86,15 @@ class RecentRate {
 
 class Progress {
  public:
-  Progress(std::string label, double end_time);
+  // ends_at_rest: a run that may stop before end_time, once at rest (an impact): its time left is
+  // an upper bound, shown as "ETA <= ... (earlier once at rest)".
+  Progress(std::string label, double end_time, bool ends_at_rest = false);
   void update(double time, long steps);
   void finish();  // ends the line (if anything was printed)
   // The line update() prints, for the given state (exposed for tests); `left`, the run time left
   // (RecentRate), or < 0 for the average rate since the start.
   static std::string line(const std::string& label, double time, double end_time, long steps,
-                          double seconds, double left = -1.0);
+                          double seconds, double left = -1.0, bool ends_at_rest = false);
   // The estimate line, or "" when the run is not long (exposed for tests).
   static std::string estimate(const std::string& label, double time, double end_time,
                               double seconds);
@@ -90,6 +103,7 @@ class Progress {
  private:
   std::string label_;
   double end_time_;
+  bool ends_at_rest_ = false;
   bool estimated_ = false;
   StatusLine status_;
   RecentRate rate_;

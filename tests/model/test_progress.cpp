@@ -15,6 +15,11 @@ TEST(Progress, LineShowsTheFractionRateAndTimeLeft) {
   // A quarter of 2 s simulated in 10 s with 500 steps: 50 steps/s, 30 s left.
   const std::string line = lsi::Progress::line("mpm x", 0.5, 2.0, 500, 10.0);
   EXPECT_EQ(line, "mpm x:  25 % of 2 s simulated, 50 steps/s, 10 s elapsed, ETA 30 s");
+  // An impact run stops once at rest, usually well before its end time: the time left to the end
+  // time is an upper bound, and the line says so.
+  EXPECT_EQ(lsi::Progress::line("mpm x", 0.5, 2.0, 500, 10.0, -1.0, true),
+            "mpm x:  25 % of 2 s simulated, 50 steps/s, 10 s elapsed, ETA <= 30 s (earlier once "
+            "at rest)");
 }
 
 // A run whose pace halves at 30 % of the work (100 s of simulated time; 1 s per wall second, then

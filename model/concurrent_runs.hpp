@@ -1,0 +1,32 @@
+// Independent runs of one campaign side by side: the MPM samples of a sweep, the cases of a
+// calibration, the runs of an accuracy study. A small scene keeps two threads only partly busy
+// (each step is a few parallel regions over few points), while two scenes, one per thread, keep
+// both busy: the campaign's throughput, not one run's speed, is what such work needs.
+//
+// With Kokkos' OpenMP backend (Kokkos 3) the threads are split into partitions of one thread
+// each (Kokkos::OpenMP::partition_master, nested OpenMP); each partition takes the next task
+// until none is left. Elsewhere (Serial, CUDA, Kokkos 4, one thread, one task) the tasks run one
+// after the other with every thread. A run's numbers depend on its thread count by round-off only
+// (the order of its sums), not on which tasks share the machine.
+#pragma once
+#include <cstddef>
+#include <functional>
+
+namespace lsi {
+
+// How many runs of a campaign of `tasks` would run at once: at most runs_at_once (0: as many as
+// the backend has threads), at most tasks, 1 where partitions are not available.
+int concurrent_runs(std::size_t tasks, int runs_at_once = 0);
+
+// Calls task(k) for k = 0 .. tasks - 1, concurrent_runs(tasks, runs_at_once) at a time. Every
+// task runs even when another throws; then the first exception (by task index) is rethrown.
+// While tasks share the machine, MPM progress lines are off (model/progress.hpp).
+void run_concurrently(std::size_t tasks, const std::function<void(std::size_t)>& task,
+                      int runs_at_once = 0);
+
+// The largest number of runs at once any campaign may use, set from the command line
+// (--runs-at-once; 0: as many as threads). 1 runs every campaign one run after the other.
+void set_runs_at_once(int runs);
+int runs_at_once();
+
+}  // namespace lsi
