@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "io/compressed_chunks.hpp"
 #include "io/hdf5_io.hpp"
 #include "io/provenance.hpp"
 #include "model/result_scalars.hpp"
@@ -75,9 +76,14 @@ Handle write_array(hid_t file, const std::string& name, hid_t file_type, hid_t m
                              "cannot create a dataset-creation property list");
   Handle dset(H5Dcreate2(file, name.c_str(), file_type, space, lcpl, dcpl, H5P_DEFAULT), H5Dclose,
               "cannot create dataset '" + name + "'");
-  if (!data.empty())
-    check(H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
-          "cannot write dataset '" + name + "'");
+  if (data.empty()) return dset;
+  // Compressed tables: their chunks compressed on several threads (the same bytes in the file).
+  const bool same_layout = H5Tequal(file_type, mem_type) > 0;
+  if (storage == SweepStorage::Compressed && same_layout &&
+      write_compressed_chunks(dset, dcpl, data.data(), dims[0], dims[1], H5Tget_size(file_type)))
+    return dset;
+  check(H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
+        "cannot write dataset '" + name + "'");
   return dset;
 }
 

@@ -39,12 +39,20 @@ struct ClosedFormOutputs {
 // kSamplesPerBlock consecutive samples, the loop over a block marked free of dependencies between
 // samples so that GCC evaluates the models for a vector register of samples at once (the models
 // are written without branches or library calls for that: barrier_sliding.hpp, sliding_block.hpp,
-// sincos_first_quadrant.hpp; and the build passes -fno-math-errno). The last, partial block runs
-// one sample at a time. 64: with 8 (one AVX-512 register) GCC 12 unrolled the loop of the OpenMP
+// sincos_first_quadrant.hpp, pow_nonnegative.hpp; and the build passes -fno-math-errno). The last,
+// partial block runs one sample at a time. 64: with 8 (one AVX-512 register) GCC 12 unrolled the loop of the OpenMP
 // instantiation and left it scalar, 7x slower (docs/notes/performance.md, "Closed-form models").
 // `#pragma omp simd` is not used: GCC turns the models' local structs into per-lane arrays before
 // inlining, and then does not vectorise.
 constexpr int kSamplesPerBlock = 64;
+
+// The body of a block is inlined whole (GCC's `flatten`): the vectoriser needs the model's code in
+// the loop, and GCC's inliner stops at a body the size of the empirical model's.
+#if defined(__GNUC__) && !defined(__CUDACC__)
+#define LSI_FLATTEN __attribute__((flatten))
+#else
+#define LSI_FLATTEN
+#endif
 
 template <class ExecSpace, class Body>
 void for_each_sample(const char* name, const ExecSpace& space, int n, const Body& body) {
@@ -55,7 +63,7 @@ void for_each_sample(const char* name, const ExecSpace& space, int n, const Body
   } else {
     const int blocks = (n + kSamplesPerBlock - 1) / kSamplesPerBlock;
     Kokkos::parallel_for(name, Kokkos::RangePolicy<ExecSpace>(space, 0, blocks),
-                         [=](const int block) {
+                         [=](const int block) LSI_FLATTEN {
                            const int begin = block * kSamplesPerBlock;
                            if (begin + kSamplesPerBlock <= n) {
 #if defined(__clang__)

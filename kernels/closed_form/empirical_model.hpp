@@ -17,10 +17,15 @@
 // The pulse rises linearly to F_peak at T1 and decays linearly to F_peak,stat at T2 (this is the
 // pulse whose impulse eq. 6 equates to m1 v_n); the printed eq. 8 is not its integral and is
 // discontinuous at T1. Derivations and deviations: docs/theory/models.md, "Empirical model".
+// No library calls (sin, cos and pow without branches: kernels/common/), so that the batched
+// models vectorise (kernels/closed_form/batch.hpp); the face angle is in (0, pi/2], as scenes and
+// studies keep it.
 #pragma once
 #include "kernels/closed_form/force_pulse.hpp"
 #include "kernels/common/constants.hpp"
 #include "kernels/common/math.hpp"
+#include "kernels/common/pow_nonnegative.hpp"
+#include "kernels/common/sincos_first_quadrant.hpp"
 
 namespace lsi {
 
@@ -58,11 +63,12 @@ KOKKOS_INLINE_FUNCTION EmpiricalImpact empirical_impact(double thickness, double
                                                         double face_angle_rad,
                                                         const EmpiricalCoefficients& c) {
   EmpiricalImpact r;
-  r.normal_velocity = velocity * math::sin(face_angle_rad);
-  r.tangential_velocity = velocity * math::cos(face_angle_rad);
+  const math::SinCos face = math::sincos_first_quadrant(face_angle_rad);
+  r.normal_velocity = velocity * face.sin;
+  r.tangential_velocity = velocity * face.cos;
   r.landslide_mass = landslide_mass;
   r.froude = r.normal_velocity / math::sqrt(gravity * thickness);                          // eq. 1
-  r.alpha = c.a1 * math::pow(r.froude, c.a2);                                              // eq. 2
+  r.alpha = c.a1 * math::pow_nonnegative(r.froude, c.a2);                                  // eq. 2
   r.peak_dynamic = r.alpha * density * r.normal_velocity * r.normal_velocity * thickness;  // eq. 4
   r.peak_static = 0.5 * c.kappa * density * gravity * thickness * thickness;               // eq. 5
   const double peak = r.peak_dynamic + r.peak_static;                                      // eq. 3
