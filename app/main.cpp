@@ -179,9 +179,9 @@ int main(int argc, char** argv) {
   int runs_at_once = 0;
   app.add_option(
          "--runs-at-once", runs_at_once,
-         "MPM runs of one campaign (the cases lsi calibrate runs) that run side by side, one "
-         "thread each: 0 (default) as many as threads, 1 one after the other with every "
-         "thread")
+         "MPM runs of one campaign (the cases lsi calibrate runs, an MPM sweep's samples) that "
+         "run side by side, one thread each: 0 (default) as many as threads, 1 one after the "
+         "other with every thread")
       ->check(CLI::Range(0, 4096));
   app.fallthrough();  // --progress and --runs-at-once also after the subcommand
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "model/concurrent_runs.hpp"
 #include "model/mpm_impact.hpp"
 #include "model/mpm_runner.hpp"
 #include "model/sweep_statistics.hpp"
@@ -40,6 +41,10 @@ json mpm_at_quantiles(const Study& study, const SweepTable& t) {
   if (values.empty()) return out;
   std::vector<double> sorted = values;
   std::sort(sorted.begin(), sorted.end());
+  // The samples nearest each quantile, then their MPM runs side by side
+  // (model/concurrent_runs.hpp), each into its own entry.
+  std::vector<std::vector<double>> xs;
+  std::vector<std::size_t> rows;
   for (double p : q.quantiles) {
     const double target = sweeps::quantile_type7(sorted, p);
     std::size_t best = 0;
@@ -62,10 +67,17 @@ json mpm_at_quantiles(const Study& study, const SweepTable& t) {
       if (t.output_columns[c].rfind("mpm/", 0) != 0)
         closed[t.output_columns[c]] = json_number(t.outputs[c][row]);
     e["closed_form"] = closed;
+    out.push_back(e);
+    xs.push_back(std::move(x));
+    rows.push_back(row);
+  }
+  run_concurrently(xs.size(), [&](std::size_t k) {
+    json& e = out[k];
+    const std::size_t row = rows[k];
     const auto t0 = std::chrono::steady_clock::now();
     try {
       const MpmOutcome o =
-          run_mpm_case(impact_case(parse_scene(sample_scene_document(study, x.data()))));
+          run_mpm_case(impact_case(parse_scene(sample_scene_document(study, xs[k].data()))));
       e["mpm_status"] = o.status();
       e["mpm_end_state"] = end_state_token(o.result.end_state);  // at_rest, or how it was cut short
       json mpm = json::object(), errors = json::object();
@@ -88,8 +100,7 @@ json mpm_at_quantiles(const Study& study, const SweepTable& t) {
       e["mpm_status"] = std::string("failed: ") + ex.what();
     }
     e["mpm_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    out.push_back(e);
-  }
+  });
   return out;
 }
 

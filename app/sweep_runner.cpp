@@ -16,6 +16,7 @@
 #include <optional>
 
 #include "io/json_fields.hpp"
+#include "model/concurrent_runs.hpp"
 #include "model/mpm_impact.hpp"
 #include "io/text_file.hpp"
 #include "model/mpm_runner.hpp"
@@ -110,19 +111,31 @@ class ChunkEvaluator {
     bool any_invalid = false;
     for (std::uint64_t i = 0; i < count && !any_invalid; ++i) any_invalid = bad(i) >= 0;
     if (!any_invalid && !mpm) return t;  // the common case: nothing more per sample
+    // The MPM samples run side by side (model/concurrent_runs.hpp), each into its own record;
+    // the table takes them in sample order.
+    std::vector<std::uint64_t> to_run;
+    if (mpm)
+      for (std::uint64_t i = 0; i < count; ++i)
+        if (bad(i) < 0) to_run.push_back(i);
+    std::vector<MpmSample> runs(to_run.size());
+    run_concurrently(to_run.size(), [&](std::size_t r) {
+      std::vector<double> xr(dims);
+      for (int d = 0; d < dims; ++d) xr[d] = in(to_run[r], d);
+      runs[r] = run_mpm_sample(t.index[to_run[r]], xr.data());
+    });
     std::vector<double> x(dims);
+    std::size_t next_run = 0;
     for (std::uint64_t i = 0; i < count; ++i) {
-      if (bad(i) < 0 && !mpm) continue;
-      for (int d = 0; d < dims; ++d) x[d] = in(i, d);
-      if (bad(i) >= 0) {
-        std::string reason = invalid_sample_reason(study_, x.data());
-        if (reason.empty())  // the kernel's range check and the scene parser disagree: a bug
-          reason = std::string("rejected by the sweep's range check at ") +
-                   sweeps::scene_field_pointer[bad(i)] + " but accepted by the scene parser";
-        fail_sample(t, i, SampleStatus::invalid_input, reason);
-      } else {
-        run_mpm_sample(t, i, x.data());
+      if (bad(i) < 0) {
+        if (mpm) take_mpm_sample(t, i, runs[next_run++]);
+        continue;
       }
+      for (int d = 0; d < dims; ++d) x[d] = in(i, d);
+      std::string reason = invalid_sample_reason(study_, x.data());
+      if (reason.empty())  // the kernel's range check and the scene parser disagree: a bug
+        reason = std::string("rejected by the sweep's range check at ") +
+                 sweeps::scene_field_pointer[bad(i)] + " but accepted by the scene parser";
+      fail_sample(t, i, SampleStatus::invalid_input, reason);
     }
     return t;
   }
@@ -139,35 +152,55 @@ class ChunkEvaluator {
     t.failure_reason.push_back(why);
   }
 
-  void run_mpm_sample(SweepTable& t, std::uint64_t i, const double* x) {
+  // One MPM sample's run: its four summaries, and how it ended where it did not end well.
+  struct MpmSample {
+    double summaries[sweeps::closed_form_output_count] = {NAN, NAN, NAN, NAN};
+    SampleStatus status = SampleStatus::ok;
+    std::string reason;
+    double seconds = 0.0;
+  };
+
+  // Runs sample `index` (its inputs x); safe to call for several samples at once.
+  MpmSample run_mpm_sample(std::uint64_t index, const double* x) const {
+    MpmSample r;
     const auto t0 = Clock::now();
     try {
       const Scene scene = parse_scene(sample_scene_document(study_, x));
       MpmCase c = impact_case(scene);
       // The run's progress line names the sample: "mpm <scene> (sample k of n)".
-      c.name += " (sample " + std::to_string(t.index[i] + 1) + " of " +
-                std::to_string(study_.samples) + ")";
+      c.name +=
+          " (sample " + std::to_string(index + 1) + " of " + std::to_string(study_.samples) + ")";
       const MpmOutcome o = run_mpm_case(c);
       const double v[sweeps::closed_form_output_count] = {o.result.peak_force, o.result.rise_time,
                                                           o.result.impact_duration,
                                                           o.result.final_displacement};
-      for (std::size_t c = 0; c < source_.size(); ++c)
-        if (source_[c].method == "mpm") t.outputs[c][i] = v[source_[c].output];
+      std::copy(v, v + sweeps::closed_form_output_count, r.summaries);
       if (!o.finished()) {
-        fail_sample(t, i, SampleStatus::unstable, "the MPM run stopped: " + o.status());
+        r.status = SampleStatus::unstable;
+        r.reason = "the MPM run stopped: " + o.status();
       } else if (!has_final_displacement(o.result.end_state)) {
-        fail_sample(t, i, SampleStatus::truncated,
-                    "the barrier was still sliding at t = " +
-                        json_fields::format_number(o.run().end_time) + " s (>= " +
-                        json_fields::format_number(o.result.scalars.displacement_at_end.value()) +
-                        " m): " + end_state_token(o.result.end_state));
+        r.status = SampleStatus::truncated;
+        r.reason =
+            "the barrier was still sliding at t = " + json_fields::format_number(o.run().end_time) +
+            " s (>= " + json_fields::format_number(o.result.scalars.displacement_at_end.value()) +
+            " m): " + end_state_token(o.result.end_state);
       }
     } catch (const InputError& e) {
-      fail_sample(t, i, SampleStatus::invalid_input, e.what());
+      r.status = SampleStatus::invalid_input;
+      r.reason = e.what();
     } catch (const std::exception& e) {
-      fail_sample(t, i, SampleStatus::failed, e.what());
+      r.status = SampleStatus::failed;
+      r.reason = e.what();
     }
-    t.wall_time[i] += static_cast<float>(seconds_since(t0));
+    r.seconds = seconds_since(t0);
+    return r;
+  }
+
+  void take_mpm_sample(SweepTable& t, std::uint64_t i, const MpmSample& r) const {
+    for (std::size_t c = 0; c < source_.size(); ++c)
+      if (source_[c].method == "mpm") t.outputs[c][i] = r.summaries[source_[c].output];
+    if (r.status != SampleStatus::ok) fail_sample(t, i, r.status, r.reason);
+    t.wall_time[i] += static_cast<float>(r.seconds);
   }
 
   const Study& study_;

@@ -443,14 +443,15 @@ TEST(SweepCli, GridDesignRunsTheFullFactorialFirstInputFastest) {
 }
 
 TEST(SweepCli, MpmSamplesRunBesideTheClosedForms) {
-  // Two coarse MPM runs (cell h/4, 1 particle per cell: about a second each).
+  // Two coarse MPM runs (cell h/4, 1 particle per cell: about a second each), in one chunk: side
+  // by side on two threads (model/concurrent_runs.hpp).
   json scene;
   std::ifstream(source_dir / "scenes/former-reference/L1-B1.json") >> scene;
   scene["methods"]["mpm"] = {
       {"cell_size_m", 0.5}, {"phases", "dry"}, {"transfer", "pic"}, {"particles_per_cell", 1}};
   const fs::path study = write_study("mpm", {{"scene", scene},
                                              {"samples", 2},
-                                             {"chunk_samples", 1},
+                                             {"chunk_samples", 2},
                                              {"correlation", nullptr},
                                              {"thresholds", nullptr},
                                              {"methods", {"analytical", "mpm"}},
@@ -473,8 +474,8 @@ TEST(SweepCli, MpmSamplesRunBesideTheClosedForms) {
     EXPECT_EQ(f.table.status[i], 0)
         << (f.table.failure_reason.empty() ? std::string("") : f.table.failure_reason[0]);
     EXPECT_GT(f.table.wall_time[i], 0.0f);
-    // The same sample run directly: the sweep must store what the MPM gives. Same code and
-    // thread count, so equal up to the order of floating-point sums: 1e-9 relative.
+    // The same sample run directly: the sweep must store what the MPM gives. Same code, so equal
+    // up to the order of floating-point sums (one thread side by side, two here): 1e-9 relative.
     const double x = f.table.inputs[0][i];
     const lsi::MpmOutcome o =
         lsi::run_mpm_case(lsi::impact_case(lsi::parse_scene(lsi::sample_scene_document(st, &x))));
