@@ -20,8 +20,12 @@
 // additions; Serial needs neither and always uses one plain buffer, so it is run once), and one
 // benchmark per kernel called directly on a column advanced 5 steps: p2g (scatter + gather),
 // grid_update, g2p alone, stress_update alone (without and with the Mohr-Coulomb return), and
-// g2p_stress_* (G2P with the stress update fused in, what Solver::step() runs). fork_join is one
-// empty parallel region: the fixed cost of each kernel launch (20-30 us on 2 threads with
+// g2p_stress_* (G2P with the stress update fused in, what Solver::step() runs). The sort of the
+// points by cell (kernels/mpm/sort_points.hpp; the solver's default interval in every step
+// benchmark): step/.../mohr_coulomb/duplicated_unsorted never sorts the column (built in cell
+// order), .../duplicated_shuffled_unsorted runs it with its points in a random order and never
+// sorts, .../duplicated_shuffled sorts the shuffled points with the default interval. fork_join
+// is one empty parallel region: the fixed cost of each kernel launch (20-30 us on 2 threads with
 // OMP_WAIT_POLICY=passive on the development machine). The kernels are timed on warm caches, one
 // at a time. Note that the stress_update_* and g2p_stress_* kernel benchmarks apply the same
 // velocity gradient hundreds of times: the stress drifts onto the yield surface, so their
@@ -40,12 +44,16 @@
 #include <benchmark/benchmark.h>
 
 #include <Kokkos_Core.hpp>
+#include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
+#include "kernels/mpm/sort_points.hpp"
 #include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 
 namespace {
@@ -98,11 +106,27 @@ void common_counters(benchmark::State& state, int count, int nodes, int threads)
   state.counters["threads"] = threads;
 }
 
-// Whole steps: time step, P2G, grid update with walls, G2P with the health check, stress update.
+// The points of a column in a random order (a fixed seed): what a long run that never sorts its
+// points (SolverSettings::sort_interval 0) comes to.
 template <class Exec>
-void bm_step(benchmark::State& state, int n, bool plastic, bool atomic, int tiles) {
+void shuffle_points(Column<Exec>& c) {
+  std::vector<int> from(c.particles.count);
+  std::iota(from.begin(), from.end(), 0);
+  std::shuffle(from.begin(), from.end(), std::mt19937(12345));
+  PointSorter<Exec> shuffle;
+  shuffle.use_order(from);
+  shuffle.apply(c.particles);
+}
+
+// Whole steps: time step, P2G, grid update with walls, G2P with the health check, stress update.
+// sort_interval: -1 the solver's default, else SolverSettings::sort_interval.
+template <class Exec>
+void bm_step(benchmark::State& state, int n, bool plastic, bool atomic, int tiles, bool shuffled,
+             int sort_interval) {
   Column<Exec> c(n, plastic, atomic);
   c.settings.scatter_tile_points = tiles;
+  if (sort_interval >= 0) c.settings.sort_interval = sort_interval;
+  if (shuffled) shuffle_points(c);
   Solver<Exec> solver(c.grid, c.particles, {c.material}, c.walls, c.settings);
   lsi::bench::step_each_iteration(state, solver);
   Exec().fence();
@@ -212,11 +236,33 @@ void register_space(Scatters scatters) {
           const std::string name = "step/" + ex + (plastic ? "/mohr_coulomb" : "/elastic") +
                                    (with_atomic ? (atomic ? "/atomic" : "/duplicated") : "") +
                                    (tiles > 0 ? "_tiles:" + std::to_string(tiles) : "") + size;
-          benchmark::RegisterBenchmark(name.c_str(), bm_step<Exec>, n, plastic, atomic, tiles)
+          benchmark::RegisterBenchmark(name.c_str(), bm_step<Exec>, n, plastic, atomic, tiles,
+                                       false, -1)
               ->Iterations(steps)
               ->UseRealTime()
               ->Unit(benchmark::kMillisecond);
         }
+      }
+    }
+    // The sort of the points by cell (kernels/mpm/sort_points.hpp), Mohr-Coulomb on the host
+    // with duplicated scatter buffers: the column as built (in cell order) never sorted
+    // ("unsorted"), and the column in a random order, never sorted or sorted every
+    // sort_interval steps (the default; the first sort before the first step).
+    if (scatters != Scatters::AtomicOnly) {
+      const std::string base = "step/" + ex + "/mohr_coulomb/" + (with_atomic ? "duplicated_" : "");
+      struct V {
+        std::string name;
+        bool shuffled;
+        int sort_interval;
+      };
+      for (const V& v :
+           {V{"unsorted", false, 0}, V{"shuffled_unsorted", true, 0}, V{"shuffled", true, -1}}) {
+        const std::string name = base + v.name + size;
+        benchmark::RegisterBenchmark(name.c_str(), bm_step<Exec>, n, true, false, -1, v.shuffled,
+                                     v.sort_interval)
+            ->Iterations(steps)
+            ->UseRealTime()
+            ->Unit(benchmark::kMillisecond);
       }
     }
     struct K {

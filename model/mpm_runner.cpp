@@ -41,6 +41,7 @@ MpmSnapshot take_snapshot(const mpm::Particles<Mem>& p, double time) {
   const auto vol = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.volume);
   const auto vol0 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.volume0);
   const auto mat = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.material);
+  const auto ids = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), p.id);
   s.id.resize(n);
   s.material.resize(n);
   s.mass.resize(n);
@@ -51,19 +52,22 @@ MpmSnapshot take_snapshot(const mpm::Particles<Mem>& p, double time) {
   s.stress.resize(4 * n);
   s.deviatoric_strain.resize(n);
   s.plastic_work.resize(n);
-  for (size_t i = 0; i < n; ++i) {  // element access: correct whatever the views' layout
+  // The solvers reorder their points (kernels/mpm/sort_points.hpp): point q is written at its id,
+  // so that the snapshots list the points in the order they were created.
+  for (size_t q = 0; q < n; ++q) {  // element access: correct whatever the views' layout
+    const size_t i = static_cast<size_t>(ids(q));
     for (size_t k = 0; k < 2; ++k) {
-      s.position[2 * i + k] = pos(i, k);
-      s.velocity[2 * i + k] = vel(i, k);
+      s.position[2 * i + k] = pos(q, k);
+      s.velocity[2 * i + k] = vel(q, k);
     }
-    for (size_t k = 0; k < 4; ++k) s.stress[4 * i + k] = sig(i, k);
-    s.deviatoric_strain[i] = eps(i);
-    s.plastic_work[i] = wp(i);
-    s.id[i] = static_cast<std::int64_t>(i);  // the solvers never reorder their points
-    s.material[i] = mat(i);
-    s.mass[i] = mass(i);
-    s.volume[i] = vol(i);
-    s.volumetric_strain[i] = vol(i) / vol0(i) - 1.0;
+    for (size_t k = 0; k < 4; ++k) s.stress[4 * i + k] = sig(q, k);
+    s.deviatoric_strain[i] = eps(q);
+    s.plastic_work[i] = wp(q);
+    s.id[i] = static_cast<std::int64_t>(i);
+    s.material[i] = mat(q);
+    s.mass[i] = mass(q);
+    s.volume[i] = vol(q);
+    s.volumetric_strain[i] = vol(q) / vol0(q) - 1.0;
   }
   return s;
 }
@@ -231,7 +235,10 @@ MpmSnapshot snapshot_of(const DrySolver& sv, const DryOutputs&) {
 MpmSnapshot snapshot_of(const SaturatedSolver& sv, const SaturatedOutputs& o) {
   MpmSnapshot s = take_snapshot(sv.particles().solid, sv.time());
   const auto p = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), o.pressure.of(sv));
-  s.pore_pressure.assign(p.data(), p.data() + p.extent(0));
+  const auto ids =
+      Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), sv.particles().solid.id);
+  s.pore_pressure.resize(p.extent(0));
+  for (size_t q = 0; q < p.extent(0); ++q) s.pore_pressure[static_cast<size_t>(ids(q))] = p(q);
   return s;
 }
 

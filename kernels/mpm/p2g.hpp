@@ -21,6 +21,7 @@
 #pragma once
 #include <Kokkos_Core.hpp>
 #include <climits>
+#include <cstddef>
 #include <type_traits>
 
 #include "kernels/mpm/grid.hpp"
@@ -56,6 +57,8 @@ constexpr int kP2GFields = 5;
 // 279 of the two-phase one (an H100 multiprocessor has 228 KiB; its registers, not this, bound
 // the teams it runs at once).
 constexpr int kTileBytes = 24 * 1024;
+// Points per block of the host's blocked scatter (p2g_block).
+constexpr int kP2GBlock = 32;
 
 // Where a scatter adds node (i, j): at kFields ((i - i0) + stride (j - j0)) doubles from its
 // buffer. The grid-wide buffer is {0, 0, nx}; a tile starts at its rectangle's first node.
@@ -231,10 +234,13 @@ void scatter_tiles(S& scatter, const PositionView& position, const int n_points,
 // tile.offset(i, j)) and returns the first node (bi, bj) of its 3 x 3 stencil; every node it
 // writes must lie in the stencil. `position`: the points' positions (the stencil of the atomic
 // path's rectangle). Returns the rectangle of touched nodes, not clipped to the grid.
-template <class S, class PositionView, class PointFn>
+// block_fn(q0, q1, buf, i0, i1, j0, j1), where given (the host's plain additions only): adds
+// points [q0, q1) into `buf` (node (i, j) at kFields (i + nx j)) and widens the rectangle
+// i0..i1 x j0..j1 by their stencils; point_fn one point after the other otherwise.
+template <class S, class PositionView, class PointFn, class BlockFn>
 NodeBox scatter_points(S& scatter, const PositionView& position, const int n_points,
                        const double ox, const double oy, const double inv_dx, const int nx,
-                       const PointFn& point_fn) {
+                       const PointFn& point_fn, const BlockFn& block_fn) {
   using ExecSpace = typename S::Exec;
   const int nc = scatter.copies_count;
   const auto copies = scatter.copies;
@@ -276,13 +282,18 @@ NodeBox scatter_points(S& scatter, const PositionView& position, const int n_poi
           const int end = static_cast<int>(static_cast<long>(n_points) * (c + 1) / nc);
           double* buf = &copies(c, 0);
           int a0 = INT_MAX, a1 = INT_MIN, b0 = INT_MAX, b1 = INT_MIN;
-          for (int q = begin; q < end; ++q) {
-            int bi, bj;
-            point_fn(q, buf, NodeTile{0, 0, nx}, bi, bj);
-            a0 = bi < a0 ? bi : a0;
-            a1 = bi + 2 > a1 ? bi + 2 : a1;
-            b0 = bj < b0 ? bj : b0;
-            b1 = bj + 2 > b1 ? bj + 2 : b1;
+          if constexpr (!std::is_same_v<BlockFn, std::nullptr_t>) {
+            for (int q = begin; q < end; q += kP2GBlock)
+              block_fn(q, q + kP2GBlock < end ? q + kP2GBlock : end, buf, a0, a1, b0, b1);
+          } else {
+            for (int q = begin; q < end; ++q) {
+              int bi, bj;
+              point_fn(q, buf, NodeTile{0, 0, nx}, bi, bj);
+              a0 = bi < a0 ? bi : a0;
+              a1 = bi + 2 > a1 ? bi + 2 : a1;
+              b0 = bj < b0 ? bj : b0;
+              b1 = bj + 2 > b1 ? bj + 2 : b1;
+            }
           }
           boxes(c, 0) = a0;
           boxes(c, 1) = a1;
@@ -298,6 +309,13 @@ NodeBox scatter_points(S& scatter, const PositionView& position, const int n_poi
     }
   }
   return touched;
+}
+
+template <class S, class PositionView, class PointFn>
+NodeBox scatter_points(S& scatter, const PositionView& position, const int n_points,
+                       const double ox, const double oy, const double inv_dx, const int nx,
+                       const PointFn& point_fn) {
+  return scatter_points(scatter, position, n_points, ox, oy, inv_dx, nx, point_fn, nullptr);
 }
 
 // Pass 2 of a P2G: for the touched nodes (clipped to the grid `whole`) and those of
@@ -401,6 +419,76 @@ KOKKOS_FORCEINLINE_FUNCTION void p2g_point(const Particles<MemorySpace>& p, cons
   bj = sy.base;
 }
 
+// The host's scatter of points [q0, q1) (plain additions into one buffer): the 3 x 3 x 5
+// contributions of every point in one loop, which has no branches and no dependence between
+// the points, so that the compiler vectorises it over the points (component arrays,
+// particles.hpp); then the additions point by point (neighbouring points add into the same
+// nodes). The same sums as p2g_point. Widens i0..i1 x j0..j1 by the stencils.
+KOKKOS_FORCEINLINE_FUNCTION void p2g_block(const PointArrays a, const int q0, const int q1,
+                                           double* const buf, const int nx, const double ox,
+                                           const double oy, const double dx, const double inv_dx,
+                                           const double gx, const double gy, int& i0, int& i1,
+                                           int& j0, int& j1) {
+  constexpr int F = kP2GFields, B = kP2GBlock;
+  double add[3][3 * F][B];
+  int first_i[B], first_j[B];
+#pragma GCC ivdep
+  for (int q = q0; q < q1; ++q) {
+    const int k = q - q0;
+    const double xp = a.position(q, 0) - ox, yp = a.position(q, 1) - oy;
+    const Stencil1D sx = quadratic_bspline(xp, inv_dx), sy = quadratic_bspline(yp, inv_dx);
+    const double m = a.mass(q), V = a.volume(q);
+    const double mv[2] = {m * a.velocity(q, 0), m * a.velocity(q, 1)};
+    const double mC[2][2] = {{m * a.affine(q, 0, 0), m * a.affine(q, 0, 1)},
+                             {m * a.affine(q, 1, 0), m * a.affine(q, 1, 1)}};
+    const double Vs[3] = {V * a.stress(q, 0), V * a.stress(q, 1), V * a.stress(q, 2)};
+    double wxd[3];
+    offset_weights(sx, xp, dx, wxd);
+#pragma GCC unroll 3
+    for (int b = 0; b < 3; ++b) {
+      const double wy = sy.w[b], dwy = sy.dw[b], dyb = (sy.base + b) * dx - yp;
+      double P[2], Q[2];
+      apic_row_factors(wy, dyb, mv, mC, P, Q);
+      const double F1[2] = {-Vs[0] * wy, -Vs[2] * wy};
+      const double F0[2] = {-Vs[2] * dwy + wy * m * gx, -Vs[1] * dwy + wy * m * gy};
+#pragma GCC unroll 3
+      for (int c = 0; c < 3; ++c) {
+        add[b][F * c + 0][k] = sx.w[c] * wy * m;
+        add[b][F * c + 1][k] = sx.w[c] * P[0] + wxd[c] * Q[0];
+        add[b][F * c + 2][k] = sx.w[c] * P[1] + wxd[c] * Q[1];
+        add[b][F * c + 3][k] = sx.dw[c] * F1[0] + sx.w[c] * F0[0];
+        add[b][F * c + 4][k] = sx.dw[c] * F1[1] + sx.w[c] * F0[1];
+      }
+    }
+    first_i[k] = sx.base;
+    first_j[k] = sy.base;
+  }
+  for (int q = q0; q < q1; ++q) {
+    const int k = q - q0;
+    const int bi = first_i[k], bj = first_j[k], n = bi + nx * bj;
+    i0 = bi < i0 ? bi : i0;
+    i1 = bi + 2 > i1 ? bi + 2 : i1;
+    j0 = bj < j0 ? bj : j0;
+    j1 = bj + 2 > j1 ? bj + 2 : j1;
+    for (int b = 0; b < 3; ++b) {
+      double* row = buf + F * (n + nx * b);
+      for (int v = 0; v < 3 * F; ++v) row[v] += add[b][v][k];
+    }
+  }
+}
+
+// p2g_block as the block function of scatter_points.
+template <class MemorySpace>
+struct P2GBlock {
+  Particles<MemorySpace> p;
+  int nx;
+  double ox, oy, dx, inv_dx, gx, gy;
+  KOKKOS_INLINE_FUNCTION void operator()(const int q0, const int q1, double* buf, int& i0, int& i1,
+                                         int& j0, int& j1) const {
+    p2g_block(PointArrays(p), q0, q1, buf, nx, ox, oy, dx, inv_dx, gx, gy, i0, i1, j0, j1);
+  }
+};
+
 }  // namespace detail
 
 template <class ExecSpace, bool Atomic, class MemorySpace>
@@ -410,11 +498,16 @@ void p2g(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g,
   const double ox = g.origin[0], oy = g.origin[1], dx = g.dx, inv_dx = 1.0 / g.dx;
   const int nx = g.nx;
   const double gx = gravity[0], gy = gravity[1];
+  // Host buffers with plain additions: the blocked scatter (p2g_block).
+  using Block = std::conditional_t<S::atomic, std::nullptr_t, detail::P2GBlock<MemorySpace>>;
+  Block block{};
+  if constexpr (!S::atomic) block = {p, nx, ox, oy, dx, inv_dx, gx, gy};
   const NodeBox touched = detail::scatter_points(
       scatter, p.position, p.count, ox, oy, inv_dx, nx,
       KOKKOS_LAMBDA(const int q, double* buf, const detail::NodeTile& tile, int& bi, int& bj) {
         detail::p2g_point<S::atomic>(p, q, buf, tile, ox, oy, dx, inv_dx, gx, gy, bi, bj);
-      });
+      },
+      block);
   const auto mass = g.mass;
   const auto momentum = g.momentum;
   const auto force = g.force;

@@ -27,6 +27,7 @@
 #include "kernels/mpm/scatter_choice.hpp"
 #include "kernels/mpm/solver_base.hpp"
 #include "kernels/mpm/solver_settings.hpp"
+#include "kernels/mpm/sort_points.hpp"
 #include "kernels/mpm/status.hpp"
 #include "kernels/mpm/time_step.hpp"
 #include "kernels/mpm/transfer_dissipation.hpp"
@@ -73,6 +74,7 @@ class Solver : public SolverBase<Solver<ExecSpace>, ExecSpace, Settings> {
     if (!this->take_time_step(stable_time_step(grid_.dx, wave_speed_, expansion_, this->max_speed_,
                                                s.courant, s.max_time_step)))
       return this->status_;
+    if (this->sort_due()) sort_points();
     this->observe(StepStage::BeforeP2G);
     scatter_.visit([&](auto& scatter) { p2g(particles_, grid_, scatter, s.gravity); });
     this->observe(StepStage::AfterP2G);
@@ -109,6 +111,12 @@ class Solver : public SolverBase<Solver<ExecSpace>, ExecSpace, Settings> {
   const Grid<Mem>& grid() const { return grid_; }
 
  private:
+  // The points in cell order (sort_points.hpp).
+  void sort_points() {
+    if (sorter_.order(particles_.position, particles_.count, grid_.origin[0], grid_.origin[1],
+                      grid_.dx, grid_.nx, grid_.ny))
+      sorter_.apply(particles_);
+  }
   // The grid update with the walls (grid_update.hpp).
   void update_grid() {
     this->wall_force_[0] = this->wall_force_[1] = 0.0;
@@ -159,6 +167,7 @@ class Solver : public SolverBase<Solver<ExecSpace>, ExecSpace, Settings> {
   Particles<Mem> particles_;
   Boundaries walls_;
   ScatterChoice<ExecSpace> scatter_;
+  PointSorter<ExecSpace> sorter_;
   double expansion_ = 1.0;  // largest V / V0 of the last G2P (time_step.hpp)
   double wave_speed_ = 0.0;
   double small_mass_ = 0.0;

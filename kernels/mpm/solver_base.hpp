@@ -99,6 +99,12 @@ class SolverBase {
     return wave_speed;
   }
 
+  // Whether this step begins with a sort of the points (SolverSettings::sort_interval): the
+  // first step and every sort_interval-th after it.
+  bool sort_due() const {
+    return settings_.sort_interval > 0 && steps_ % settings_.sort_interval == 0;
+  }
+
   // Takes dt as the step's time step; false where it has collapsed (the status says so).
   bool take_time_step(double dt) {
     dt_ = dt;

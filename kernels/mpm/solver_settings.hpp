@@ -20,6 +20,11 @@ struct SolverSettings {
   // device from 50 000 points on, none on the host), 0 none, n > 0 tiles of n points at any
   // size. A knob of the benchmarks and tests.
   int scatter_tile_points = -1;
+  // Before the first step and every this many steps the points are sorted by grid cell
+  // (sort_points.hpp), so that neighbours in space stay neighbours in memory as the flow mixes
+  // them; 0: never. A sort of points that are in order already costs one pass over their
+  // positions and leaves them as they are.
+  int sort_interval = 50;
   double energy_growth_limit = 0.5;  // relative growth of the total energy deemed unstable
   // Account the kinetic energy lost in the grid transfers (transfer_dissipation.hpp): a few
   // reductions a step, off by default.

@@ -29,36 +29,69 @@ KOKKOS_FORCEINLINE_FUNCTION bool clearly_elastic(const PreparedMaterial& pm, con
   const double c = pm.material.cohesion, sphi = pm.sin_phi, cphi = pm.cos_phi;
   const double margin = 1e-9 * (math::fabs(s1) + math::fabs(s3) + c + 1e-300);
   const double f = (s1 - s3) + (s1 + s3) * sphi - 2.0 * c * cphi;
-  if (!(f < -margin) || !(s1 < pm.material.tension_cutoff - margin)) return false;
   // Below the apex c cot(phi) too (without the division; the margin covers its round-off).
-  return !(sphi > 0.0) || s1 * sphi < c * cphi - 2.0 * margin * sphi;
+  // `&` and `|`, not `&&` and `||`: no branches, so that a loop over points vectorises (g2p.hpp).
+  return (f < -margin) & (s1 < pm.material.tension_cutoff - margin) &
+         (!(sphi > 0.0) | (s1 * sphi < c * cphi - 2.0 * margin * sphi));
 }
 
-// The stress, volume, plastic work and equivalent shear strain of point q, from the velocity
-// gradient L of the step.
-template <bool WithPlasticity, class MemorySpace>
-KOKKOS_FORCEINLINE_FUNCTION void update_point_stress(const Particles<MemorySpace>& p, const int q,
-                                                     const PreparedMaterial& m, const double Lxx,
-                                                     const double Lxy, const double Lyx,
-                                                     const double Lyy, const double dt) {
+// The stress update of point q in three parts, so that a loop over many points can run the
+// first and the last vectorised and only the return mapping point by point (g2p.hpp):
+//  trial_point_stress:  the trial stress s (Jaumann rotation and elastic increment of the step,
+//                       from the velocity gradient L); returns whether the point needs the
+//                       return mapping (a Mohr-Coulomb material and not clearly elastic, or a
+//                       rate-dependent one);
+//  return_point_stress: the return mapping of s and the plastic work it dissipates
+//                       (return_mapping_work);
+//  finish_point_stress: stores s, the volume and the equivalent shear strain.
+// update_point_stress runs the three in turn.
+template <bool WithPlasticity, class Points>
+KOKKOS_FORCEINLINE_FUNCTION bool trial_point_stress(const Points& p, const int q,
+                                                    const PreparedMaterial& m, const double Lxx,
+                                                    const double Lxy, const double Lyx,
+                                                    const double Lyy, const double dt,
+                                                    double s[4]) {
   const double de[3] = {Lxx * dt, Lyy * dt, 0.5 * (Lxy + Lyx) * dt};
-  double s[4] = {p.stress(q, 0), p.stress(q, 1), p.stress(q, 2), p.stress(q, 3)};
+  for (int k = 0; k < 4; ++k) s[k] = p.stress(q, k);
   jaumann_rotate(s, 0.5 * (Lxy - Lyx), dt);
   elastic_increment(m, de, s);
-  if constexpr (WithPlasticity) {
-    if (m.rate_dependent) {
-      // mu(I): the friction angle of this point and step (constitutive/inertial_friction.hpp).
-      const PreparedMaterial mi =
-          at_inertial_state(m, shear_rate(Lxx, Lyy, 0.5 * (Lxy + Lyx)), -0.5 * (s[0] + s[1]));
-      if (!clearly_elastic(mi, s)) p.plastic_work(q) += p.volume(q) * mohr_coulomb_return(mi, s);
-    } else if (m.material.model == Material::Model::MohrCoulomb && !clearly_elastic(m, s)) {
-      p.plastic_work(q) += p.volume(q) * mohr_coulomb_return(m, s);
-    }
+  if constexpr (WithPlasticity)
+    return m.rate_dependent |
+           ((m.material.model == Material::Model::MohrCoulomb) & !clearly_elastic(m, s));
+  return false;
+}
+
+// The return mapping of the trial stress s; returns the plastic work density (J/m^3).
+KOKKOS_INLINE_FUNCTION double return_mapping_work(const PreparedMaterial& m, const double Lxx,
+                                                  const double Lxy, const double Lyx,
+                                                  const double Lyy, double s[4]) {
+  if (m.rate_dependent) {
+    // mu(I): the friction angle of this point and step (constitutive/inertial_friction.hpp).
+    const PreparedMaterial mi =
+        at_inertial_state(m, shear_rate(Lxx, Lyy, 0.5 * (Lxy + Lyx)), -0.5 * (s[0] + s[1]));
+    return clearly_elastic(mi, s) ? 0.0 : mohr_coulomb_return(mi, s);
   }
+  return mohr_coulomb_return(m, s);
+}
+
+template <class Points>
+KOKKOS_INLINE_FUNCTION void return_point_stress(const Points& p, const int q,
+                                                const PreparedMaterial& m, const double Lxx,
+                                                const double Lxy, const double Lyx,
+                                                const double Lyy, double s[4]) {
+  p.plastic_work(q) += p.volume(q) * return_mapping_work(m, Lxx, Lxy, Lyx, Lyy, s);
+}
+
+template <bool WithPlasticity, class Points>
+KOKKOS_FORCEINLINE_FUNCTION void finish_point_stress(const Points& p, const int q,
+                                                     const PreparedMaterial& m, const double Lxx,
+                                                     const double Lxy, const double Lyx,
+                                                     const double Lyy, const double dt,
+                                                     const double s[4]) {
   for (int k = 0; k < 4; ++k) p.stress(q, k) = s[k];
   // Volume: J of the step; equivalent deviatoric strain increment (plane strain).
   const double J = (1.0 + Lxx * dt) * (1.0 + Lyy * dt) - Lxy * Lyx * dt * dt;
-  p.volume(q) *= J;
+  double V = p.volume(q) * J;
   // A disconnected point: cohesionless material with no tensile strength, at zero stress (the
   // apex return gives exact zeros) and larger than its initial volume. Its grains have lost
   // contact; its volume no longer means anything (Dunatunga & Kamrin 2015 make such a state
@@ -69,14 +102,30 @@ KOKKOS_FORCEINLINE_FUNCTION void update_point_stress(const Particles<MemorySpace
   // its initial density when it lands. Mass, momentum and stress are untouched; a zero stress
   // has no elastic energy, so the energy balance is untouched too.
   if constexpr (WithPlasticity) {
-    if (m.disconnects && s[0] == 0.0 && s[1] == 0.0 && s[2] == 0.0 && s[3] == 0.0 &&
-        p.volume(q) > p.volume0(q))
-      p.volume(q) = p.volume0(q);
+    const double V0 = p.volume0(q);
+    const bool reset =
+        m.disconnects & (s[0] == 0.0) & (s[1] == 0.0) & (s[2] == 0.0) & (s[3] == 0.0) & (V > V0);
+    V = reset ? V0 : V;
   }
+  p.volume(q) = V;
+  const double de[3] = {Lxx * dt, Lyy * dt, 0.5 * (Lxy + Lyx) * dt};
   const double em = (de[0] + de[1]) / 3.0;
   const double d0 = de[0] - em, d1 = de[1] - em, d2 = -em;
   p.deviatoric_strain(q) +=
       math::sqrt(2.0 / 3.0 * (d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * de[2] * de[2]));
+}
+
+// The stress, volume, plastic work and equivalent shear strain of point q, from the velocity
+// gradient L of the step. `Points`: Particles, or PointArrays (particles.hpp) on the host.
+template <bool WithPlasticity, class Points>
+KOKKOS_FORCEINLINE_FUNCTION void update_point_stress(const Points& p, const int q,
+                                                     const PreparedMaterial& m, const double Lxx,
+                                                     const double Lxy, const double Lyx,
+                                                     const double Lyy, const double dt) {
+  double s[4];
+  const bool plastic = trial_point_stress<WithPlasticity>(p, q, m, Lxx, Lxy, Lyx, Lyy, dt, s);
+  if (WithPlasticity && plastic) return_point_stress(p, q, m, Lxx, Lxy, Lyx, Lyy, s);
+  finish_point_stress<WithPlasticity>(p, q, m, Lxx, Lxy, Lyx, Lyy, dt, s);
 }
 
 template <class ExecSpace, bool WithPlasticity, class MemorySpace>

@@ -162,11 +162,19 @@ Measured impact(const Block& b, const Setup& setup) {
 
   const double t_begin = setup.window_begin * H / b.wave_speed();
   const double t_end = setup.window_end * H / b.wave_speed();
-  auto x0 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), pts.solid.position);
-  auto ms = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), pts.solid.mass);
-  auto ml = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), pts.liquid_mass);
+  // Copies (create_mirror, not a view of the points' own memory on the host): the points'
+  // initial positions and their masses, in the order of their ids.
+  auto x0 = Kokkos::create_mirror(Kokkos::HostSpace(), pts.solid.position);
+  auto ms = Kokkos::create_mirror(Kokkos::HostSpace(), pts.solid.mass);
+  auto ml = Kokkos::create_mirror(Kokkos::HostSpace(), pts.liquid_mass);
+  Kokkos::deep_copy(x0, pts.solid.position);
+  Kokkos::deep_copy(ms, pts.solid.mass);
+  Kokkos::deep_copy(ml, pts.liquid_mass);
   auto vs = Kokkos::create_mirror_view(pts.solid.velocity);
   auto vl = Kokkos::create_mirror_view(pts.liquid_velocity);
+  // The solver reorders its points (kernels/mpm/sort_points.hpp): mean_v is in the order of the
+  // points' ids, the velocities in the solver's order.
+  auto id = Kokkos::create_mirror_view(pts.solid.id);
   std::vector<double> mean_v[2];
   for (auto& v : mean_v) v.assign(pts.count, 0.0);
   Measured m;
@@ -181,10 +189,12 @@ Measured impact(const Block& b, const Setup& setup) {
     m.largest_wall_force = std::max(m.largest_wall_force, std::fabs(solver.wall_force()[0]));
     Kokkos::deep_copy(vs, pts.solid.velocity);
     Kokkos::deep_copy(vl, pts.liquid_velocity);
+    Kokkos::deep_copy(id, pts.solid.id);
     for (int q = 0; q < pts.count; ++q) {
+      const int i = id(q);
       for (int d = 0; d < 2; ++d)
-        mean_v[d][q] += dt * (ms(q) * vs(q, d) + ml(q) * vl(q, d)) / (ms(q) + ml(q));
-      m.vertical_momentum += dt * (ms(q) * vs(q, 1) + ml(q) * vl(q, 1));
+        mean_v[d][i] += dt * (ms(i) * vs(q, d) + ml(i) * vl(q, d)) / (ms(i) + ml(i));
+      m.vertical_momentum += dt * (ms(i) * vs(q, 1) + ml(i) * vl(q, 1));
     }
   }
   m.finished = true;

@@ -13,6 +13,7 @@
 
 namespace lsi::mpm::two_phase {
 
+// A field added here must also be moved by the sort (TwoPhaseSolver::sort_points).
 template <class MemorySpace>
 struct TwoPhaseParticles {
   int count = 0;

@@ -110,6 +110,7 @@ class TwoPhaseSolver : public SolverBase<TwoPhaseSolver<ExecSpace>, ExecSpace, T
                                                   this->max_speed_, s.drag == Drag::Explicit,
                                                   s.courant, s.max_time_step)))
       return this->status_;
+    if (this->sort_due()) sort_points();
     this->observe(StepStage::BeforeP2G);
     scatter_.visit([&](auto& scatter) {
       two_phase_p2g(particles_, grid_, scatter, s.gravity, liquid_.density, s.darcy_gravity,
@@ -163,6 +164,25 @@ class TwoPhaseSolver : public SolverBase<TwoPhaseSolver<ExecSpace>, ExecSpace, T
   const Liquid& liquid() const { return liquid_; }
 
  private:
+  // The points in cell order (sort_points.hpp), with every field of both phases.
+  void sort_points() {
+    const Particles<Mem>& s = particles_.solid;
+    const Grid<Mem>& g = grid_.solid;
+    if (!sorter_.order(s.position, particles_.count, g.origin[0], g.origin[1], g.dx, g.nx, g.ny))
+      return;
+    const TwoPhaseParticles<Mem>& p = particles_;
+    sorter_.apply(s);
+    sorter_.apply(p.liquid_velocity);
+    sorter_.apply(p.liquid_affine);
+    sorter_.apply(p.liquid_divergence);
+    sorter_.apply(p.liquid_mass);
+    sorter_.apply(p.porosity);
+    sorter_.apply(p.pore_pressure);
+    sorter_.apply(p.conductivity);
+    sorter_.apply(p.traction);
+    sorter_.apply(p.volumetric_rate);
+    sorter_.apply(p.viscous_pressure);
+  }
   // The time-step limits of the points as they are now: left by the last step's fused G2P, or
   // computed (two_phase_time_step.hpp).
   const TimeStepLimits& time_step_limits_now() {
@@ -271,6 +291,7 @@ class TwoPhaseSolver : public SolverBase<TwoPhaseSolver<ExecSpace>, ExecSpace, T
   Liquid liquid_;
   Boundaries walls_, liquid_walls_;
   ScatterChoice<ExecSpace, node_field::Count> scatter_;
+  PointSorter<ExecSpace> sorter_;
   TimeStepLimits limits_;       // of the last step
   TimeStepLimits next_limits_;  // of the points as they are, when next_limits_current_
   bool next_limits_current_ = false;
