@@ -30,23 +30,7 @@ mkdir -p "$out"
 export MPLCONFIGDIR="$out/mplconfig"   # keep matplotlib's cache out of $HOME
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}
 
-check_png() {   # check_png FILE: exists, PNG magic, > 10 kB
-  local png=$1 magic size
-  if [ ! -f "$png" ]; then
-    echo "FAIL: $png was not written" >&2
-    exit 1
-  fi
-  magic=$(head -c 8 "$png" | od -An -tx1 | tr -d ' \n')
-  if [ "$magic" != "89504e470d0a1a0a" ]; then
-    echo "FAIL: $png is not a PNG (magic bytes $magic)" >&2
-    exit 1
-  fi
-  size=$(stat -c %s "$png")
-  if [ "$size" -le 10240 ]; then
-    echo "FAIL: $png is only $size bytes (expected > 10 kB)" >&2
-    exit 1
-  fi
-}
+source "$(dirname "${BASH_SOURCE[0]}")/check_png.sh"
 
 expect_failure() {   # expect_failure MESSAGE COMMAND...: non-zero exit and MESSAGE on stderr
   local message=$1 rc

@@ -13,25 +13,14 @@ out_dir=$3
 rm -rf "$out_dir"
 mkdir -p "$out_dir"
 export MPLCONFIGDIR="$out_dir/mplconfig"   # keep matplotlib's cache out of $HOME
+source "$(dirname "${BASH_SOURCE[0]}")/check_png.sh"
 
 "$make_sample" "$out_dir/sample.h5"
 /usr/bin/python3 "$plot_script" "$out_dir/sample.h5" --out-dir "$out_dir/png"
 
 png="$out_dir/png/sample.png"
-if [ ! -f "$png" ]; then
-  echo "FAIL: $png was not written" >&2
-  exit 1
-fi
-magic=$(head -c 8 "$png" | od -An -tx1 | tr -d ' \n')
-if [ "$magic" != "89504e470d0a1a0a" ]; then
-  echo "FAIL: $png is not a PNG (magic bytes $magic)" >&2
-  exit 1
-fi
+check_png "$png"
 size=$(stat -c %s "$png")
-if [ "$size" -le 10240 ]; then
-  echo "FAIL: $png is only $size bytes (expected > 10 kB)" >&2
-  exit 1
-fi
 
 # LSI_FACE_PNG=1: the result has the face's pressure bands, and their plot must be written too.
 if [ "${LSI_FACE_PNG:-0}" = 1 ]; then
