@@ -8,6 +8,7 @@
 // pass, with the velocity gradient at hand: one pass over the points instead of two.
 #pragma once
 #include <Kokkos_Core.hpp>
+#include <cstdint>
 #include <type_traits>
 
 #include "kernels/common/math.hpp"
@@ -145,7 +146,8 @@ struct BlockStencil {
 //     the nodes of neighbouring points are near, not adjacent, in the grid);
 //  2. the transfer (g2p_point, reading those arrays), its velocity gradient into Lb;
 //  3. the trial stress, and whether the point needs the return mapping;
-//  4. the return mappings, point by point, only where needed (branches: scalar);
+//  4. the return mappings where needed: those on the main plane vectorised
+//     (mohr_coulomb_main_plane), the others point by point;
 //  5. the rest of the stress update and the health check.
 // Loops 2, 3 and 5 have no branches and no dependence between points: the compiler vectorises
 // them over the points (component arrays, particles.hpp). Everything the loops read is a
@@ -163,7 +165,9 @@ KOKKOS_FORCEINLINE_FUNCTION void g2p_block(
   constexpr bool plastic = Stress == G2PStress::Plastic;
   constexpr int B = kG2PBlock;
   double Lb[4][B], sb[4][B];
-  bool needs_return[B];
+  // Whether a point needs the return mapping, as a 64-bit integer: a vector mask in the loops
+  // over doubles (GCC vectorises no selection on a bool loaded from memory there).
+  std::int64_t needs_return[B];
   double gv[3][6][B], gvo[3][6][B];
   for (int q = q0; q < q1; ++q) {
     const int k = q - q0;
@@ -199,6 +203,24 @@ KOKKOS_FORCEINLINE_FUNCTION void g2p_block(
     }
   }
   if constexpr (plastic) {
+    // The main-plane returns of the block's points vectorised; the rest (edges, apex, mu(I))
+    // point by point.
+    int returns = 0;
+    for (int k = 0; k < q1 - q0; ++k) returns += needs_return[k] ? 1 : 0;
+    if (returns > 0) {
+#pragma GCC ivdep
+      for (int q = q0; q < q1; ++q) {
+        const int k = q - q0;
+        const PreparedMaterial& m = material_of(q);
+        double s[4] = {sb[0][k], sb[1][k], sb[2][k], sb[3][k]};
+        double work = 0.0;
+        const bool main = mohr_coulomb_main_plane(m, s, work) & !m.rate_dependent;
+        const bool done = main & (needs_return[k] != 0);
+        for (int c = 0; c < 4; ++c) sb[c][k] = done ? s[c] : sb[c][k];
+        a.plastic_work(q) += a.volume(q) * (done ? work : 0.0);
+        needs_return[k] = main ? 0 : needs_return[k];
+      }
+    }
     for (int q = q0; q < q1; ++q) {
       const int k = q - q0;
       if (!needs_return[k]) continue;
@@ -233,7 +255,7 @@ KOKKOS_FORCEINLINE_FUNCTION void g2p_block(
 }  // namespace detail
 
 // Host spaces: each work item takes kG2PBlock consecutive points (detail::g2p_block, whose
-// loops vectorise over the points; the Mohr-Coulomb return stays scalar). A device runs one
+// loops vectorise over the points; the Mohr-Coulomb returns to an edge or the apex stay scalar). A device runs one
 // point per thread: the transfer, the stress update (trial, return, finish) and the health check
 // in turn. Both give the same results up to round-off.
 template <class ExecSpace, bool Flip, G2PStress Stress, class MemorySpace>

@@ -13,33 +13,105 @@
 
 namespace lsi::mpm {
 
+// The trial stress in principal space: in-plane major a >= minor b (centre +- radius, h the
+// half difference of the normal stresses) and the out-of-plane z = s_zz, ordered
+// s1 >= s2 >= s3 in `value` (ties keep the in-plane value first, a stable sort of a, b, z).
+// Selections on single comparisons only: a loop over points keeps them as vector masks (GCC
+// vectorises no selection on a combination of comparisons).
+struct PrincipalTrial {
+  double h, radius, a, b, z, value[3];
+};
+
+KOKKOS_FORCEINLINE_FUNCTION PrincipalTrial principal_trial(const double s[4]) {
+  PrincipalTrial t;
+  const double centre = 0.5 * (s[0] + s[1]);
+  t.h = 0.5 * (s[0] - s[1]);
+  t.radius = math::sqrt(t.h * t.h + s[2] * s[2]);
+  const double a = centre + t.radius, b = centre - t.radius, z = s[3];
+  t.a = a;
+  t.b = b;
+  t.z = z;
+  const double a_or_z = z > a ? a : z;  // the smaller of a and z
+  t.value[0] = z > a ? z : a;
+  t.value[1] = a_or_z > b ? a_or_z : b;
+  t.value[2] = z > b ? b : z;
+  return t;
+}
+
+// The yield function of the planes through principal values p >= q.
+KOKKOS_FORCEINLINE_FUNCTION double yield_planes(const PreparedMaterial& pm, const double p,
+                                                const double q) {
+  return (p - q) + (p + q) * pm.sin_phi - 2.0 * pm.material.cohesion * pm.cos_phi;
+}
+
+// The stress scale of the return's tolerances.
+KOKKOS_FORCEINLINE_FUNCTION double return_scale(const PreparedMaterial& pm,
+                                                const PrincipalTrial& t) {
+  return math::fabs(t.value[0]) + math::fabs(t.value[2]) + pm.material.cohesion + 1e-300;
+}
+
+// D n (principal space) of the three planes' flow directions: the main plane's
+// {up, ls, down}; the edges' second planes mix the same three values.
+struct FlowDirections {
+  double up, ls, down;
+};
+
+KOKKOS_FORCEINLINE_FUNCTION FlowDirections flow_directions(const PreparedMaterial& pm) {
+  const double ls = 2.0 * pm.lame_lambda * pm.sin_psi;
+  return {ls + 2.0 * pm.shear_modulus * (1.0 + pm.sin_psi), ls,
+          ls + 2.0 * pm.shear_modulus * (-1.0 + pm.sin_psi)};
+}
+
+// Caps the returned principal values r at the tension cut-off (never above the apex of the
+// cone); returns whether any was capped. No branches.
+KOKKOS_FORCEINLINE_FUNCTION bool tension_cap(const PreparedMaterial& pm, double r[3]) {
+  const double cap = pm.principal_cap;
+  const bool capped = (r[0] > cap) | (r[1] > cap) | (r[2] > cap);
+  for (int i = 0; i < 3; ++i) r[i] = r[i] > cap ? cap : r[i];
+  return capped;
+}
+
+// The plastic work density of the return from t to the principal values r, sigma : d eps_p with
+// d eps_p = C^-1 (trial - returned); and the returned stress in components, written to s (the
+// in-plane pair keeps the trial's principal directions: cos 2 theta = h / radius,
+// sin 2 theta = s_xy / radius). No branches.
+KOKKOS_FORCEINLINE_FUNCTION double returned_stress(const PreparedMaterial& pm,
+                                                   const PrincipalTrial& t, const double r[3],
+                                                   double s[4]) {
+  const double nu = pm.material.poisson_ratio;
+  const double d[3] = {t.value[0] - r[0], t.value[1] - r[1], t.value[2] - r[2]};
+  const double trd = d[0] + d[1] + d[2];
+  double work = 0.0;
+  for (int i = 0; i < 3; ++i) work += r[i] * ((1.0 + nu) * d[i] - nu * trd);
+  work *= pm.inverse_young;
+  // Which of r is s_zz's: r[0] where z came first (z > a), r[2] where last (z <= b), else r[1].
+  const double ra = t.z > t.a ? r[1] : r[0], rb = t.z > t.b ? r[2] : r[1];
+  const double r12 = t.z > t.b ? r[1] : r[2];
+  const double rz = t.z > t.a ? r[0] : r12;
+  const double centre_r = 0.5 * (ra + rb), radius_r = 0.5 * (ra - rb);
+  const bool rotated = t.radius > 0.0;
+  const double k = radius_r / (rotated ? t.radius : 1.0);
+  s[0] = centre_r + (rotated ? k * t.h : radius_r);
+  s[1] = centre_r - (rotated ? k * t.h : radius_r);
+  s[2] = rotated ? k * s[2] : 0.0;
+  s[3] = rz;
+  return work;
+}
+
 // The material's constants of the return (A, B, the apex, the cap, 1/E and the reciprocals that
 // replace its divisions) are computed once per material (PreparedMaterial, material.hpp): on the
 // common path (a main-plane return) the function divides once, to write the stress back.
 KOKKOS_INLINE_FUNCTION double mohr_coulomb_return(const PreparedMaterial& pm, double s[4]) {
-  // Principal values: in-plane major a >= minor b (centre +- radius) and out-of-plane z = s_zz.
-  const double centre = 0.5 * (s[0] + s[1]), h = 0.5 * (s[0] - s[1]);
-  const double radius = math::sqrt(h * h + s[2] * s[2]);
-  const double a = centre + radius, b = centre - radius, z = s[3];
-  // Where z sits in the order s1 >= s2 >= s3: 0 (first), 1 or 2; ties keep the in-plane value
-  // first (a stable sort of a, b, z).
-  const int kz = z > b ? (z > a ? 0 : 1) : 2;
-  const double trial[3] = {kz == 0 ? z : a, kz == 0 ? a : (kz == 1 ? z : b), kz == 2 ? z : b};
+  const PrincipalTrial t = principal_trial(s);
+  const double* const trial = t.value;
   double r[3] = {trial[0], trial[1], trial[2]};
-
-  const double sphi = pm.sin_phi, cphi = pm.cos_phi, spsi = pm.sin_psi;
-  const double c = pm.material.cohesion;
-  const double G = pm.shear_modulus, L = pm.lame_lambda;
-  auto f_planes = [&](double p, double q) { return (p - q) + (p + q) * sphi - 2.0 * c * cphi; };
-  const double scale = math::fabs(trial[0]) + math::fabs(trial[2]) + c + 1e-300;
-  const double f = f_planes(trial[0], trial[2]);
+  const double scale = return_scale(pm, t);
+  const double f = yield_planes(pm, trial[0], trial[2]);
   bool plastic = false;
   if (f > 1e-12 * scale) {
     plastic = true;
-    // D n for the three planes' flow directions (principal space).
-    const double ls = 2.0 * L * spsi;
-    const double up = ls + 2.0 * G * (1.0 + spsi), down = ls + 2.0 * G * (-1.0 + spsi);
-    const double Dna[3] = {up, ls, down};
+    const FlowDirections D = flow_directions(pm);
+    const double Dna[3] = {D.up, D.ls, D.down};
     // Main plane: dg = f / A.
     const double dg = f * pm.inverse_main;
     for (int i = 0; i < 3; ++i) r[i] = trial[i] - dg * Dna[i];
@@ -47,50 +119,47 @@ KOKKOS_INLINE_FUNCTION double mohr_coulomb_return(const PreparedMaterial& pm, do
     if (!ok) {
       // Edge: s1 = s2 (planes a, b) if s2 came out above s1, else s2 = s3 (planes a, c).
       const bool upper = r[1] > r[0];
-      const double fb = upper ? f_planes(trial[1], trial[2]) : f_planes(trial[0], trial[1]);
+      const double fb =
+          upper ? yield_planes(pm, trial[1], trial[2]) : yield_planes(pm, trial[0], trial[1]);
       const double A = pm.main_plane, B = upper ? pm.edge_upper : pm.edge_lower;
       const double inv_det = upper ? pm.inverse_det_upper : pm.inverse_det_lower;
       const double da = (A * f - B * fb) * inv_det, db = (A * fb - B * f) * inv_det;
       // D n of the second plane: b (s1 = s2 side) for the upper edge, c for the lower.
-      const double Dn2[3] = {upper ? ls : up, upper ? up : down, upper ? down : ls};
+      const double Dn2[3] = {upper ? D.ls : D.up, upper ? D.up : D.down, upper ? D.down : D.ls};
       for (int i = 0; i < 3; ++i) r[i] = trial[i] - da * Dna[i] - db * Dn2[i];
       ok = da >= 0.0 && db >= 0.0 && r[0] >= r[1] - 1e-12 * scale && r[1] >= r[2] - 1e-12 * scale;
     }
     if (!ok || (r[0] + r[1] + r[2]) / 3.0 > pm.apex) r[0] = r[1] = r[2] = pm.apex;
   }
-  // Tension cut-off (never above the apex of the cone).
-  const double cap = pm.principal_cap;
-  for (int i = 0; i < 3; ++i) {
-    if (r[i] > cap) {
-      r[i] = cap;
-      plastic = true;
-    }
-  }
+  plastic |= tension_cap(pm, r);
   if (!plastic) return 0.0;
-  // Plastic strain increment C^-1 (trial - returned) and its work with the returned stress.
-  const double nu = pm.material.poisson_ratio;
-  const double d[3] = {trial[0] - r[0], trial[1] - r[1], trial[2] - r[2]};
-  const double trd = d[0] + d[1] + d[2];
-  double work = 0.0;
-  for (int i = 0; i < 3; ++i) work += r[i] * ((1.0 + nu) * d[i] - nu * trd);
-  work *= pm.inverse_young;
-  // Back to components: the in-plane pair keeps its principal directions (those of the trial:
-  // cos 2 theta = h / radius, sin 2 theta = s_xy / radius).
-  const double ra = kz == 0 ? r[1] : r[0], rb = kz == 2 ? r[1] : r[2];
-  const double rz = r[kz];
-  const double centre_r = 0.5 * (ra + rb), radius_r = 0.5 * (ra - rb);
-  if (radius > 0.0) {
-    const double k = radius_r / radius;
-    s[0] = centre_r + k * h;
-    s[1] = centre_r - k * h;
-    s[2] = k * s[2];
-  } else {
-    s[0] = centre_r + radius_r;
-    s[1] = centre_r - radius_r;
-    s[2] = 0.0;
-  }
-  s[3] = rz;
-  return work;
+  return returned_stress(pm, t, r, s);
+}
+
+// The return of mohr_coulomb_return() for the stresses that need no more than the main plane
+// and the tension cut-off, without branches, so that a loop over points vectorises (g2p.hpp).
+// Returns false, leaving s and work untouched, where the return needs an edge or the apex
+// (then mohr_coulomb_return() does it); otherwise returns true with the same stress and plastic
+// work density as mohr_coulomb_return() in s and work.
+KOKKOS_FORCEINLINE_FUNCTION bool mohr_coulomb_main_plane(const PreparedMaterial& pm, double s[4],
+                                                         double& work) {
+  const PrincipalTrial t = principal_trial(s);
+  const double f = yield_planes(pm, t.value[0], t.value[2]);
+  const bool yields = f > 1e-12 * return_scale(pm, t);
+  const FlowDirections D = flow_directions(pm);
+  const double Dna[3] = {D.up, D.ls, D.down};
+  const double dg = yields ? f * pm.inverse_main : 0.0;
+  double r[3];
+  for (int i = 0; i < 3; ++i) r[i] = yields ? t.value[i] - dg * Dna[i] : t.value[i];
+  const bool main = (r[0] >= r[1]) & (r[1] >= r[2]) & !((r[0] + r[1] + r[2]) / 3.0 > pm.apex);
+  const bool plastic = tension_cap(pm, r) | yields;
+  double returned[4] = {s[0], s[1], s[2], s[3]};
+  const double w = returned_stress(pm, t, r, returned);
+  const bool handled = !yields | main;
+  const bool write = handled & plastic;
+  for (int i = 0; i < 4; ++i) s[i] = write ? returned[i] : s[i];
+  work = write ? w : (handled ? 0.0 : work);
+  return handled;
 }
 
 KOKKOS_INLINE_FUNCTION double mohr_coulomb_return(const Material& m, double s[4]) {
