@@ -1,5 +1,6 @@
 // Unit tests of the constitutive functions (kernels/mpm/constitutive): the Mohr-Coulomb return
-// mapping `mohr_coulomb_return` and the Jaumann rotation `jaumann_rotate`. Host-only calls of
+// mapping `mohr_coulomb_return` (and its branch-free main-plane part `mohr_coulomb_main_plane`)
+// and the Jaumann rotation `jaumann_rotate`. Host-only calls of
 // KOKKOS_INLINE_FUNCTIONs; plain TESTs (no backend typing), Kokkos is initialised by the shared
 // main all the same.
 //
@@ -675,6 +676,41 @@ TEST(MohrCoulombReturn, PrincipalTiesReturnContinuously) {
 // w = (L_xy - L_yx)/2 = -omega): per step, the trace is unchanged to round-off and the von Mises
 // stress to O(dt^2) (forward Euler of a rotation grows the deviatoric radius by
 // sqrt(1 + 4 w^2 dt^2)); over many small steps, the stress is R(omega t) sigma0 R^T.
+// (h) The branch-free main-plane return (mohr_coulomb_main_plane, the host G2P's vectorised
+// path) gives mohr_coulomb_return's stress and work wherever it takes the point, and leaves
+// the stress and work untouched where it hands the point on (an edge or the apex). Both
+// routes must be exercised: the random trials reach the main plane, the edges and the apex.
+TEST(MohrCoulombReturn, MainPlaneReturnEqualsTheFullReturnWhereItApplies) {
+  std::mt19937 rng(57);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  int taken = 0, handed_on = 0;
+  for (const Case& k : kCases)
+    for (double cutoff : {1e300, 0.0, 0.3 * k.c}) {
+      const lsi::mpm::PreparedMaterial m(mc(k.phi, k.psi, k.c, cutoff));
+      for (int rep = 0; rep < 200; ++rep) {
+        const V3 t = random_trial(rng, m.material, rep);
+        const std::array<double, 4> t4 = tensor_from_sorted(t, rep % 3, kPi * U(rng));
+        double full[4] = {t4[0], t4[1], t4[2], t4[3]}, main[4] = {t4[0], t4[1], t4[2], t4[3]};
+        const double w_full = mohr_coulomb_return(m, full);
+        double w_main = -1.0;  // a sentinel that a handed-on point must keep
+        if (lsi::mpm::mohr_coulomb_main_plane(m, main, w_main)) {
+          ++taken;
+          // The same operations in the same order: equal to the last bit but for the
+          // compiler's contraction of multiply-adds (round-off of the stress scale).
+          const double scale = std::fabs(t[0]) + std::fabs(t[2]) + k.c;
+          for (int i = 0; i < 4; ++i) EXPECT_NEAR(main[i], full[i], kRoundOffAbs + 1e-14 * scale);
+          EXPECT_NEAR(w_main, w_full, 1e-14 * scale * scale / m.material.young_modulus);
+        } else {
+          ++handed_on;
+          for (int i = 0; i < 4; ++i) EXPECT_EQ(main[i], t4[i]);
+          EXPECT_EQ(w_main, -1.0);
+        }
+      }
+    }
+  EXPECT_GT(taken, 500);
+  EXPECT_GT(handed_on, 100);
+}
+
 TEST(JaumannRotate, RigidRotationInvariantsAndAngle) {
   const std::array<double, 4> s0 = tensor(-20e3, -80e3, 0.3, -45e3);  // major axis at 0.3 rad
   auto von_mises = [](const double s[4]) {
