@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <numeric>
@@ -31,6 +33,10 @@
 #include "io/scene_parser.hpp"
 #include "io/study_parser.hpp"
 #include "io/sweep_file.hpp"
+#include "io/sweep_table_stream.hpp"
+#include "io/hdf5_io.hpp"
+#include "io/output_paths.hpp"
+#include "app/sweep_journal.hpp"
 
 namespace lsi {
 namespace {
@@ -300,7 +306,8 @@ void check_shard_rows(const Study& study, const std::string& file, const SweepHe
 
 // Refuses, before anything is written, a run whose table cannot be held in memory (the rows
 // run now and the gathered table: twice the table, plus a column for the statistics) or whose
-// files cannot fit beside `out` (the chunk files, then the result file: twice the table).
+// files cannot fit beside `out` (the result's table, and its copy when the run stops early: at
+// most twice the table).
 void check_sweep_fits(const Study& s, const SweepOptions& opt) {
   const std::uint64_t chunks = (s.samples + s.chunk_samples - 1) / s.chunk_samples;
   const std::uint64_t n = static_cast<std::uint64_t>(opt.shard_count);
@@ -319,7 +326,7 @@ void check_sweep_fits(const Study& s, const SweepOptions& opt) {
                "the sweep table (" + json_fields::format_number(rows) + " rows of " +
                    json_fields::format_number(row_bytes) + " bytes, held twice)",
                2.0 * table + 8.0 * rows, available_memory_bytes(), "memory", remedy);
-  require_fits("samples", value, "the chunk files and the result file", 2.0 * table,
+  require_fits("samples", value, "the result file and its copy at a stop", 2.0 * table,
                free_disk_bytes(opt.out), "disk where --out goes", remedy + ", or another --out");
 }
 
@@ -416,23 +423,70 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   std::vector<std::uint64_t> mine;
   for (std::uint64_t k = opt.shard; k < chunks; k += opt.shard_count) mine.push_back(k);
   std::uint64_t my_samples = 0, done_samples = 0;
-  for (std::uint64_t k : mine)
-    my_samples += std::min(study.chunk_samples, study.samples - k * study.chunk_samples);
+  auto rows_of_chunk = [&](std::uint64_t k) {
+    return std::min(study.chunk_samples, study.samples - k * study.chunk_samples);
+  };
+  for (std::uint64_t k : mine) my_samples += rows_of_chunk(k);
 
-  // Chunks already done (a resumed run), and the values the interval rule has seen so far.
-  std::vector<double> rule_values;
+  // The result's table is written as the chunks finish, into a table file in the parts
+  // directory, new for each invocation: a resumed run copies into it the compressed chunks its
+  // predecessors journalled (the chunks done: in order, so the journal's first entries), then
+  // goes on. The table file becomes `out` when the run is complete.
+  std::vector<std::string> paths;
+  for (const auto& in : study.inputs) paths.push_back(in.path);
   std::vector<bool> done(mine.size(), false);
-  std::vector<std::optional<SweepTable>> fresh(mine.size());  // chunks run now, kept for the gather
+  std::vector<SweepJournalEntry> earlier;
   for (std::size_t m = 0; m < mine.size(); ++m) {
     const std::string f = chunk_file(parts, mine[m]);
-    if (!fs::exists(f)) continue;
-    const SweepFile c = read_sweep_file(f);
-    if (c.header.fingerprint != study.fingerprint)
-      throw InputError(f + ": belongs to another study");
+    if (!fs::exists(f)) break;
+    earlier.push_back(read_journal_entry(f, study.fingerprint));
     done[m] = true;
-    done_samples += c.table.rows();
-    collect_rule_values(study, c.table, rule_values);
+    done_samples += rows_of_chunk(mine[m]);
   }
+  for (std::size_t m = earlier.size(); m < mine.size(); ++m)  // after a gap: run again
+    fs::remove(chunk_file(parts, mine[m]));
+  int generation = 0;
+  std::vector<fs::path> old_tables;
+  for (const auto& e : fs::directory_iterator(parts)) {
+    int g = -1;
+    char tail = 0;
+    if (std::sscanf(e.path().filename().c_str(), "table-%d.h%c", &g, &tail) == 2 && g >= 0) {
+      generation = std::max(generation, g + 1);
+      old_tables.push_back(e.path());
+    }
+  }
+  const std::string table_name = "table-" + std::to_string(generation) + ".h5";
+  const std::uint64_t chunk_rows = SweepTableStream::chunk_rows_for(paths.size(), my_samples);
+  SweepTableStream table((parts / table_name).string(), paths, study.output_columns(),
+                         my_samples, chunk_rows);
+  const SweepHeader chunk_header = header_of(study, opt.shard, opt.shard_count);
+  std::vector<StoredChunk> stored;  // every compressed chunk of the table, where it lies
+  SweepTable all = SweepTable::with_columns(paths, study.output_columns());
+  std::vector<double> rule_values;  // the values the interval rule has seen so far
+  if (!earlier.empty()) {
+    for (auto& e : earlier) {
+      e.chunks = table.adopt((parts / e.table_file).string(), e.chunks);
+      e.table_file = table_name;
+      stored.insert(stored.end(), e.chunks.begin(), e.chunks.end());
+      all.failure_index.insert(all.failure_index.end(), e.failure_index.begin(),
+                               e.failure_index.end());
+      all.failure_reason.insert(all.failure_reason.end(), e.failure_reason.begin(),
+                                e.failure_reason.end());
+    }
+    table.restore(earlier.back().stored_rows, earlier.back().pending);
+    hdf5::fsync_file(table.path());
+    for (std::size_t m = 0; m < earlier.size(); ++m)
+      write_journal_entry(chunk_file(parts, mine[m]), chunk_header, earlier[m]);
+    SweepTable rows = table.read_stored();
+    rows.append(table.pending());
+    rows.failure_index.clear();
+    rows.failure_reason.clear();
+    all.append(rows);
+    collect_rule_values(study, all, rule_values);
+    earlier.clear();
+  }
+  for (const auto& t : old_tables) fs::remove(t);
+  all.reserve(my_samples);
 
   ensure_kokkos();
   ChunkEvaluator evaluator(study);
@@ -440,23 +494,32 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   std::string stopped_by;
   bool rule_met = false;
   std::uint64_t run_here = 0;
-  double evaluate_s = 0.0, write_s = 0.0;
+  double evaluate_s = 0.0, write_s = 0.0, gather_s = 0.0;
   for (std::size_t m = 0; m < mine.size() && !rule_met && stopped_by.empty(); ++m) {
     if (done[m]) continue;
     auto ts = Clock::now();
     SweepTable t = evaluator.run(mine[m]);
     evaluate_s += seconds_since(ts);
     ts = Clock::now();
-    SweepHeader h = header_of(study, opt.shard, opt.shard_count);
-    h.complete = true;  // the chunk itself
-    write_sweep_file(chunk_file(parts, mine[m]), h, t, nullptr, SweepStorage::Plain);
+    SweepJournalEntry entry;
+    entry.table_file = table_name;
+    entry.chunks = table.append(t);
+    entry.stored_rows = table.stored_rows();
+    entry.pending = table.pending();
+    entry.failure_index = t.failure_index;
+    entry.failure_reason = t.failure_reason;
+    hdf5::fsync_file(table.path());  // the chunks on disk before the journal names them
+    write_journal_entry(chunk_file(parts, mine[m]), chunk_header, entry);
+    stored.insert(stored.end(), entry.chunks.begin(), entry.chunks.end());
     write_s += seconds_since(ts);
     done[m] = true;
     done_samples += t.rows();
     run_here += t.rows();
     progress.update(done_samples, run_here);
     collect_rule_values(study, t, rule_values);
-    fresh[m] = std::move(t);
+    ts = Clock::now();
+    all.append(t);
+    gather_s += seconds_since(ts);
     std::string why;
     if (interval_rule_met(study, rule_values, why)) {
       rule_met = true;
@@ -468,22 +531,8 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     }
   }
 
-  // Gather the chunks, in sample order: those run now from memory, the others from their files.
   progress.finishing("writing the result file");
   auto ts = Clock::now();
-  std::vector<std::string> paths;
-  for (const auto& in : study.inputs) paths.push_back(in.path);
-  SweepTable all = SweepTable::with_columns(paths, study.output_columns());
-  all.reserve(done_samples);
-  for (std::size_t m = 0; m < mine.size(); ++m) {
-    if (!done[m]) continue;
-    if (fresh[m]) {
-      all.append(*fresh[m]);
-      fresh[m].reset();
-    } else {
-      all.append(read_sweep_file(chunk_file(parts, mine[m])).table);
-    }
-  }
   all.sort_by_index();
   // The interval rule ends the sweep where it was met: later chunks (none in a sequential run)
   // would not be part of the answer.
@@ -498,7 +547,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   outcome.samples_done = all.rows();
   outcome.samples_run = run_here;
   for (auto s : all.status) outcome.samples_ok += s == static_cast<std::int8_t>(SampleStatus::ok);
-  double gather_s = seconds_since(ts);
+  gather_s += seconds_since(ts);
   ts = Clock::now();
   if (opt.shard_count == 1) outcome.statistics = sweep_statistics(study, all);
   const double statistics_s = seconds_since(ts);
@@ -507,10 +556,29 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     outcome.statistics["mpm_at_quantiles"] = mpm_at_quantiles(study, all);
   const double quantile_mpm_s = seconds_since(ts);
   ts = Clock::now();
-  write_sweep_file(opt.out, h, all, outcome.statistics.is_null() ? nullptr : &outcome.statistics);
-  if (complete) {  // renamed first: a kill during the removal leaves no parts to resume
+  const nlohmann::json* statistics = outcome.statistics.is_null() ? nullptr : &outcome.statistics;
+  if (complete) {
+    // The table file, finished, becomes `out`; the parts are renamed before their removal: a
+    // kill during the removal leaves no parts to resume.
+    if (const std::string why = unsafe_output_reason(opt.out); !why.empty())
+      throw std::runtime_error("lsi sweep: cannot write '" + opt.out + "': " + why);
+    table.finish(h, all.failure_index, all.failure_reason, statistics);
+    hdf5::fsync_file(table.path());
+    if (std::rename(table.path().c_str(), opt.out.c_str()) != 0)
+      throw std::runtime_error("lsi sweep: cannot rename '" + table.path() + "' onto '" +
+                               opt.out + "': " + std::strerror(errno));
+    hdf5::fsync_directory(fs::absolute(opt.out).parent_path());
     fs::rename(parts, removed_parts);
     fs::remove_all(removed_parts);
+  } else {
+    // Stopped before the end: `out` holds the rows so far, copied (still compressed) from the
+    // table file, which the journal keeps for --resume.
+    hdf5::write_atomically(opt.out, "lsi sweep", [&](const std::string& tmp) {
+      SweepTableStream copy(tmp, paths, study.output_columns(), table.rows(), chunk_rows);
+      copy.adopt(table.path(), stored);
+      copy.restore(table.stored_rows(), table.pending());
+      copy.finish(h, all.failure_index, all.failure_reason, statistics);
+    });
   }
   gather_s += seconds_since(ts);
   outcome.seconds = {{"evaluate", evaluate_s},

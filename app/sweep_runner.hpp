@@ -1,14 +1,17 @@
 // Runs a study (model/study.hpp) chunk by chunk and gathers the results into one HDF5 file
 // (model/sweep_table.hpp).
 //
-// Nothing finished is lost. Samples are processed in chunks of study.chunk_samples; each
-// finished chunk is written atomically to `<out>.parts/chunk-<k>.h5` before the next starts. A
-// run killed at any moment (SIGKILL included) leaves only whole chunk files, and `resume`
-// recomputes just the missing chunks: sample i always gets the same inputs (counter-based
-// sampling), so the gathered file is the one an uninterrupted run writes (wall times aside).
-// When every chunk of the run is done the chunk files are gathered, sorted by sample index, into
-// `out` (atomically) and the parts directory is removed. A run stopped by its wall-time limit
-// also writes `out` (marked incomplete) and keeps the parts for `resume`.
+// Nothing finished is lost. Samples are processed in chunks of study.chunk_samples. The result's
+// table is written as the chunks finish, each chunk of its datasets compressed once, into
+// `<out>.parts/table-<g>.h5` (io/sweep_table_stream.hpp); after each chunk
+// `<out>.parts/chunk-<k>.h5` journals what it added (app/sweep_journal.hpp). A run killed at any
+// moment (SIGKILL included) leaves whole journal entries, and `resume` copies the compressed
+// chunks they name into a new table file and recomputes just the missing chunks: sample i always
+// gets the same inputs (counter-based sampling), so the file is the one an uninterrupted run
+// writes (wall times aside). When every chunk of the run is done the table file, finished with
+// the statistics, is renamed onto `out` and the parts directory is removed. A run stopped by its
+// wall-time limit also writes `out` (marked incomplete, a copy of the table so far) and keeps
+// the parts for `resume`.
 //
 // Sharding: shard i of N runs the chunks k with k mod N = i; merge_sweeps joins the shard files
 // into the file a single run writes.
@@ -33,8 +36,9 @@ struct SweepOutcome {
   std::string stopped_by;  // why it stopped early ("" if it ran every sample)
   std::uint64_t samples_done = 0, samples_ok = 0, samples_run = 0;  // run: by this invocation
   double wall_seconds = 0.0;
-  // Where the time went (s): evaluate (sampling and the methods), write_chunks (chunk files),
-  // gather (reading them back and writing `out`), statistics.
+  // Where the time went (s): evaluate (sampling and the methods), write_chunks (compressing and
+  // writing the table's chunks, the journal), gather (joining the rows for the statistics,
+  // finishing `out`), statistics.
   nlohmann::json seconds = nlohmann::json::object();
   nlohmann::json statistics;  // null for a shard of several
 };

@@ -25,18 +25,6 @@ std::size_t compression_threads() {
   return n;
 }
 
-// The deflate level when the pipeline is exactly shuffle then deflate (else -1).
-int shuffle_deflate_level(hid_t dcpl) {
-  if (H5Pget_layout(dcpl) != H5D_CHUNKED || H5Pget_nfilters(dcpl) != 2) return -1;
-  unsigned flags = 0, cd[8] = {};
-  std::size_t n = 8;
-  if (H5Pget_filter2(dcpl, 0, &flags, &n, cd, 0, nullptr, nullptr) != H5Z_FILTER_SHUFFLE) return -1;
-  n = 8;
-  if (H5Pget_filter2(dcpl, 1, &flags, &n, cd, 0, nullptr, nullptr) != H5Z_FILTER_DEFLATE || n < 1)
-    return -1;
-  return static_cast<int>(cd[0]);
-}
-
 // One chunk as HDF5's pipeline makes it: the rows copied (the last chunk padded with zeros, the
 // fill value, to the full chunk), the bytes shuffled (byte j of element i to j * count + i), then
 // deflated (zlib format, as H5Z's deflate filter).
@@ -57,6 +45,44 @@ void compress_chunk(const unsigned char* rows, std::size_t bytes, std::size_t ch
 
 }  // namespace
 
+int shuffle_deflate_level(hid_t dcpl) {
+  if (H5Pget_layout(dcpl) != H5D_CHUNKED || H5Pget_nfilters(dcpl) != 2) return -1;
+  unsigned flags = 0, cd[8] = {};
+  std::size_t n = 8;
+  if (H5Pget_filter2(dcpl, 0, &flags, &n, cd, 0, nullptr, nullptr) != H5Z_FILTER_SHUFFLE) return -1;
+  n = 8;
+  if (H5Pget_filter2(dcpl, 1, &flags, &n, cd, 0, nullptr, nullptr) != H5Z_FILTER_DEFLATE || n < 1)
+    return -1;
+  return static_cast<int>(cd[0]);
+}
+
+std::vector<std::vector<unsigned char>> compress_chunks(const std::vector<ChunkRows>& chunks,
+                                                        int level) {
+  std::vector<std::vector<unsigned char>> out(chunks.size());
+  if (chunks.empty()) return out;
+  const std::size_t threads = std::min(compression_threads(), chunks.size());
+  std::vector<std::string> errors(threads);
+  auto work = [&](std::size_t t) {
+    std::vector<unsigned char> plain;
+    try {
+      for (std::size_t c = t; c < chunks.size(); c += threads) {
+        const ChunkRows& k = chunks[c];
+        compress_chunk(static_cast<const unsigned char*>(k.rows), k.bytes, k.chunk_bytes,
+                       k.element_size, level, plain, out[c]);
+      }
+    } catch (const std::exception& e) {
+      errors[t] = e.what();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (auto& th : pool) th.join();
+  for (const auto& e : errors)
+    if (!e.empty()) throw std::runtime_error(e);
+  return out;
+}
+
 bool write_compressed_chunks(hid_t dataset, hid_t dcpl, const void* data, std::size_t rows,
                              std::size_t row_elements, std::size_t element_size) {
   const int level = shuffle_deflate_level(dcpl);
@@ -69,31 +95,18 @@ bool write_compressed_chunks(hid_t dataset, hid_t dcpl, const void* data, std::s
   const std::size_t chunk_bytes = chunk_rows * row_bytes;
   const std::size_t chunks = (rows + chunk_rows - 1) / chunk_rows;
   const auto* bytes = static_cast<const unsigned char*>(data);
-  const std::size_t threads = std::min(compression_threads(), chunks);
   // Batches of a few chunks per thread: compressed in parallel, then written in order, so that
   // only a batch of compressed chunks is held at a time.
-  const std::size_t batch = 8 * threads;
-  std::vector<std::vector<unsigned char>> out(batch), plain(threads);
+  const std::size_t batch = 8 * compression_threads();
   for (std::size_t first = 0; first < chunks; first += batch) {
     const std::size_t last = std::min(chunks, first + batch);
-    std::vector<std::string> errors(threads);
-    auto work = [&](std::size_t t) {
-      try {
-        for (std::size_t c = first + t; c < last; c += threads) {
-          const std::size_t begin = c * chunk_rows, end = std::min(rows, begin + chunk_rows);
-          compress_chunk(bytes + begin * row_bytes, (end - begin) * row_bytes, chunk_bytes,
-                         element_size, level, plain[t], out[c - first]);
-        }
-      } catch (const std::exception& e) {
-        errors[t] = e.what();
-      }
-    };
-    std::vector<std::thread> pool;
-    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work, t);
-    work(0);
-    for (auto& th : pool) th.join();
-    for (const auto& e : errors)
-      if (!e.empty()) throw std::runtime_error(e);
+    std::vector<ChunkRows> rows_of;
+    for (std::size_t c = first; c < last; ++c) {
+      const std::size_t begin = c * chunk_rows, end = std::min(rows, begin + chunk_rows);
+      rows_of.push_back(
+          {bytes + begin * row_bytes, (end - begin) * row_bytes, chunk_bytes, element_size});
+    }
+    const auto out = compress_chunks(rows_of, level);
     for (std::size_t c = first; c < last; ++c) {
       const hsize_t offset[2] = {static_cast<hsize_t>(c * chunk_rows), 0};
       check(H5Dwrite_chunk(dataset, H5P_DEFAULT, 0, offset, out[c - first].size(),

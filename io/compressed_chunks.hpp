@@ -7,8 +7,24 @@
 #include <hdf5.h>
 
 #include <cstddef>
+#include <vector>
 
 namespace lsi::hdf5 {
+
+// One chunk to compress: `bytes` bytes of rows (native numbers of `element_size` bytes) at
+// `rows`, padded with zeros (the fill value) to `chunk_bytes`, as HDF5 stores an edge chunk.
+struct ChunkRows {
+  const void* rows;
+  std::size_t bytes, chunk_bytes, element_size;
+};
+
+// The chunks as HDF5's shuffle + deflate (at `level`) pipeline stores them, compressed on
+// several threads (OMP_NUM_THREADS when set, else the hardware's); in the order given.
+std::vector<std::vector<unsigned char>> compress_chunks(const std::vector<ChunkRows>& chunks,
+                                                        int level);
+
+// The deflate level of a dataset's filters when they are exactly shuffle then deflate; else -1.
+int shuffle_deflate_level(hid_t creation_properties);
 
 // Writes `data` (the whole dataset, row-major, in the file's element layout: native numbers of
 // `element_size` bytes, `rows` rows of `row_elements` elements) into `dataset`, created with

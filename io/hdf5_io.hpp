@@ -121,8 +121,10 @@ void write_double_array(hid_t group, const std::string& name, const std::vector<
 
 // Dataset-creation properties for a table that may be large: chunked along its first dimension
 // and compressed (shuffle, then deflate at level 4) where the library has deflate; the default
-// (contiguous) layout for an empty dataset.
-Handle compressed_table_properties(int rank, const hsize_t* dims, std::size_t element_size);
+// (contiguous) layout for an empty dataset. Chunks of `chunk_rows` rows where given (> 0), else of
+// about 256 KiB.
+Handle compressed_table_properties(int rank, const hsize_t* dims, std::size_t element_size,
+                                   hsize_t chunk_rows = 0);
 
 // Dimension scales (HDF5's H5DS): makes `scale` a scale named `name`, and attaches it to
 // dimension `dim` of `dataset`, labelling that dimension with the scale's name, so that h5py

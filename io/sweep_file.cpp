@@ -11,6 +11,7 @@
 
 #include "io/compressed_chunks.hpp"
 #include "io/hdf5_io.hpp"
+#include "io/sweep_file_layout.hpp"
 #include "io/provenance.hpp"
 #include "model/result_scalars.hpp"
 
@@ -340,70 +341,21 @@ void write_statistics(hid_t file, const json& statistics) {
 
 void write_file(const std::string& file, const SweepHeader& h, const SweepTable& t,
                 const nlohmann::json* statistics, SweepStorage storage) {
-  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "cannot create a file-access property list");
-  check(H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG), "cannot set the file close degree");
-  Handle f(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose,
-           "cannot create the file");
-  write_string_attribute(f, "kind", kKind);
-  write_string_attribute(f, "study", h.study.dump(2));
-  if (!h.scene_resolved.is_null())
-    write_string_attribute(f, "scene_resolved", h.scene_resolved.dump(2));
-  write_string_attribute(f, "fingerprint", h.fingerprint);
-  write_provenance(f);
-  write_int64_attribute(f, "planned_samples", static_cast<std::int64_t>(h.planned_samples));
-  write_int64_attribute(f, "chunk_samples", static_cast<std::int64_t>(h.chunk_samples));
-  write_string_attribute(f, "shard", std::to_string(h.shard) + "/" + std::to_string(h.shard_count));
-  write_int64_attribute(f, "samples_done", static_cast<std::int64_t>(t.rows()));
-  write_bool_attribute(f, "complete", h.complete);
-  write_string_attribute(f, "stopped_by", h.stopped_by);
-  write_double_attribute(f, "wall_seconds", h.wall_seconds);
-
-  const std::size_t n = t.rows();
-  write_column(f, "/samples/index", H5T_STD_U64LE, H5T_NATIVE_UINT64, t.index, "1",
-               "sample index in the study", storage);
-  write_column(f, "/samples/status", H5T_STD_I8LE, H5T_NATIVE_INT8, t.status, "1",
-               "0 ok, 1 invalid input, 2 MPM unstable, 3 failed, 4 MPM cut short while the "
-               "barrier slid",
-               storage);
-  write_column(f, "/samples/wall_time", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, t.wall_time, "s",
-               "wall time spent on the sample (closed forms: their chunk's time shared)", storage);
-  const std::size_t d = t.input_paths.size();
+  Handle f = sweep_layout::create_file(file);
+  sweep_layout::write_header(f, h, t.rows());
+  write_array(f, "/samples/index", H5T_STD_U64LE, H5T_NATIVE_UINT64, t.index, storage);
+  write_array(f, "/samples/status", H5T_STD_I8LE, H5T_NATIVE_INT8, t.status, storage);
+  write_array(f, "/samples/wall_time", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, t.wall_time, storage);
+  const std::size_t n = t.rows(), d = t.input_paths.size();
   std::vector<double> rows(n * d);
   for (std::size_t k = 0; k < d; ++k)
     for (std::size_t i = 0; i < n; ++i) rows[i * d + k] = t.inputs[k][i];
-  {
-    Handle ds =
-        write_array(f, "/samples/inputs", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows, storage, 2, d);
-    write_string_attribute(ds, "paths", nlohmann::json(t.input_paths).dump());
-    // One unit per column, in the scene's units (those its keys name).
-    std::vector<std::string> units;
-    for (const auto& p : t.input_paths) units.push_back(input_units(p));
-    write_string_array_attribute(ds, "units", units);
-    write_string_attribute(ds, "description",
-                           "the sample's inputs, one column per scene path (attribute paths)");
-  }
-  nlohmann::json columns = t.output_columns;
-  {
-    Handle g(H5Gopen2(f, "/samples", H5P_DEFAULT), H5Gclose, "cannot open /samples");
-    write_string_attribute(g, "output_columns", columns.dump());
-    write_string_attribute(g, "status_meaning",
-                           "0 ok, 1 invalid input, 2 MPM unstable, 3 failed, 4 MPM cut short "
-                           "while the barrier slid (end time or end of the domain); reasons in "
-                           "/failures");
-  }
-  for (std::size_t c = 0; c < t.output_columns.size(); ++c) {
-    const std::string& column = t.output_columns[c];
-    const std::string output = column.substr(column.find('/') + 1);
-    write_column(f, "/samples/" + column, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, t.outputs[c],
-                 units_of(column),
-                 output + " of the method " + column.substr(0, column.find('/')) +
-                     "; NaN where status is not 0",
-                 storage);
-  }
-  write_column(f, "/failures/index", H5T_STD_U64LE, H5T_NATIVE_UINT64, t.failure_index, "1",
-               "index of each sample whose status is not 0", SweepStorage::Plain);
-  write_strings(f, "/failures/reason", t.failure_reason, "why the sample failed (one line)");
-  if (statistics) write_statistics(f, *statistics);
+  write_array(f, "/samples/inputs", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows, storage, 2, d);
+  for (std::size_t c = 0; c < t.output_columns.size(); ++c)
+    write_array(f, "/samples/" + t.output_columns[c], H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                t.outputs[c], storage);
+  sweep_layout::describe_samples(f, t.input_paths, t.output_columns);
+  sweep_layout::write_failures_and_statistics(f, t.failure_index, t.failure_reason, statistics);
   check(H5Fflush(f, H5F_SCOPE_GLOBAL), "cannot flush the file");
   f.close("cannot close the file");
 }
@@ -417,6 +369,90 @@ nlohmann::json parse_json_attribute(hid_t obj, const std::string& name) {
 }
 
 }  // namespace
+
+namespace sweep_layout {
+
+Handle create_file(const std::string& path) {
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "cannot create a file-access property list");
+  check(H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG), "cannot set the file close degree");
+  return Handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose,
+                "cannot create the file");
+}
+
+void write_header(hid_t f, const SweepHeader& h, std::uint64_t rows) {
+  write_string_attribute(f, "kind", kKind);
+  write_string_attribute(f, "study", h.study.dump(2));
+  if (!h.scene_resolved.is_null())
+    write_string_attribute(f, "scene_resolved", h.scene_resolved.dump(2));
+  write_string_attribute(f, "fingerprint", h.fingerprint);
+  write_provenance(f);
+  write_int64_attribute(f, "planned_samples", static_cast<std::int64_t>(h.planned_samples));
+  write_int64_attribute(f, "chunk_samples", static_cast<std::int64_t>(h.chunk_samples));
+  write_string_attribute(f, "shard", std::to_string(h.shard) + "/" + std::to_string(h.shard_count));
+  write_int64_attribute(f, "samples_done", static_cast<std::int64_t>(rows));
+  write_bool_attribute(f, "complete", h.complete);
+  write_string_attribute(f, "stopped_by", h.stopped_by);
+  write_double_attribute(f, "wall_seconds", h.wall_seconds);
+  if (!h.journal.is_null()) write_string_attribute(f, "journal", h.journal.dump());
+}
+
+std::vector<SampleDataset> sample_datasets(std::size_t inputs,
+                                           const std::vector<std::string>& output_columns) {
+  std::vector<SampleDataset> d = {
+      {"/samples/index", H5T_STD_U64LE, H5T_NATIVE_UINT64, 1, sizeof(std::uint64_t)},
+      {"/samples/status", H5T_STD_I8LE, H5T_NATIVE_INT8, 1, sizeof(std::int8_t)},
+      {"/samples/wall_time", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, 1, sizeof(float)},
+      {"/samples/inputs", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, static_cast<hsize_t>(inputs),
+       sizeof(double)}};
+  for (const auto& c : output_columns)
+    d.push_back({"/samples/" + c, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, sizeof(double)});
+  return d;
+}
+
+void describe_samples(hid_t f, const std::vector<std::string>& input_paths,
+                      const std::vector<std::string>& output_columns) {
+  describe(open_dataset(f, "/samples/index"), "1", "sample index in the study");
+  describe(open_dataset(f, "/samples/status"), "1",
+           "0 ok, 1 invalid input, 2 MPM unstable, 3 failed, 4 MPM cut short while the "
+           "barrier slid");
+  describe(open_dataset(f, "/samples/wall_time"), "s",
+           "wall time spent on the sample (closed forms: their chunk's time shared)");
+  {
+    Handle ds = open_dataset(f, "/samples/inputs");
+    write_string_attribute(ds, "paths", nlohmann::json(input_paths).dump());
+    // One unit per column, in the scene's units (those its keys name).
+    std::vector<std::string> units;
+    for (const auto& p : input_paths) units.push_back(input_units(p));
+    write_string_array_attribute(ds, "units", units);
+    write_string_attribute(ds, "description",
+                           "the sample's inputs, one column per scene path (attribute paths)");
+  }
+  {
+    Handle g(H5Gopen2(f, "/samples", H5P_DEFAULT), H5Gclose, "cannot open /samples");
+    write_string_attribute(g, "output_columns", nlohmann::json(output_columns).dump());
+    write_string_attribute(g, "status_meaning",
+                           "0 ok, 1 invalid input, 2 MPM unstable, 3 failed, 4 MPM cut short "
+                           "while the barrier slid (end time or end of the domain); reasons in "
+                           "/failures");
+  }
+  for (const std::string& column : output_columns) {
+    const std::string output = column.substr(column.find('/') + 1);
+    describe(open_dataset(f, "/samples/" + column), units_of(column),
+             output + " of the method " + column.substr(0, column.find('/')) +
+                 "; NaN where status is not 0");
+  }
+}
+
+void write_failures_and_statistics(hid_t f, const std::vector<std::uint64_t>& index,
+                                   const std::vector<std::string>& reason,
+                                   const nlohmann::json* statistics) {
+  write_column(f, "/failures/index", H5T_STD_U64LE, H5T_NATIVE_UINT64, index, "1",
+               "index of each sample whose status is not 0", SweepStorage::Plain);
+  write_strings(f, "/failures/reason", reason, "why the sample failed (one line)");
+  if (statistics) write_statistics(f, *statistics);
+}
+
+}  // namespace sweep_layout
 
 void write_sweep_file(const std::string& path, const SweepHeader& header, const SweepTable& table,
                       const nlohmann::json* statistics, SweepStorage storage) {
@@ -454,6 +490,7 @@ SweepFile read_sweep_file(const std::string& path) {
     h.complete = read_bool_attribute(f, "complete");
     h.stopped_by = read_string_attribute(f, "stopped_by");
     h.wall_seconds = read_double_attribute(f, "wall_seconds");
+    if (has_attribute(f, "journal")) h.journal = parse_json_attribute(f, "journal");
 
     SweepTable& t = out.table;
     {

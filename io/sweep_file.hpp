@@ -22,6 +22,8 @@
 //   /failures/reason      string [f]  ... and why (one line, as `lsi run` would print it)
 //   /statistics           result files only: attribute `json` (model/sweep_statistics.hpp) and
 //                         the same as datasets (statistics_datasets in sweep_file.cpp)
+// Chunk files of a running sweep hold the rows of the result not yet in its whole compressed
+// chunks, and the root attribute `journal` (JSON: what the chunk added to the result).
 // The /samples datasets of result files are chunked and compressed (shuffle + deflate).
 #pragma once
 #include <cstdint>
@@ -42,6 +44,9 @@ struct SweepHeader {
   bool complete = false;
   std::string stopped_by;
   double wall_seconds = 0.0;
+  // Chunk files of a running sweep only: what the chunk added to the result being written
+  // (app/sweep_runner.cpp); null: not stored.
+  nlohmann::json journal;
 };
 
 // How the /samples datasets are stored: compressed (result files) or plain (the chunk files of a

@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "io/sweep_file.hpp"
 #include "model/mpm_footprint.hpp"
 #include "model/mpm_impact.hpp"
 #include "model/mpm_runner.hpp"
@@ -168,21 +169,24 @@ TEST(CliRobustness, StaleTemporariesOfDeadWritersAreRemoved) {
   EXPECT_TRUE(fs::exists(out));
 }
 
-// SIGTERM (what a scheduler sends) during the final write of a sweep: the process ends with the
-// signal and its temporary file goes with it (it used to stay, full size).
+// SIGTERM (what a scheduler sends) while a sweep writes its result: the process ends with the
+// signal and leaves no temporary beside the result (it used to leave one, full size); the table
+// written so far is part of the parts directory, from which --resume finishes the run.
 TEST(CliRobustness, SigtermDuringTheFinalWriteRemovesTheTemporary) {
   const fs::path study = write_study("sigterm", {{"samples", 1000000}});
   const fs::path dir = temp_dir() / "sigterm";
+  fs::remove_all(dir);
   fs::create_directories(dir);
   const fs::path out = dir / "x.h5";
   const pid_t pid = lsi::testing::spawn_quietly({lsi_exe, "sweep", study, "--out", out});
   ASSERT_GE(pid, 0);
-  const fs::path tmp = out.string() + ".tmp." + std::to_string(pid);
+  // The first chunk journalled: the table file holds its compressed rows.
+  const fs::path table = out.string() + ".parts/chunk-000000000000.h5";
   const auto t0 = std::chrono::steady_clock::now();
   int status = 0;
   bool seen = false, ended = false;
   while (std::chrono::steady_clock::now() - t0 < std::chrono::seconds(120)) {
-    if (fs::exists(tmp)) {
+    if (fs::exists(table)) {
       seen = true;
       break;
     }
@@ -196,9 +200,13 @@ TEST(CliRobustness, SigtermDuringTheFinalWriteRemovesTheTemporary) {
     kill(pid, SIGTERM);
     waitpid(pid, &status, 0);
   }
-  ASSERT_TRUE(seen) << "the sweep ended before its final write was seen";
+  ASSERT_TRUE(seen) << "the sweep ended before its result was seen being written";
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << "status " << status;
-  EXPECT_FALSE(fs::exists(tmp));
+  EXPECT_TRUE(files_starting(dir, "x.h5.tmp.").empty());
+  const Outcome resumed = run("sweep " + study.string() + " --out " + out.string() + " --resume");
+  ASSERT_EQ(resumed.code, 0) << resumed.out;
+  EXPECT_EQ(lsi::read_sweep_file(out.string()).table.rows(), 1000000u);
+  EXPECT_FALSE(fs::exists(out.string() + ".parts"));
   EXPECT_TRUE(files_starting(dir, "x.h5.tmp.").empty());
 }
 

@@ -1,0 +1,56 @@
+// The journal of a running sweep; see sweep_journal.hpp.
+#include "app/sweep_journal.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "model/input_error.hpp"
+
+namespace lsi {
+
+using nlohmann::json;
+
+void write_journal_entry(const std::string& path, SweepHeader header,
+                         const SweepJournalEntry& e) {
+  json chunks = json::array(), failures = json::array();
+  for (const StoredChunk& k : e.chunks)
+    chunks.push_back({k.dataset, k.chunk, k.address, k.size});
+  for (std::size_t i = 0; i < e.failure_index.size(); ++i)
+    failures.push_back({e.failure_index[i], e.failure_reason[i]});
+  header.complete = true;  // the chunk itself
+  header.journal = {{"table_file", e.table_file},
+                    {"stored_rows", e.stored_rows},
+                    {"chunks", chunks},
+                    {"failures", failures}};
+  write_sweep_file(path, header, e.pending, nullptr, SweepStorage::Plain);
+}
+
+SweepJournalEntry read_journal_entry(const std::string& path, const std::string& fingerprint) {
+  SweepFile f = read_sweep_file(path);
+  if (f.header.fingerprint != fingerprint) throw InputError(path + ": belongs to another study");
+  const json& j = f.header.journal;
+  if (!j.is_object())
+    throw InputError(path +
+                     ": not a journal entry (left by an earlier version of lsi?); delete the "
+                     "parts directory to start the sweep again");
+  SweepJournalEntry e;
+  try {
+    e.table_file = j.at("table_file").get<std::string>();
+    e.stored_rows = j.at("stored_rows").get<std::uint64_t>();
+    for (const auto& k : j.at("chunks"))
+      e.chunks.push_back({k.at(0).get<std::uint64_t>(), k.at(1).get<std::uint64_t>(),
+                          k.at(2).get<std::uint64_t>(), k.at(3).get<std::uint64_t>()});
+    for (const auto& k : j.at("failures")) {
+      e.failure_index.push_back(k.at(0).get<std::uint64_t>());
+      e.failure_reason.push_back(k.at(1).get<std::string>());
+    }
+  } catch (const json::exception& x) {
+    throw InputError(path + ": attribute journal: " + x.what());
+  }
+  if (e.table_file.empty() || e.table_file.find('/') != std::string::npos)
+    throw InputError(path + ": attribute journal: table_file \"" + e.table_file +
+                     "\" is not a file name");
+  e.pending = std::move(f.table);
+  return e;
+}
+
+}  // namespace lsi
