@@ -157,22 +157,29 @@ KOKKOS_FORCEINLINE_FUNCTION double mixture_volumetric_rate(double n, double trac
   return (1.0 - n) * trace_L_solid + n * liquid_divergence;
 }
 
-// The pore pressure, porosity and viscous pressure of point q from D = volumetric_rate(q) (set by
-// the caller) and the solid velocity gradient L of the step; V = volume(q) must already be the
-// end-of-step volume (stress_update.hpp). Returns the work of the bulk viscosity, J/m (0 when it
-// is off). Shared by pore_pressure_update() and the fused two-phase G2P (two_phase_g2p.hpp).
-template <class MemorySpace>
-KOKKOS_FORCEINLINE_FUNCTION double update_point_pore_pressure(
-    const TwoPhaseParticles<MemorySpace>& p, const int q, const PreparedMaterial& m,
-    const TwoPhaseConstants& k, const double Lxx, const double Lxy, const double Lyx,
-    const double Lyy, const double dt) {
-  const auto& s = p.solid;
+// The pore pressure and porosity of point q from D = volumetric_rate(q) (set by the caller) and
+// the solid velocity gradient L of the step (the first part of update_point_pore_pressure).
+// Without branches, so that the host's loop over a block of points vectorises (two_phase_g2p.hpp).
+template <class Points>
+KOKKOS_FORCEINLINE_FUNCTION void update_point_pore_pressure_porosity(
+    const Points& p, const int q, const TwoPhaseConstants& k, const double Lxx, const double Lxy,
+    const double Lyx, const double Lyy, const double dt) {
   const double n = p.porosity(q), d = p.volumetric_rate(q);
   p.pore_pressure(q) -= k.liquid_bulk_modulus / n * d * dt;
   const double J = (1.0 + Lxx * dt) * (1.0 + Lyy * dt) - Lxy * Lyx * dt * dt;
-  const double n1 = 1.0 - (1.0 - n) / J;
-  p.porosity(q) = n1;
-  if (!k.viscous()) return 0.0;
+  p.porosity(q) = 1.0 - (1.0 - n) / J;
+}
+
+// The viscous pressure of point q from D = volumetric_rate(q), its porosity and volume of the end
+// of the step (the second part of update_point_pore_pressure, with the bulk viscosity on).
+// Returns the work of the bulk viscosity, J/m.
+template <class Points>
+KOKKOS_FORCEINLINE_FUNCTION double update_point_viscous_pressure(const Points& p, const int q,
+                                                                 const PreparedMaterial& m,
+                                                                 const TwoPhaseConstants& k,
+                                                                 const double dt) {
+  const auto& s = p.solid;
+  const double d = p.volumetric_rate(q), n1 = p.porosity(q);
   const double V = s.volume(q);
   const double dissipated = -p.viscous_pressure(q) * d * V * dt;
   const double M = m.lame_lambda + 2.0 * m.shear_modulus;
@@ -181,6 +188,20 @@ KOKKOS_FORCEINLINE_FUNCTION double update_point_pore_pressure(
   const double rho_m = (s.mass(q) + p.liquid_mass(q)) / V;
   p.viscous_pressure(q) = bulk_viscous_pressure(rho_m, c, k.cell_size, d, k.c1, k.c2);
   return dissipated;
+}
+
+// The pore pressure, porosity and viscous pressure of point q from D = volumetric_rate(q) (set by
+// the caller) and the solid velocity gradient L of the step; V = volume(q) must already be the
+// end-of-step volume (stress_update.hpp). Returns the work of the bulk viscosity, J/m (0 when it
+// is off). Shared by pore_pressure_update() and the fused two-phase G2P (two_phase_g2p.hpp).
+// `Points`: TwoPhaseParticles, or TwoPhasePointArrays on the host.
+template <class Points>
+KOKKOS_FORCEINLINE_FUNCTION double update_point_pore_pressure(
+    const Points& p, const int q, const PreparedMaterial& m, const TwoPhaseConstants& k,
+    const double Lxx, const double Lxy, const double Lyx, const double Lyy, const double dt) {
+  update_point_pore_pressure_porosity(p, q, k, Lxx, Lxy, Lyx, Lyy, dt);
+  if (!k.viscous()) return 0.0;
+  return update_point_viscous_pressure(p, q, m, k, dt);
 }
 
 // Returns the dissipation of the step, J/m: the work of the bulk viscosity and the liquid energy

@@ -8,6 +8,7 @@
 // Sign convention: pore pressure p is COMPRESSION POSITIVE; total stress sigma = sigma' - p I.
 #pragma once
 #include <Kokkos_Core.hpp>
+#include <type_traits>
 
 #include "kernels/mpm/particles.hpp"
 
@@ -46,6 +47,50 @@ struct TwoPhaseParticles {
     traction = decltype(traction)("p_traction", n);
     volumetric_rate = decltype(volumetric_rate)("p_volumetric_rate", n);
     viscous_pressure = decltype(viscous_pressure)("p_viscous_pressure", n);
+  }
+};
+
+// The fields of host TwoPhaseParticles as raw arrays with the same element access, for loops
+// over points that the compiler is to vectorise (as PointArrays, particles.hpp, of which `solid`
+// is one). The liquid's two- and four-component fields are point-interleaved (the Views' layout
+// above): p.liquid_velocity(q, r) is element 2 q + r.
+template <int N>
+struct PointRecords {
+  double* c;
+  KOKKOS_FORCEINLINE_FUNCTION double& operator()(const int q, const int k) const {
+    return c[N * q + k];
+  }
+};
+struct PointRecordMatrices {
+  double* c;
+  KOKKOS_FORCEINLINE_FUNCTION double& operator()(const int q, const int r, const int k) const {
+    return c[4 * q + 2 * r + k];
+  }
+};
+struct TwoPhasePointArrays {
+  PointArrays solid;
+  PointRecords<2> liquid_velocity, traction;
+  PointRecordMatrices liquid_affine;
+  PointColumn<double> liquid_divergence, liquid_mass, porosity, pore_pressure, conductivity,
+      volumetric_rate, viscous_pressure;
+
+  template <class MemorySpace>
+  KOKKOS_FORCEINLINE_FUNCTION explicit TwoPhasePointArrays(const TwoPhaseParticles<MemorySpace>& p)
+      : solid(p.solid),
+        liquid_velocity{p.liquid_velocity.data()},
+        traction{p.traction.data()},
+        liquid_affine{p.liquid_affine.data()},
+        liquid_divergence{p.liquid_divergence.data()},
+        liquid_mass{p.liquid_mass.data()},
+        porosity{p.porosity.data()},
+        pore_pressure{p.pore_pressure.data()},
+        conductivity{p.conductivity.data()},
+        volumetric_rate{p.volumetric_rate.data()},
+        viscous_pressure{p.viscous_pressure.data()} {
+    static_assert(std::is_same_v<typename decltype(p.liquid_velocity)::array_layout,
+                                 Kokkos::LayoutRight>);  // point-interleaved on the host
+    static_assert(std::is_same_v<typename decltype(p.liquid_affine)::array_layout,
+                                 Kokkos::LayoutRight>);
   }
 };
 

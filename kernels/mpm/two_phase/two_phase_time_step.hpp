@@ -81,28 +81,43 @@ struct TwoPhaseConstants {
   KOKKOS_INLINE_FUNCTION bool viscous() const { return c1 > 0.0 || c2 > 0.0; }
 };
 
-// Point q's squared wave speed and permeability step, folded into the running max c2 (m^2/s^2:
-// one square root for all the points, after the reduction) and min dtk.
-template <class MemorySpace>
-KOKKOS_FORCEINLINE_FUNCTION void point_time_step_limits(const TwoPhaseParticles<MemorySpace>& p,
-                                                        const int q, const PreparedMaterial& m,
-                                                        const TwoPhaseConstants& k, double& c2,
-                                                        double& dtk) {
+// Point q's squared wave speed without the bulk viscosity's share, m^2/s^2, and its permeability
+// step, s. Without branches, so that the host's loop over a block of points vectorises
+// (two_phase_g2p.hpp).
+template <class Points>
+KOKKOS_FORCEINLINE_FUNCTION void point_wave_speed_and_permeability_step(const Points& p, const int q,
+                                                                        const PreparedMaterial& m,
+                                                                        const TwoPhaseConstants& k,
+                                                                        double& cq2, double& tq) {
   const double M = m.lame_lambda + 2.0 * m.shear_modulus, rho_S = m.material.density;
   const double n = p.porosity(q);
-  double cq2 = saturated_wave_speed_squared(M, rho_S, n, k.liquid_density, k.liquid_bulk_modulus);
-  // Artificial bulk viscosity (pore_pressure_update.hpp) of a compressing point: as
-  // explicit impact codes, the speed c becomes sqrt(c^2 + Qv^2) + Qv with the viscous
-  // speed Qv = c1 c + c2 l |D| (von Neumann-Richtmyer / Landshoff).
-  const double D = p.volumetric_rate(q);
-  if (D < 0.0 && k.viscous()) {
-    const double cq = math::sqrt(cq2);
-    const double Qv = k.c1 * cq - k.c2 * k.cell_size * D;
-    const double cv = math::sqrt(cq2 + Qv * Qv) + Qv;
-    cq2 = cv * cv;
-  }
-  const double tq =
-      permeability_time_step(p.conductivity(q), rho_S, n, k.liquid_density, k.darcy_gravity);
+  cq2 = saturated_wave_speed_squared(M, rho_S, n, k.liquid_density, k.liquid_bulk_modulus);
+  tq = permeability_time_step(p.conductivity(q), rho_S, n, k.liquid_density, k.darcy_gravity);
+}
+
+// The squared wave speed cq2 of a point with the share of the artificial bulk viscosity
+// (pore_pressure_update.hpp) at the volumetric rate D: as explicit impact codes, for a
+// compressing point the speed c becomes sqrt(c^2 + Qv^2) + Qv with the viscous speed
+// Qv = c1 c + c2 l |D| (von Neumann-Richtmyer / Landshoff).
+KOKKOS_FORCEINLINE_FUNCTION double with_viscous_speed(const double cq2, const double D,
+                                                      const TwoPhaseConstants& k) {
+  if (!(D < 0.0 && k.viscous())) return cq2;
+  const double cq = math::sqrt(cq2);
+  const double Qv = k.c1 * cq - k.c2 * k.cell_size * D;
+  const double cv = math::sqrt(cq2 + Qv * Qv) + Qv;
+  return cv * cv;
+}
+
+// Point q's squared wave speed and permeability step, folded into the running max c2 (m^2/s^2:
+// one square root for all the points, after the reduction) and min dtk.
+template <class Points>
+KOKKOS_FORCEINLINE_FUNCTION void point_time_step_limits(const Points& p, const int q,
+                                                        const PreparedMaterial& m,
+                                                        const TwoPhaseConstants& k, double& c2,
+                                                        double& dtk) {
+  double cq2, tq;
+  point_wave_speed_and_permeability_step(p, q, m, k, cq2, tq);
+  cq2 = with_viscous_speed(cq2, p.volumetric_rate(q), k);
   if (cq2 > c2) c2 = cq2;
   if (tq < dtk) dtk = tq;
 }
