@@ -26,6 +26,8 @@
 // base); a body approaching a wall through the air would feel its mirror within 1.5 cells.
 #pragma once
 #include <Kokkos_Core.hpp>
+#include <cstddef>
+#include <type_traits>
 
 #include "kernels/mpm/boundary.hpp"
 #include "kernels/mpm/p2g.hpp"
@@ -49,6 +51,7 @@ enum : int {
   LiquidForceX,
   LiquidForceY,
   Drag,
+  Padding,  // unused: the record is 12 doubles, so that the host adds it in vectors of 4
   Count
 };
 }
@@ -66,21 +69,20 @@ struct MirrorWalls {
 
 namespace detail {
 
-// Point q's contributions (3 x 3 nodes, and its mirror images' within the same stencil) into the
-// interleaved buffer `buf` (node (i, j) at node_field::Count tile.offset(i, j)); (bi, bj): the
-// first node of its stencil.
-template <bool Atomic, class MemorySpace>
-KOKKOS_FORCEINLINE_FUNCTION void two_phase_p2g_point(
-    const TwoPhaseParticles<MemorySpace>& p, const int q, double* buf,
-    const lsi::mpm::detail::NodeTile& tile, const double ox, const double oy, const double dx,
-    const double inv_dx, const double gx, const double gy, const double rhoLg,
-    const MirrorWalls& mw, int& bi, int& bj) {
-  using lsi::mpm::detail::scatter_add;
+// The 3 x 3 x node_field::Count values point q adds to the nodes of its stencil (sx, sy, which it
+// returns): add(b, a, field, value) for node (sx.base + a, sy.base + b). Shared by the
+// point-by-point scatter (two_phase_p2g_point) and the host's blocked one (two_phase_p2g_block).
+// `Points`: TwoPhaseParticles, or TwoPhasePointArrays on the host.
+template <class Points, class Add>
+KOKKOS_FORCEINLINE_FUNCTION void two_phase_point_contributions(
+    const Points& p, const int q, const double ox, const double oy, const double dx,
+    const double inv_dx, const double gx, const double gy, const double rhoLg, Stencil1D& sx,
+    Stencil1D& sy, const Add& add) {
   namespace nf = node_field;
-  constexpr int F = nf::Count;
   const auto& s = p.solid;
   const double xp = s.position(q, 0) - ox, yp = s.position(q, 1) - oy;
-  const Stencil1D sx = quadratic_bspline(xp, inv_dx), sy = quadratic_bspline(yp, inv_dx);
+  sx = quadratic_bspline(xp, inv_dx);
+  sy = quadratic_bspline(yp, inv_dx);
   const double mS = s.mass(q), mL = p.liquid_mass(q), V = s.volume(q);
   // p + q: the artificial bulk viscosity acts like a pore pressure (pore_pressure_update.hpp)
   const double n = p.porosity(q), pw = p.pore_pressure(q) + p.viscous_pressure(q);
@@ -104,6 +106,7 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_p2g_point(
   const double* dwx = sx.dw;
   double wxd[3];
   offset_weights(sx, xp, dx, wxd);
+#pragma GCC unroll 3
   for (int b = 0; b < 3; ++b) {
     const double wy = sy.w[b], dwy = sy.dw[b], dyb = (sy.base + b) * dx - yp;
     double PS[2], QS[2], PL[2], QL[2];
@@ -114,30 +117,45 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_p2g_point(
     const double FS0[2] = {-Vs[2] * dwy + wy * fext[0], -Vs[1] * dwy + wy * fext[1]};
     const double FL1 = Vnp * wy;
     const double FL0[2] = {wy * fLext[0], Vnp * dwy + wy * fLext[1]};
-    double* row = buf + F * tile.offset(sx.base, sy.base + b);
+#pragma GCC unroll 3
     for (int a = 0; a < 3; ++a) {
-      double* node = row + F * a;
       const double w = wx[a] * wy;
-      scatter_add<Atomic>(node + nf::SolidMass, w * mS);
-      scatter_add<Atomic>(node + nf::SolidMomentumX, wx[a] * PS[0] + wxd[a] * QS[0]);
-      scatter_add<Atomic>(node + nf::SolidMomentumY, wx[a] * PS[1] + wxd[a] * QS[1]);
-      scatter_add<Atomic>(node + nf::MixtureForceX, dwx[a] * FS1[0] + wx[a] * FS0[0]);
-      scatter_add<Atomic>(node + nf::MixtureForceY, dwx[a] * FS1[1] + wx[a] * FS0[1]);
-      scatter_add<Atomic>(node + nf::LiquidMass, w * mL);
-      scatter_add<Atomic>(node + nf::LiquidMomentumX, wx[a] * PL[0] + wxd[a] * QL[0]);
-      scatter_add<Atomic>(node + nf::LiquidMomentumY, wx[a] * PL[1] + wxd[a] * QL[1]);
-      scatter_add<Atomic>(node + nf::LiquidForceX, dwx[a] * FL1 + wx[a] * FL0[0]);
-      scatter_add<Atomic>(node + nf::LiquidForceY, wx[a] * FL0[1]);
-      scatter_add<Atomic>(node + nf::Drag, w * Q);
+      add(b, a, nf::SolidMass, w * mS);
+      add(b, a, nf::SolidMomentumX, wx[a] * PS[0] + wxd[a] * QS[0]);
+      add(b, a, nf::SolidMomentumY, wx[a] * PS[1] + wxd[a] * QS[1]);
+      add(b, a, nf::MixtureForceX, dwx[a] * FS1[0] + wx[a] * FS0[0]);
+      add(b, a, nf::MixtureForceY, dwx[a] * FS1[1] + wx[a] * FS0[1]);
+      add(b, a, nf::LiquidMass, w * mL);
+      add(b, a, nf::LiquidMomentumX, wx[a] * PL[0] + wxd[a] * QL[0]);
+      add(b, a, nf::LiquidMomentumY, wx[a] * PL[1] + wxd[a] * QL[1]);
+      add(b, a, nf::LiquidForceX, dwx[a] * FL1 + wx[a] * FL0[0]);
+      add(b, a, nf::LiquidForceY, wx[a] * FL0[1]);
+      add(b, a, nf::Drag, w * Q);
     }
   }
-  bi = sx.base;
-  bj = sy.base;
-  if (!mw.any) return;
-  // Mirror images across the walls (see the file comment). Wall k: axis a (0: x, 1: y),
-  // position c, inward sign s (+1: the material is on the side of larger coordinates). The free
-  // nodes of an image's stencil lie in the point's own stencil (the point is within 1.5 cells of
-  // the wall), so the touched rectangle covers them.
+}
+
+// The forces of point q's mirror images (see the file comment) into the interleaved buffer
+// `buf` (node (i, j) at node_field::Count tile.offset(i, j)). Wall k: axis a (0: x, 1: y),
+// position c, inward sign s (+1: the material is on the side of larger coordinates). The free
+// nodes of an image's stencil lie in the point's own stencil (the point is within 1.5 cells of
+// the wall), so the touched rectangle covers them.
+template <bool Atomic, class Points>
+KOKKOS_INLINE_FUNCTION void two_phase_p2g_mirrors(const Points& p, const int q, double* buf,
+                                                  const lsi::mpm::detail::NodeTile& tile,
+                                                  const double ox, const double oy,
+                                                  const double dx, const double inv_dx,
+                                                  const double gx, const double gy,
+                                                  const MirrorWalls& mw) {
+  using lsi::mpm::detail::scatter_add;
+  namespace nf = node_field;
+  constexpr int F = nf::Count;
+  const auto& s = p.solid;
+  const double xp = s.position(q, 0) - ox, yp = s.position(q, 1) - oy;
+  const double mS = s.mass(q), mL = p.liquid_mass(q), V = s.volume(q);
+  const double n = p.porosity(q), pw = p.pore_pressure(q) + p.viscous_pressure(q);
+  const double Vs[3] = {V * (s.stress(q, 0) - pw), V * (s.stress(q, 1) - pw), V * s.stress(q, 2)};
+  const double Vnp = V * n * pw;
   const double tol = 1e-9 * dx;
   for (int k = 0; k < 4; ++k) {
     const bool solid_wall = mw.solid[k], liquid_wall = mw.liquid[k];
@@ -171,6 +189,115 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_p2g_point(
   }
 }
 
+// Point q's contributions (3 x 3 nodes, and its mirror images' within the same stencil) into the
+// interleaved buffer `buf` (node (i, j) at node_field::Count tile.offset(i, j)); (bi, bj): the
+// first node of its stencil.
+template <bool Atomic, class MemorySpace>
+KOKKOS_FORCEINLINE_FUNCTION void two_phase_p2g_point(
+    const TwoPhaseParticles<MemorySpace>& p, const int q, double* buf,
+    const lsi::mpm::detail::NodeTile& tile, const double ox, const double oy, const double dx,
+    const double inv_dx, const double gx, const double gy, const double rhoLg,
+    const MirrorWalls& mw, int& bi, int& bj) {
+  using lsi::mpm::detail::scatter_add;
+  constexpr int F = node_field::Count;
+  Stencil1D sx, sy;
+  two_phase_point_contributions(
+      p, q, ox, oy, dx, inv_dx, gx, gy, rhoLg, sx, sy,
+      [&](const int b, const int a, const int field, const double v) {
+        scatter_add<Atomic>(buf + F * tile.offset(sx.base + a, sy.base + b) + field, v);
+      });
+  bi = sx.base;
+  bj = sy.base;
+  if (mw.any) two_phase_p2g_mirrors<Atomic>(p, q, buf, tile, ox, oy, dx, inv_dx, gx, gy, mw);
+}
+
+// The host's scatter of points [q0, q1) (plain additions into one buffer): per point, the
+// factors of its contributions as vectors over the node's record, so that the additions into
+// each node are whole-record vector operations (node_field::Count is padded to a multiple of 4
+// doubles for this): node (bi + a, bj + b) adds
+//   wx_a R0_b + wxd_a R1_b + dwx_a R2_b   with  R0_b = wy_b (A + dy_b Bv) + dwy_b Cv,
+//   R1_b = wy_b D,  R2_b = wy_b E
+// (the per-point vectors A..E below), the sums of two_phase_point_contributions up to
+// round-off; then the point's mirror images (the order of two_phase_p2g_point). Widens
+// i0..i1 x j0..j1 by the stencils.
+inline void two_phase_p2g_block(
+    const TwoPhasePointArrays p, const int q0, const int q1, double* const buf, const int nx,
+    const double ox, const double oy, const double dx, const double inv_dx, const double gx,
+    const double gy, const double rhoLg, const MirrorWalls& mw, int& i0, int& i1, int& j0,
+    int& j1) {
+  namespace nf = node_field;
+  constexpr int F = nf::Count;
+  const lsi::mpm::detail::NodeTile grid{0, 0, nx};
+  for (int q = q0; q < q1; ++q) {
+    const auto& s = p.solid;
+    const double xp = s.position(q, 0) - ox, yp = s.position(q, 1) - oy;
+    const Stencil1D sx = quadratic_bspline(xp, inv_dx), sy = quadratic_bspline(yp, inv_dx);
+    const double mS = s.mass(q), mL = p.liquid_mass(q), V = s.volume(q);
+    const double n = p.porosity(q), pw = p.pore_pressure(q) + p.viscous_pressure(q);
+    const double Vs[3] = {V * (s.stress(q, 0) - pw), V * (s.stress(q, 1) - pw), V * s.stress(q, 2)};
+    const double Vnp = V * n * pw;
+    const double Q = V * n * n * rhoLg / p.conductivity(q);
+    double wxd[3];
+    offset_weights(sx, xp, dx, wxd);
+    const int bi = sx.base, bj = sy.base;
+    // The records in vectors of 4 fields: (SolidMass, SolidMomentumX, SolidMomentumY,
+    // MixtureForceX), (MixtureForceY, LiquidMass, LiquidMomentumX, LiquidMomentumY),
+    // (LiquidForceX, LiquidForceY, Drag, Padding).
+    static_assert(nf::MixtureForceX == 3 && nf::LiquidMomentumY == 7 && nf::Drag == 10 && F == 12);
+    typedef double Quad __attribute__((vector_size(32), aligned(8)));
+    constexpr int NQ = F / 4;
+    const double mv[4] = {mS * s.velocity(q, 0), mS * s.velocity(q, 1),
+                          mL * p.liquid_velocity(q, 0), mL * p.liquid_velocity(q, 1)};
+    const Quad A[NQ] = {{mS, mv[0], mv[1], (mS + mL) * gx + p.traction(q, 0)},
+                        {(mS + mL) * gy + p.traction(q, 1), mL, mv[2], mv[3]},
+                        {mL * gx, mL * gy, Q, 0.0}};
+    const Quad Bv[NQ] = {{0.0, mS * s.affine(q, 0, 1), mS * s.affine(q, 1, 1), 0.0},
+                         {0.0, 0.0, mL * p.liquid_affine(q, 0, 1), mL * p.liquid_affine(q, 1, 1)},
+                         {0.0, 0.0, 0.0, 0.0}};
+    const Quad Cv[NQ] = {{0.0, 0.0, 0.0, -Vs[2]}, {-Vs[1], 0.0, 0.0, 0.0}, {0.0, Vnp, 0.0, 0.0}};
+    const Quad D[NQ] = {{0.0, mS * s.affine(q, 0, 0), mS * s.affine(q, 1, 0), 0.0},
+                        {0.0, 0.0, mL * p.liquid_affine(q, 0, 0), mL * p.liquid_affine(q, 1, 0)},
+                        {0.0, 0.0, 0.0, 0.0}};
+    const Quad E[NQ] = {{0.0, 0.0, 0.0, -Vs[0]}, {-Vs[2], 0.0, 0.0, 0.0}, {Vnp, 0.0, 0.0, 0.0}};
+    for (int b = 0; b < 3; ++b) {
+      const double wy = sy.w[b], dwy = sy.dw[b], dyb = (sy.base + b) * dx - yp;
+      Quad R0[NQ], R1[NQ], R2[NQ];
+      for (int f = 0; f < NQ; ++f) {
+        R0[f] = wy * (A[f] + dyb * Bv[f]) + dwy * Cv[f];
+        R1[f] = wy * D[f];
+        R2[f] = wy * E[f];
+      }
+      double* row = buf + F * (bi + nx * (bj + b));
+      for (int a = 0; a < 3; ++a) {
+        Quad* node = reinterpret_cast<Quad*>(row + F * a);
+        const double u = sx.w[a], v = wxd[a], w = sx.dw[a];
+        for (int f = 0; f < NQ; ++f) node[f] += u * R0[f] + v * R1[f] + w * R2[f];
+      }
+    }
+    i0 = bi < i0 ? bi : i0;
+    i1 = bi + 2 > i1 ? bi + 2 : i1;
+    j0 = bj < j0 ? bj : j0;
+    j1 = bj + 2 > j1 ? bj + 2 : j1;
+    if (mw.any) two_phase_p2g_mirrors<false>(p, q, buf, grid, ox, oy, dx, inv_dx, gx, gy, mw);
+  }
+}
+
+// two_phase_p2g_block as the block function of scatter_points.
+template <class MemorySpace>
+struct TwoPhaseP2GBlock {
+  TwoPhaseParticles<MemorySpace> p;
+  int nx;
+  double ox, oy, dx, inv_dx, gx, gy, rhoLg;
+  MirrorWalls mw;
+  KOKKOS_INLINE_FUNCTION void operator()(const int q0, const int q1, double* buf, int& i0, int& i1,
+                                         int& j0, int& j1) const {
+#if !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)  // host buffers only
+    two_phase_p2g_block(TwoPhasePointArrays(p), q0, q1, buf, nx, ox, oy, dx, inv_dx, gx, gy,
+                        rhoLg, mw, i0, i1, j0, j1);
+#endif
+  }
+};
+
 }  // namespace detail
 
 template <class ExecSpace, bool Atomic, class MemorySpace>
@@ -197,13 +324,19 @@ void two_phase_p2g(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<M
     mw.liquid[k] = wl[k]->active;
     mw.at[k] = (ws[k]->active ? ws[k]->position : wl[k]->position) - (k < 2 ? ox : oy);
   }
+  // Host buffers with plain additions: the blocked scatter (two_phase_p2g_block).
+  using Block =
+      std::conditional_t<S::atomic, std::nullptr_t, detail::TwoPhaseP2GBlock<MemorySpace>>;
+  Block block{};
+  if constexpr (!S::atomic) block = {p, nx, ox, oy, dx, inv_dx, gx, gy, rhoLg, mw};
   const NodeBox touched = lsi::mpm::detail::scatter_points(
       scatter, p.solid.position, p.count, ox, oy, inv_dx, nx,
       KOKKOS_LAMBDA(const int q, double* buf, const lsi::mpm::detail::NodeTile& tile, int& bi,
                     int& bj) {
         detail::two_phase_p2g_point<S::atomic>(p, q, buf, tile, ox, oy, dx, inv_dx, gx, gy, rhoLg,
                                                mw, bi, bj);
-      });
+      },
+      block);
   const auto S_ = g.solid;
   const auto L_ = g.liquid;
   const auto drag = g.drag;
