@@ -157,7 +157,7 @@ struct BlockStencil {
 template <bool Flip, G2PStress Stress, class MaterialOf>
 KOKKOS_FORCEINLINE_FUNCTION void g2p_block(
     const PointArrays a, const double* const v, const double* const v_old,
-    const PreparedMaterial* const mats, const MaterialOf material_of, const int nx, const double ox,
+    const MaterialOf material_of, const int nx, const double ox,
     const double oy, const double dx, const double inv_dx, const double apic, const double fr,
     const double dt, const double xmax, const double ymax, const int q0, const int q1, double& vm,
     double& jm, int& nonfinite, int& outside) {
@@ -202,34 +202,8 @@ KOKKOS_FORCEINLINE_FUNCTION void g2p_block(
       for (int c = 0; c < 4; ++c) sb[c][k] = s[c];
     }
   }
-  if constexpr (plastic) {
-    // The main-plane returns of the block's points vectorised; the rest (edges, apex, mu(I))
-    // point by point.
-    int returns = 0;
-    for (int k = 0; k < q1 - q0; ++k) returns += needs_return[k] ? 1 : 0;
-    if (returns > 0) {
-#pragma GCC ivdep
-      for (int q = q0; q < q1; ++q) {
-        const int k = q - q0;
-        const PreparedMaterial& m = material_of(q);
-        double s[4] = {sb[0][k], sb[1][k], sb[2][k], sb[3][k]};
-        double work = 0.0;
-        const bool main = mohr_coulomb_main_plane(m, s, work) & !m.rate_dependent;
-        const bool done = main & (needs_return[k] != 0);
-        for (int c = 0; c < 4; ++c) sb[c][k] = done ? s[c] : sb[c][k];
-        a.plastic_work(q) += a.volume(q) * (done ? work : 0.0);
-        needs_return[k] = main ? 0 : needs_return[k];
-      }
-    }
-    for (int q = q0; q < q1; ++q) {
-      const int k = q - q0;
-      if (!needs_return[k]) continue;
-      double s[4] = {sb[0][k], sb[1][k], sb[2][k], sb[3][k]};
-      a.plastic_work(q) += a.volume(q) * return_mapping_work(mats[a.material(q)], Lb[0][k],
-                                                             Lb[1][k], Lb[2][k], Lb[3][k], s);
-      for (int c = 0; c < 4; ++c) sb[c][k] = s[c];
-    }
-  }
+  if constexpr (plastic)
+    block_return_mappings<B>(a, q0, q1, material_of, Lb, sb, needs_return);
   // The health of each point into arrays, reduced after the loop: GCC vectorises no maximum of
   // doubles (its NaN rules) inside a loop.
   double speed[B], expansion[B];
@@ -296,11 +270,11 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
           if (uniform) {
             const PreparedMaterial m = with_stress ? mats[a.material(q0)] : PreparedMaterial();
             detail::g2p_block<Flip, Stress>(
-                a, v, v_old, mats, [&m](int) -> const PreparedMaterial& { return m; }, nx, ox, oy,
+                a, v, v_old, [&m](int) -> const PreparedMaterial& { return m; }, nx, ox, oy,
                 dx, inv_dx, apic, flip_ratio, dt, xmax, ymax, q0, q1, vm, jm, nonfinite, outside);
           } else {
             detail::g2p_block<Flip, Stress>(
-                a, v, v_old, mats,
+                a, v, v_old,
                 [mats, a](int q) -> const PreparedMaterial& { return mats[a.material(q)]; }, nx, ox,
                 oy, dx, inv_dx, apic, flip_ratio, dt, xmax, ymax, q0, q1, vm, jm, nonfinite,
                 outside);

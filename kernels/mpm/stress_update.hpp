@@ -6,6 +6,7 @@
 // (g2p.hpp, g2p_stress_update), which has L at hand: Solver::step() uses that one.
 #pragma once
 #include <Kokkos_Core.hpp>
+#include <cstdint>
 
 #include "kernels/mpm/constitutive/inertial_friction.hpp"
 #include "kernels/mpm/constitutive/jaumann.hpp"
@@ -80,6 +81,45 @@ KOKKOS_INLINE_FUNCTION void return_point_stress(const Points& p, const int q,
                                                 const double Lxy, const double Lyx,
                                                 const double Lyy, double s[4]) {
   p.plastic_work(q) += p.volume(q) * return_mapping_work(m, Lxx, Lxy, Lyx, Lyy, s);
+}
+
+// The return mappings of the points [q0, q1) of a block of the host's blocked G2P (g2p.hpp,
+// two_phase/two_phase_g2p.hpp), between its trial and finish loops: Lb and sb hold each point's
+// velocity gradient and trial stress (component c of the block's point k at [c][k]),
+// needs_return whether it needs the return. The returns to the main plane and the tension
+// cut-off in one loop over the block's points, without branches (mohr_coulomb_main_plane:
+// it vectorises where the block has one material); the rest (edges, the apex, mu(I)) point by
+// point. needs_return is a 64-bit integer: GCC vectorises no selection on a bool loaded from
+// memory in a loop of doubles.
+template <int B, class Points, class MaterialOf>
+KOKKOS_FORCEINLINE_FUNCTION void block_return_mappings(const Points& p, const int q0,
+                                                       const int q1,
+                                                       const MaterialOf material_of,
+                                                       const double (&Lb)[4][B],
+                                                       double (&sb)[4][B],
+                                                       std::int64_t (&needs_return)[B]) {
+  int returns = 0;
+  for (int k = 0; k < q1 - q0; ++k) returns += needs_return[k] != 0 ? 1 : 0;
+  if (returns == 0) return;
+#pragma GCC ivdep
+  for (int q = q0; q < q1; ++q) {
+    const int k = q - q0;
+    const PreparedMaterial& m = material_of(q);
+    double s[4] = {sb[0][k], sb[1][k], sb[2][k], sb[3][k]};
+    double work = 0.0;
+    const bool main = mohr_coulomb_main_plane(m, s, work) & !m.rate_dependent;
+    const bool done = main & (needs_return[k] != 0);
+    for (int c = 0; c < 4; ++c) sb[c][k] = done ? s[c] : sb[c][k];
+    p.plastic_work(q) += p.volume(q) * (done ? work : 0.0);
+    needs_return[k] = main ? 0 : needs_return[k];
+  }
+  for (int q = q0; q < q1; ++q) {
+    const int k = q - q0;
+    if (needs_return[k] == 0) continue;
+    double s[4] = {sb[0][k], sb[1][k], sb[2][k], sb[3][k]};
+    return_point_stress(p, q, material_of(q), Lb[0][k], Lb[1][k], Lb[2][k], Lb[3][k], s);
+    for (int c = 0; c < 4; ++c) sb[c][k] = s[c];
+  }
 }
 
 template <bool WithPlasticity, class Points>

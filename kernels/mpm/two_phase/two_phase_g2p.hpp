@@ -25,6 +25,7 @@
 // (two_phase_time_step.hpp). One pass over the points instead of five.
 #pragma once
 #include <Kokkos_Core.hpp>
+#include <cstdint>
 #include <cmath>
 #include <type_traits>
 
@@ -273,7 +274,7 @@ template <bool Apic, G2PStress Stress, bool Pore, class Grid, class MaterialOf>
 KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_block(
     const TwoPhasePointArrays a, const Grid& grid, const bool ghosts, const double* const vs,
     const double* const vso, const double* const vl, const double* const vlo,
-    const PreparedMaterial* const mats, const MaterialOf material_of, const int nx,
+    const MaterialOf material_of, const int nx,
     const double ox, const double oy, const double dx, const double inv_dx, const double apic_scale,
     const double r_flip, const double r_pic, const double dt, const double xmax, const double ymax,
     const TwoPhaseConstants& constants, const int q0, const int q1, TwoPhaseG2PSums& sums) {
@@ -329,7 +330,7 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_block(
   for (int k = 0; k < count; ++k) sums.load_work += load[k];
   if constexpr (with_stress) {
     double sb[4][B];
-    bool needs_return[B];
+    std::int64_t needs_return[B];  // block_return_mappings (stress_update.hpp)
 #pragma GCC ivdep
     for (int q = q0; q < q1; ++q) {
       const int k = q - q0;
@@ -342,16 +343,8 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_block(
                                                     Lb[2][k], Lb[3][k], dt, s);
       for (int c = 0; c < 4; ++c) sb[c][k] = s[c];
     }
-    if constexpr (plastic) {
-      for (int q = q0; q < q1; ++q) {
-        const int k = q - q0;
-        if (!needs_return[k]) continue;
-        double s[4] = {sb[0][k], sb[1][k], sb[2][k], sb[3][k]};
-        return_point_stress(a.solid, q, mats[a.solid.material(q)], Lb[0][k], Lb[1][k], Lb[2][k],
-                            Lb[3][k], s);
-        for (int c = 0; c < 4; ++c) sb[c][k] = s[c];
-      }
-    }
+    if constexpr (plastic)
+      block_return_mappings<B>(a.solid, q0, q1, material_of, Lb, sb, needs_return);
     double wave2[B], perm_dt[B];
 #pragma GCC ivdep
     for (int q = q0; q < q1; ++q) {
@@ -449,11 +442,11 @@ TwoPhaseG2PReport two_phase_g2p_impl(
           const auto run = [&](const auto& material_of) {
             if (pore)
               detail::two_phase_g2p_block<Apic, Stress, true>(
-                  a, grid, Ghosts, vs, vso, vl, vlo, mats, material_of, nx, ox, oy, dx, inv_dx,
+                  a, grid, Ghosts, vs, vso, vl, vlo, material_of, nx, ox, oy, dx, inv_dx,
                   apic, flip, pic, dt, xmax, ymax, kc, q0, q1, sums);
             else
               detail::two_phase_g2p_block<Apic, Stress, false>(
-                  a, grid, Ghosts, vs, vso, vl, vlo, mats, material_of, nx, ox, oy, dx, inv_dx,
+                  a, grid, Ghosts, vs, vso, vl, vlo, material_of, nx, ox, oy, dx, inv_dx,
                   apic, flip, pic, dt, xmax, ymax, kc, q0, q1, sums);
           };
           if (uniform) {
