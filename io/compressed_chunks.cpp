@@ -25,23 +25,77 @@ std::size_t compression_threads() {
   return n;
 }
 
-// One chunk as HDF5's pipeline makes it: the rows copied (the last chunk padded with zeros, the
-// fill value, to the full chunk), the bytes shuffled (byte j of element i to j * count + i), then
-// deflated (zlib format, as H5Z's deflate filter).
-void compress_chunk(const unsigned char* rows, std::size_t bytes, std::size_t chunk_bytes,
-                    std::size_t element_size, int level, std::vector<unsigned char>& plain,
-                    std::vector<unsigned char>& out) {
-  plain.assign(chunk_bytes, 0);
-  const std::size_t count = chunk_bytes / element_size;
-  for (std::size_t i = 0; i < bytes / element_size; ++i)
-    for (std::size_t j = 0; j < element_size; ++j)
-      plain[j * count + i] = rows[i * element_size + j];
-  uLongf size = compressBound(static_cast<uLong>(chunk_bytes));
-  out.resize(size);
-  if (compress2(out.data(), &size, plain.data(), static_cast<uLong>(chunk_bytes), level) != Z_OK)
-    throw std::runtime_error("zlib could not compress a chunk");
-  out.resize(size);
+// Byte j of element i to j * count + i (HDF5's shuffle filter), for the first n elements.
+template <std::size_t E>
+void shuffle_fixed(const unsigned char* rows, std::size_t n, std::size_t count,
+                   unsigned char* plain) {
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < E; ++j) plain[j * count + i] = rows[i * E + j];
 }
+
+void shuffle(const unsigned char* rows, std::size_t n, std::size_t count, std::size_t size,
+             unsigned char* plain) {
+  switch (size) {
+    case 1: return shuffle_fixed<1>(rows, n, count, plain);
+    case 2: return shuffle_fixed<2>(rows, n, count, plain);
+    case 4: return shuffle_fixed<4>(rows, n, count, plain);
+    case 8: return shuffle_fixed<8>(rows, n, count, plain);
+    default:
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < size; ++j) plain[j * count + i] = rows[i * size + j];
+  }
+}
+
+// One thread's compressor: its buffers and zlib streams (one per strategy), kept from chunk to
+// chunk.
+class ChunkCompressor {
+ public:
+  explicit ChunkCompressor(int level) : level_(level) {}
+  ChunkCompressor(const ChunkCompressor&) = delete;
+  ChunkCompressor& operator=(const ChunkCompressor&) = delete;
+  ~ChunkCompressor() {
+    for (auto& s : streams_)
+      if (s.started) deflateEnd(&s.z);
+  }
+
+  // One chunk as HDF5's pipeline makes it: the rows copied (the last chunk padded with zeros, the
+  // fill value, to the full chunk), the bytes shuffled, then deflated (zlib format, as H5Z's
+  // deflate filter) with the strategy of the chunk's numbers (compressed_chunks.hpp).
+  std::vector<unsigned char> compress(const ChunkRows& k) {
+    const std::size_t count = k.chunk_bytes / k.element_size;
+    const std::size_t n = k.bytes / k.element_size;
+    plain_.resize(k.chunk_bytes);
+    for (std::size_t j = 0; j < k.element_size; ++j)  // the padding
+      std::fill(plain_.begin() + j * count + n, plain_.begin() + (j + 1) * count, 0);
+    shuffle(static_cast<const unsigned char*>(k.rows), n, count, k.element_size, plain_.data());
+    Stream& s = streams_[k.floating ? 1 : 0];
+    if (!s.started) {
+      if (deflateInit2(&s.z, level_, Z_DEFLATED, 15, 8, k.floating ? Z_RLE : Z_DEFAULT_STRATEGY) !=
+          Z_OK)
+        throw std::runtime_error("zlib could not start compressing a chunk");
+      s.started = true;
+    } else if (deflateReset(&s.z) != Z_OK) {
+      throw std::runtime_error("zlib could not start compressing a chunk");
+    }
+    out_.resize(deflateBound(&s.z, static_cast<uLong>(k.chunk_bytes)));
+    s.z.next_in = plain_.data();
+    s.z.avail_in = static_cast<uInt>(k.chunk_bytes);
+    s.z.next_out = out_.data();
+    s.z.avail_out = static_cast<uInt>(out_.size());
+    if (deflate(&s.z, Z_FINISH) != Z_STREAM_END)
+      throw std::runtime_error("zlib could not compress a chunk");
+    return std::vector<unsigned char>(out_.begin(), out_.begin() + s.z.total_out);
+  }
+
+ private:
+  struct Stream {
+    z_stream z{};
+    bool started = false;
+  };
+  int level_;
+  Stream streams_[2];
+  std::vector<unsigned char> plain_, out_;
+};
 
 }  // namespace
 
@@ -56,6 +110,8 @@ int shuffle_deflate_level(hid_t dcpl) {
   return static_cast<int>(cd[0]);
 }
 
+bool floating_type(hid_t type) { return H5Tget_class(type) == H5T_FLOAT; }
+
 std::vector<std::vector<unsigned char>> compress_chunks(const std::vector<ChunkRows>& chunks,
                                                         int level) {
   std::vector<std::vector<unsigned char>> out(chunks.size());
@@ -63,13 +119,9 @@ std::vector<std::vector<unsigned char>> compress_chunks(const std::vector<ChunkR
   const std::size_t threads = std::min(compression_threads(), chunks.size());
   std::vector<std::string> errors(threads);
   auto work = [&](std::size_t t) {
-    std::vector<unsigned char> plain;
     try {
-      for (std::size_t c = t; c < chunks.size(); c += threads) {
-        const ChunkRows& k = chunks[c];
-        compress_chunk(static_cast<const unsigned char*>(k.rows), k.bytes, k.chunk_bytes,
-                       k.element_size, level, plain, out[c]);
-      }
+      ChunkCompressor compressor(level);
+      for (std::size_t c = t; c < chunks.size(); c += threads) out[c] = compressor.compress(chunks[c]);
     } catch (const std::exception& e) {
       errors[t] = e.what();
     }
@@ -95,6 +147,8 @@ bool write_compressed_chunks(hid_t dataset, hid_t dcpl, const void* data, std::s
   const std::size_t chunk_bytes = chunk_rows * row_bytes;
   const std::size_t chunks = (rows + chunk_rows - 1) / chunk_rows;
   const auto* bytes = static_cast<const unsigned char*>(data);
+  const Handle type(H5Dget_type(dataset), H5Tclose, "cannot get the type of a dataset");
+  const bool floating = floating_type(type);
   // Batches of a few chunks per thread: compressed in parallel, then written in order, so that
   // only a batch of compressed chunks is held at a time.
   const std::size_t batch = 8 * compression_threads();
@@ -104,7 +158,8 @@ bool write_compressed_chunks(hid_t dataset, hid_t dcpl, const void* data, std::s
     for (std::size_t c = first; c < last; ++c) {
       const std::size_t begin = c * chunk_rows, end = std::min(rows, begin + chunk_rows);
       rows_of.push_back(
-          {bytes + begin * row_bytes, (end - begin) * row_bytes, chunk_bytes, element_size});
+          {bytes + begin * row_bytes, (end - begin) * row_bytes, chunk_bytes, element_size,
+           floating});
     }
     const auto out = compress_chunks(rows_of, level);
     for (std::size_t c = first; c < last; ++c) {

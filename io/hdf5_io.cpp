@@ -236,7 +236,7 @@ Handle compressed_table_properties(int rank, const hsize_t* dims, std::size_t el
   check(H5Pset_chunk(dcpl, rank, chunk.data()), "cannot set the chunk size");
   if (H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
     check(H5Pset_shuffle(dcpl), "cannot set the shuffle filter");
-    check(H5Pset_deflate(dcpl, 4), "cannot set the deflate filter");
+    check(H5Pset_deflate(dcpl, 1), "cannot set the deflate filter");
   }
   return dcpl;
 }

@@ -120,7 +120,7 @@ void write_double_array(hid_t group, const std::string& name, const std::vector<
                         const std::string& description);
 
 // Dataset-creation properties for a table that may be large: chunked along its first dimension
-// and compressed (shuffle, then deflate at level 4) where the library has deflate; the default
+// and compressed (shuffle, then deflate at level 1) where the library has deflate; the default
 // (contiguous) layout for an empty dataset. Chunks of `chunk_rows` rows where given (> 0), else of
 // about 256 KiB.
 Handle compressed_table_properties(int rank, const hsize_t* dims, std::size_t element_size,

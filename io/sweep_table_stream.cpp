@@ -73,7 +73,8 @@ std::vector<StoredChunk> SweepTableStream::write_chunks(const SweepTable& t, std
   std::vector<StoredChunk> stored;
   if (rows == 0) return stored;
   const std::size_t d = input_paths_.size();
-  std::vector<double> inputs(rows * d);  // the inputs row by row, as the file holds them
+  std::vector<double>& inputs = row_major_inputs_;  // the inputs row by row, as the file holds them
+  inputs.resize(rows * d);
   for (std::size_t k = 0; k < d; ++k)
     for (std::uint64_t i = 0; i < rows; ++i) inputs[i * d + k] = t.inputs[k][i];
   std::vector<const void*> data = {t.index.data(), t.status.data(), t.wall_time.data(),
@@ -86,7 +87,8 @@ std::vector<StoredChunk> SweepTableStream::write_chunks(const SweepTable& t, std
     for (std::uint64_t begin = 0; begin < rows; begin += chunk_rows_) {
       const std::uint64_t end = std::min(rows, begin + chunk_rows_);
       chunks.push_back({bytes + begin * row_bytes, (end - begin) * row_bytes,
-                        chunk_rows_ * row_bytes, layout_[s].element_size});
+                        chunk_rows_ * row_bytes, layout_[s].element_size,
+                        floating_type(layout_[s].file_type)});
       stored.push_back({s, (stored_rows_ + begin) / chunk_rows_, 0, 0});
     }
   }

@@ -70,6 +70,7 @@ class SweepTableStream {
   std::uint64_t planned_rows_, chunk_rows_, stored_rows_ = 0;
   int level_ = -1;
   SweepTable pending_;
+  std::vector<double> row_major_inputs_;  // write_chunks' buffer, kept from chunk to chunk
 };
 
 }  // namespace lsi
