@@ -76,9 +76,11 @@ class ChunkEvaluator {
         source_.push_back({m, out});
       }
     for (const auto& in : s.inputs) paths_.push_back(in.path);
+    table_ = SweepTable::with_columns(paths_, s.output_columns());
   }
 
-  SweepTable run(std::uint64_t k) {
+  // The table of chunk k; it stays valid (and is reused) until the next call.
+  const SweepTable& run(std::uint64_t k) {
     const std::uint64_t first = k * study_.chunk_samples;
     const std::uint64_t count = std::min(study_.chunk_samples, study_.samples - first);
     const int dims = static_cast<int>(study_.inputs.size());
@@ -95,7 +97,10 @@ class ChunkEvaluator {
     const auto bad = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), invalid_);
     const float closed_form_seconds = static_cast<float>(seconds_since(t0) / double(count));
 
-    SweepTable t = SweepTable::with_columns(paths_, study_.output_columns());
+    // Columns kept from chunk to chunk: resized, not allocated anew, and every row overwritten.
+    SweepTable& t = table_;
+    t.failure_index.clear();
+    t.failure_reason.clear();
     t.index.resize(count);
     t.status.assign(count, static_cast<std::int8_t>(SampleStatus::ok));
     t.wall_time.assign(count, closed_form_seconds);
@@ -215,6 +220,7 @@ class ChunkEvaluator {
   std::vector<std::string> paths_;
   Matrix inputs_, outputs_;
   Kokkos::View<int*, Mem> invalid_;
+  SweepTable table_;
 };
 
 // Progress on a terminal: samples done, rate, ETA; silent otherwise.
@@ -498,7 +504,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   for (std::size_t m = 0; m < mine.size() && !rule_met && stopped_by.empty(); ++m) {
     if (done[m]) continue;
     auto ts = Clock::now();
-    SweepTable t = evaluator.run(mine[m]);
+    const SweepTable& t = evaluator.run(mine[m]);
     evaluate_s += seconds_since(ts);
     ts = Clock::now();
     SweepJournalEntry entry;
