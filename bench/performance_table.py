@@ -20,7 +20,7 @@ A figure's roof is what bounds it: for the sweep, the models alone on the same s
 model, the analytical model's rate (the same kind of arithmetic, one pow apart); for the models,
 the memory roof (bench_bandwidth's triad with write-allocate over the bytes a sample moves).
 A group is a function returning rows (figure, measured, roof, what the roof is): add one to GROUPS
-for new figures (the MPM's kernels against their roofs, say).
+for new figures.
 
   --print        print the tables, do not touch the page
   --only GROUP   that group only (repeatable): closed_forms, sweep
@@ -136,7 +136,46 @@ def group_sweep(build, repetitions):
     return rows, "sweep", "bench_sweep, lsi sweep " + STUDY
 
 
-GROUPS = {"closed_forms": group_closed_forms, "sweep": group_sweep}
+# Bytes a dry Mohr-Coulomb step moves per particle update, write-allocate included (the sum over
+# its kernels' fields: docs/notes/performance.md, "bytes per update"): the 20 k column, the 200 k.
+DRY_STEP_BYTES = {20000: 523.0, 199712: 517.0}
+
+
+def group_mpm(build, repetitions):
+    mpm_runs, bandwidth_runs, impact_runs = [], [], []
+    for _ in range(repetitions):
+        mpm_runs.append(benchmark(build, "bench_mpm",
+                                  "^step/OpenMP/mohr_coulomb/duplicated/particles:(20000|199712)/"))
+        bandwidth_runs.append(benchmark(build, "bench_bandwidth",
+                                        "stream/OpenMP/triad/elements:(16777216|262144)/"))
+        impact_runs.append(benchmark(build, "bench_impact",
+                                     "^column_step/OpenMP/saturated/duplicated/|^campaign/"))
+    step = medians(mpm_runs, rate)
+    band = medians(bandwidth_runs, lambda r: r["bytes_per_second_with_write_allocate"])
+    dram = next(v for n, v in band.items() if "16777216" in n)
+    l3 = next(v for n, v in band.items() if "262144" in n)
+    impact = medians(impact_runs, lambda r: r["real_time"])
+    impact_rate = medians(impact_runs, lambda r: r.get("items_per_second", 0.0))
+    rows = []
+    for points, bandwidth, memory in ((199712, dram, "DRAM"), (20000, l3, "L3")):
+        measured = next(v for n, v in step.items() if "particles:%d/" % points in n)
+        rows.append(("dry Mohr-Coulomb step, %d points, particle-updates/s" % points, measured,
+                     bandwidth / DRY_STEP_BYTES[points],
+                     "memory (%s): triad %.3g GB/s / %.0f B an update" %
+                     (memory, bandwidth / 1e9, DRY_STEP_BYTES[points])))
+    saturated = next(v for n, v in impact_rate.items() if n.startswith("column_step"))
+    rows.append(("saturated column step, 20000 points, particle-updates/s", saturated, None, ""))
+    for cells in (8, 16):
+        one = next(v for n, v in impact.items() if "cells:%d/one_after_another" % cells in n)
+        side = next(v for n, v in impact.items() if "cells:%d/side_by_side" % cells in n)
+        # No roof: on a busy machine the runs one after another also lose their threads'
+        # barriers to other work, so the ratio can exceed the thread count.
+        rows.append(("campaign of 8 impact runs (%d cells through the thickness): time one "
+                     "after another / side by side" % cells, one / side, None, ""))
+    return rows, "mpm", "bench_mpm, bench_bandwidth, bench_impact"
+
+
+GROUPS = {"closed_forms": group_closed_forms, "sweep": group_sweep, "mpm": group_mpm}
 
 
 def number(x):
