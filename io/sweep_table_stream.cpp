@@ -93,21 +93,23 @@ std::vector<StoredChunk> SweepTableStream::write_chunks(const SweepTable& t, std
     }
   }
   const auto compressed = compress_chunks(chunks, level_);
-  for (std::size_t c = 0; c < stored.size(); ++c) {
-    StoredChunk& k = stored[c];
-    const hsize_t offset[2] = {k.chunk * chunk_rows_, 0};
-    const hid_t ds = datasets_[k.dataset];
-    check(H5Dwrite_chunk(ds, H5P_DEFAULT, 0, offset, compressed[c].size(), compressed[c].data()),
-          path_ + ": cannot write a chunk of '" + layout_[k.dataset].name + "'");
-    unsigned mask = 0;
-    haddr_t address = 0;
-    hsize_t size = 0;
-    check(H5Dget_chunk_info_by_coord(ds, offset, &mask, &address, &size),
-          path_ + ": cannot locate a chunk of '" + layout_[k.dataset].name + "'");
-    k.address = address;
-    k.size = size;
-  }
+  for (std::size_t c = 0; c < stored.size(); ++c)
+    write_chunk(stored[c], compressed[c].data(), compressed[c].size());
   return stored;
+}
+
+void SweepTableStream::write_chunk(StoredChunk& k, const void* bytes, const std::size_t size) {
+  const hsize_t offset[2] = {k.chunk * chunk_rows_, 0};
+  const hid_t ds = datasets_[k.dataset];
+  check(H5Dwrite_chunk(ds, H5P_DEFAULT, 0, offset, size, bytes),
+        path_ + ": cannot write a chunk of '" + layout_[k.dataset].name + "'");
+  unsigned mask = 0;
+  haddr_t address = 0;
+  hsize_t stored_size = 0;
+  check(H5Dget_chunk_info_by_coord(ds, offset, &mask, &address, &stored_size),
+        path_ + ": cannot locate a chunk of '" + layout_[k.dataset].name + "'");
+  k.address = address;
+  k.size = stored_size;
 }
 
 std::vector<StoredChunk> SweepTableStream::append(const SweepTable& rows) {
@@ -137,18 +139,8 @@ std::vector<StoredChunk> SweepTableStream::adopt(const std::string& from,
       throw std::runtime_error(from + ": lacks the chunk of " + std::to_string(k.size) +
                                " bytes at byte " + std::to_string(k.address) +
                                " (the file was cut short or replaced)");
-    const hsize_t offset[2] = {k.chunk * chunk_rows_, 0};
-    const hid_t ds = datasets_[k.dataset];
-    check(H5Dwrite_chunk(ds, H5P_DEFAULT, 0, offset, bytes.size(), bytes.data()),
-          path_ + ": cannot write a chunk of '" + layout_[k.dataset].name + "'");
     StoredChunk now = k;
-    unsigned mask = 0;
-    haddr_t address = 0;
-    hsize_t size = 0;
-    check(H5Dget_chunk_info_by_coord(ds, offset, &mask, &address, &size),
-          path_ + ": cannot locate a chunk of '" + layout_[k.dataset].name + "'");
-    now.address = address;
-    now.size = size;
+    write_chunk(now, bytes.data(), bytes.size());
     stored.push_back(now);
   }
   return stored;
@@ -183,8 +175,7 @@ SweepTable SweepTableStream::read_stored() const {
       Handle file_space(H5Dget_space(datasets_[s]), H5Sclose, "cannot get a dataspace");
       check(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start, nullptr, count, nullptr),
             "cannot select rows");
-      Handle memory(H5Screate_simple(rank, count, nullptr), H5Sclose,
-                    "cannot create a dataspace");
+      Handle memory(H5Screate_simple(rank, count, nullptr), H5Sclose, "cannot create a dataspace");
       check(H5Dread(datasets_[s], layout_[s].mem_type, memory, file_space, H5P_DEFAULT, data[s]),
             path_ + ": cannot read back '" + layout_[s].name + "'");
     }

@@ -61,6 +61,9 @@ class SweepTableStream {
 
  private:
   std::vector<StoredChunk> write_chunks(const SweepTable& source, std::uint64_t rows);
+  // Writes one compressed chunk where k says (dataset, chunk) and sets k's address and size to
+  // where the file put it.
+  void write_chunk(StoredChunk& k, const void* bytes, std::size_t size);
 
   std::string path_;
   std::vector<std::string> input_paths_, output_columns_;
