@@ -9,11 +9,9 @@ namespace lsi {
 
 using nlohmann::json;
 
-void write_journal_entry(const std::string& path, SweepHeader header,
-                         const SweepJournalEntry& e) {
+void write_journal_entry(const std::string& path, SweepHeader header, const SweepJournalEntry& e) {
   json chunks = json::array(), failures = json::array();
-  for (const StoredChunk& k : e.chunks)
-    chunks.push_back({k.dataset, k.chunk, k.address, k.size});
+  for (const StoredChunk& k : e.chunks) chunks.push_back({k.dataset, k.chunk, k.address, k.size});
   for (std::size_t i = 0; i < e.failure_index.size(); ++i)
     failures.push_back({e.failure_index[i], e.failure_reason[i]});
   header.complete = true;  // the chunk itself

@@ -463,8 +463,8 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   }
   const std::string table_name = "table-" + std::to_string(generation) + ".h5";
   const std::uint64_t chunk_rows = SweepTableStream::chunk_rows_for(paths.size(), my_samples);
-  SweepTableStream table((parts / table_name).string(), paths, study.output_columns(),
-                         my_samples, chunk_rows);
+  SweepTableStream table((parts / table_name).string(), paths, study.output_columns(), my_samples,
+                         chunk_rows);
   const SweepHeader chunk_header = header_of(study, opt.shard, opt.shard_count);
   std::vector<StoredChunk> stored;  // every compressed chunk of the table, where it lies
   SweepTable all = SweepTable::with_columns(paths, study.output_columns());
@@ -571,8 +571,8 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     table.finish(h, all.failure_index, all.failure_reason, statistics);
     hdf5::fsync_file(table.path());
     if (std::rename(table.path().c_str(), opt.out.c_str()) != 0)
-      throw std::runtime_error("lsi sweep: cannot rename '" + table.path() + "' onto '" +
-                               opt.out + "': " + std::strerror(errno));
+      throw std::runtime_error("lsi sweep: cannot rename '" + table.path() + "' onto '" + opt.out +
+                               "': " + std::strerror(errno));
     hdf5::fsync_directory(fs::absolute(opt.out).parent_path());
     fs::rename(parts, removed_parts);
     fs::remove_all(removed_parts);

@@ -36,10 +36,14 @@ void shuffle_fixed(const unsigned char* rows, std::size_t n, std::size_t count,
 void shuffle(const unsigned char* rows, std::size_t n, std::size_t count, std::size_t size,
              unsigned char* plain) {
   switch (size) {
-    case 1: return shuffle_fixed<1>(rows, n, count, plain);
-    case 2: return shuffle_fixed<2>(rows, n, count, plain);
-    case 4: return shuffle_fixed<4>(rows, n, count, plain);
-    case 8: return shuffle_fixed<8>(rows, n, count, plain);
+    case 1:
+      return shuffle_fixed<1>(rows, n, count, plain);
+    case 2:
+      return shuffle_fixed<2>(rows, n, count, plain);
+    case 4:
+      return shuffle_fixed<4>(rows, n, count, plain);
+    case 8:
+      return shuffle_fixed<8>(rows, n, count, plain);
     default:
       for (std::size_t i = 0; i < n; ++i)
         for (std::size_t j = 0; j < size; ++j) plain[j * count + i] = rows[i * size + j];
@@ -121,7 +125,8 @@ std::vector<std::vector<unsigned char>> compress_chunks(const std::vector<ChunkR
   auto work = [&](std::size_t t) {
     try {
       ChunkCompressor compressor(level);
-      for (std::size_t c = t; c < chunks.size(); c += threads) out[c] = compressor.compress(chunks[c]);
+      for (std::size_t c = t; c < chunks.size(); c += threads)
+        out[c] = compressor.compress(chunks[c]);
     } catch (const std::exception& e) {
       errors[t] = e.what();
     }
@@ -157,9 +162,8 @@ bool write_compressed_chunks(hid_t dataset, hid_t dcpl, const void* data, std::s
     std::vector<ChunkRows> rows_of;
     for (std::size_t c = first; c < last; ++c) {
       const std::size_t begin = c * chunk_rows, end = std::min(rows, begin + chunk_rows);
-      rows_of.push_back(
-          {bytes + begin * row_bytes, (end - begin) * row_bytes, chunk_bytes, element_size,
-           floating});
+      rows_of.push_back({bytes + begin * row_bytes, (end - begin) * row_bytes, chunk_bytes,
+                         element_size, floating});
     }
     const auto out = compress_chunks(rows_of, level);
     for (std::size_t c = first; c < last; ++c) {

@@ -228,9 +228,9 @@ Handle compressed_table_properties(int rank, const hsize_t* dims, std::size_t el
   // Chunks of about 256 KiB (whole rows): large enough for the filters, small enough that
   // reading a few rows does not inflate much.
   constexpr hsize_t kChunkBytes = hsize_t(1) << 18;
-  const hsize_t rows =
-      chunk_rows > 0 ? chunk_rows
-                     : std::clamp<hsize_t>(kChunkBytes / (row * element_size), 1, dims[0]);
+  const hsize_t rows = chunk_rows > 0
+                           ? chunk_rows
+                           : std::clamp<hsize_t>(kChunkBytes / (row * element_size), 1, dims[0]);
   std::vector<hsize_t> chunk(dims, dims + rank);
   chunk[0] = rows;
   check(H5Pset_chunk(dcpl, rank, chunk.data()), "cannot set the chunk size");

@@ -155,12 +155,13 @@ struct BlockStencil {
 // stopped GCC from vectorising it. v, v_old: the grid's velocities after and before the update
 // (n x 2, node-interleaved); material_of(q): point q's material.
 template <bool Flip, G2PStress Stress, class MaterialOf>
-KOKKOS_FORCEINLINE_FUNCTION void g2p_block(
-    const PointArrays a, const double* const v, const double* const v_old,
-    const MaterialOf material_of, const int nx, const double ox,
-    const double oy, const double dx, const double inv_dx, const double apic, const double fr,
-    const double dt, const double xmax, const double ymax, const int q0, const int q1, double& vm,
-    double& jm, int& nonfinite, int& outside) {
+KOKKOS_FORCEINLINE_FUNCTION void g2p_block(const PointArrays a, const double* const v,
+                                           const double* const v_old, const MaterialOf material_of,
+                                           const int nx, const double ox, const double oy,
+                                           const double dx, const double inv_dx, const double apic,
+                                           const double fr, const double dt, const double xmax,
+                                           const double ymax, const int q0, const int q1,
+                                           double& vm, double& jm, int& nonfinite, int& outside) {
   constexpr bool with_stress = Stress != G2PStress::None;
   constexpr bool plastic = Stress == G2PStress::Plastic;
   constexpr int B = kG2PBlock;
@@ -202,8 +203,7 @@ KOKKOS_FORCEINLINE_FUNCTION void g2p_block(
       for (int c = 0; c < 4; ++c) sb[c][k] = s[c];
     }
   }
-  if constexpr (plastic)
-    block_return_mappings<B>(a, q0, q1, material_of, Lb, sb, needs_return);
+  if constexpr (plastic) block_return_mappings<B>(a, q0, q1, material_of, Lb, sb, needs_return);
   // The health of each point into arrays, reduced after the loop: GCC vectorises no maximum of
   // doubles (its NaN rules) inside a loop.
   double speed[B], expansion[B];
@@ -270,8 +270,8 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
           if (uniform) {
             const PreparedMaterial m = with_stress ? mats[a.material(q0)] : PreparedMaterial();
             detail::g2p_block<Flip, Stress>(
-                a, v, v_old, [&m](int) -> const PreparedMaterial& { return m; }, nx, ox, oy,
-                dx, inv_dx, apic, flip_ratio, dt, xmax, ymax, q0, q1, vm, jm, nonfinite, outside);
+                a, v, v_old, [&m](int) -> const PreparedMaterial& { return m; }, nx, ox, oy, dx,
+                inv_dx, apic, flip_ratio, dt, xmax, ymax, q0, q1, vm, jm, nonfinite, outside);
           } else {
             detail::g2p_block<Flip, Stress>(
                 a, v, v_old,

@@ -92,11 +92,9 @@ KOKKOS_INLINE_FUNCTION void return_point_stress(const Points& p, const int q,
 // point. needs_return is a 64-bit integer: GCC vectorises no selection on a bool loaded from
 // memory in a loop of doubles.
 template <int B, class Points, class MaterialOf>
-KOKKOS_FORCEINLINE_FUNCTION void block_return_mappings(const Points& p, const int q0,
-                                                       const int q1,
+KOKKOS_FORCEINLINE_FUNCTION void block_return_mappings(const Points& p, const int q0, const int q1,
                                                        const MaterialOf material_of,
-                                                       const double (&Lb)[4][B],
-                                                       double (&sb)[4][B],
+                                                       const double (&Lb)[4][B], double (&sb)[4][B],
                                                        std::int64_t (&needs_return)[B]) {
   int returns = 0;
   for (int k = 0; k < q1 - q0; ++k) returns += needs_return[k] != 0 ? 1 : 0;

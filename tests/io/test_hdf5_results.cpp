@@ -790,9 +790,8 @@ TEST_F(hdf5_results, SweepFileIsCompressedDescribedAndHoldsItsStatisticsAsDatase
     EXPECT_TRUE(filters_of(plain, p, nullptr).empty()) << p;
     const auto compressed = doubles(f, p), stored_plain = doubles(plain, p);
     ASSERT_EQ(compressed.size(), stored_plain.size()) << p;
-    EXPECT_EQ(std::memcmp(compressed.data(), stored_plain.data(),
-                          compressed.size() * sizeof(double)),
-              0)
+    EXPECT_EQ(
+        std::memcmp(compressed.data(), stored_plain.data(), compressed.size() * sizeof(double)), 0)
         << p << ": not the same values once inflated";
   }
   H5Fclose(plain);

@@ -147,11 +147,13 @@ struct TwoPhaseBlockStencil {
 // velocities interpolated to the point in vS and vL (the health check's speeds).
 // `Points`: TwoPhaseParticles, or TwoPhasePointArrays on the host.
 template <bool Apic, class Points, class Stencil>
-KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_point(
-    const Points& points, const int q, const Stencil& nodes, const double ox, const double oy,
-    const double dx, const double inv_dx, const double apic_scale, const double r_flip,
-    const double r_pic, const double dt, double LS[2][2], double& divL, double vSm[2],
-    double vS[2], double vL[2]) {
+KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_point(const Points& points, const int q,
+                                                     const Stencil& nodes, const double ox,
+                                                     const double oy, const double dx,
+                                                     const double inv_dx, const double apic_scale,
+                                                     const double r_flip, const double r_pic,
+                                                     const double dt, double LS[2][2], double& divL,
+                                                     double vSm[2], double vS[2], double vL[2]) {
   const auto& s = points.solid;
   const double xp = s.position(q, 0) - ox, yp = s.position(q, 1) - oy;
   const Stencil1D sx = quadratic_bspline(xp, inv_dx), sy = quadratic_bspline(yp, inv_dx);
@@ -233,12 +235,11 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_point(
 // value is not finite (counted in nonfinite); outside counts a point too close to the grid's
 // edge. Without branches, so that the host's loop over a block vectorises.
 template <class Points>
-KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_health(const Points& p, const int q,
-                                                      const double s2, const double l2,
-                                                      const double ox, const double oy,
-                                                      const double dx, const double xmax,
-                                                      const double ymax, double& speed,
-                                                      int& nonfinite, int& outside) {
+KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_health(const Points& p, const int q, const double s2,
+                                                      const double l2, const double ox,
+                                                      const double oy, const double dx,
+                                                      const double xmax, const double ymax,
+                                                      double& speed, int& nonfinite, int& outside) {
   const auto& s = p.solid;
   const double x = s.position(q, 0), y = s.position(q, 1);
   const bool bad = !(s2 < 1e300) | !(l2 < 1e300) | !(x == x) | !(y == y) |
@@ -274,10 +275,10 @@ template <bool Apic, G2PStress Stress, bool Pore, class Grid, class MaterialOf>
 KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_block(
     const TwoPhasePointArrays a, const Grid& grid, const bool ghosts, const double* const vs,
     const double* const vso, const double* const vl, const double* const vlo,
-    const MaterialOf material_of, const int nx,
-    const double ox, const double oy, const double dx, const double inv_dx, const double apic_scale,
-    const double r_flip, const double r_pic, const double dt, const double xmax, const double ymax,
-    const TwoPhaseConstants& constants, const int q0, const int q1, TwoPhaseG2PSums& sums) {
+    const MaterialOf material_of, const int nx, const double ox, const double oy, const double dx,
+    const double inv_dx, const double apic_scale, const double r_flip, const double r_pic,
+    const double dt, const double xmax, const double ymax, const TwoPhaseConstants& constants,
+    const int q0, const int q1, TwoPhaseG2PSums& sums) {
   constexpr bool with_stress = Stress != G2PStress::None;
   constexpr bool plastic = Stress == G2PStress::Plastic;
   constexpr int B = kTwoPhaseG2PBlock;
@@ -316,8 +317,8 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_block(
   for (int q = q0; q < q1; ++q) {
     const int k = q - q0;
     double LS[2][2], divL, vSm[2], vS[2], vL[2];
-    two_phase_g2p_point<Apic>(a, q, TwoPhaseBlockStencil<B, !Apic>{gs, gso, gl, glo, k}, ox, oy,
-                              dx, inv_dx, apic_scale, r_flip, r_pic, dt, LS, divL, vSm, vS, vL);
+    two_phase_g2p_point<Apic>(a, q, TwoPhaseBlockStencil<B, !Apic>{gs, gso, gl, glo, k}, ox, oy, dx,
+                              inv_dx, apic_scale, r_flip, r_pic, dt, LS, divL, vSm, vS, vL);
     Lb[0][k] = LS[0][0];
     Lb[1][k] = LS[0][1];
     Lb[2][k] = LS[1][0];
@@ -353,8 +354,8 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_block(
       finish_point_stress<plastic>(a.solid, q, material_of(q), Lb[0][k], Lb[1][k], Lb[2][k],
                                    Lb[3][k], dt, s);
       if constexpr (Pore) {
-        update_point_pore_pressure_porosity(a, q, constants, Lb[0][k], Lb[1][k], Lb[2][k],
-                                            Lb[3][k], dt);
+        update_point_pore_pressure_porosity(a, q, constants, Lb[0][k], Lb[1][k], Lb[2][k], Lb[3][k],
+                                            dt);
         point_wave_speed_and_permeability_step(a, q, material_of(q), constants, wave2[k],
                                                perm_dt[k]);
       }
@@ -378,8 +379,7 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_block(
 #pragma GCC ivdep
   for (int q = q0; q < q1; ++q) {
     const int k = q - q0;
-    two_phase_g2p_health(a, q, s2[k], l2[k], ox, oy, dx, xmax, ymax, speed[k], nonfinite,
-                         outside);
+    two_phase_g2p_health(a, q, s2[k], l2[k], ox, oy, dx, xmax, ymax, speed[k], nonfinite, outside);
   }
   for (int k = 0; k < count; ++k)
     sums.max_speed = speed[k] > sums.max_speed ? speed[k] : sums.max_speed;
@@ -421,8 +421,8 @@ TwoPhaseG2PReport two_phase_g2p_impl(
     constexpr int B = detail::kTwoPhaseG2PBlock;
     Kokkos::parallel_reduce(
         name, Kokkos::RangePolicy<ExecSpace>(0, (count + B - 1) / B),
-        KOKKOS_LAMBDA(const int block, double& vm, double& wk, double& visc, double& cm,
-                      double& tk, int& nonfinite, int& outside) {
+        KOKKOS_LAMBDA(const int block, double& vm, double& wk, double& visc, double& cm, double& tk,
+                      int& nonfinite, int& outside) {
           const int q0 = block * B, q1 = q0 + B < count ? q0 + B : count;
           const TwoPhasePointArrays a(p);
           const PreparedMaterial* const mats =
@@ -442,12 +442,12 @@ TwoPhaseG2PReport two_phase_g2p_impl(
           const auto run = [&](const auto& material_of) {
             if (pore)
               detail::two_phase_g2p_block<Apic, Stress, true>(
-                  a, grid, Ghosts, vs, vso, vl, vlo, material_of, nx, ox, oy, dx, inv_dx,
-                  apic, flip, pic, dt, xmax, ymax, kc, q0, q1, sums);
+                  a, grid, Ghosts, vs, vso, vl, vlo, material_of, nx, ox, oy, dx, inv_dx, apic,
+                  flip, pic, dt, xmax, ymax, kc, q0, q1, sums);
             else
               detail::two_phase_g2p_block<Apic, Stress, false>(
-                  a, grid, Ghosts, vs, vso, vl, vlo, material_of, nx, ox, oy, dx, inv_dx,
-                  apic, flip, pic, dt, xmax, ymax, kc, q0, q1, sums);
+                  a, grid, Ghosts, vs, vso, vl, vlo, material_of, nx, ox, oy, dx, inv_dx, apic,
+                  flip, pic, dt, xmax, ymax, kc, q0, q1, sums);
           };
           if (uniform) {
             const PreparedMaterial m =
@@ -488,8 +488,8 @@ TwoPhaseG2PReport two_phase_g2p_impl(
             if (fuse_pore)
               points.volumetric_rate(q) =
                   mixture_volumetric_rate(points.porosity(q), LS[0][0] + LS[1][1], divL);
-            update_point_stress<Stress == G2PStress::Plastic>(s, q, m, LS[0][0], LS[0][1],
-                                                              LS[1][0], LS[1][1], dt);
+            update_point_stress<Stress == G2PStress::Plastic>(s, q, m, LS[0][0], LS[0][1], LS[1][0],
+                                                              LS[1][1], dt);
             if (fuse_pore) {
               visc += update_point_pore_pressure(points, q, m, constants, LS[0][0], LS[0][1],
                                                  LS[1][0], LS[1][1], dt);
@@ -498,8 +498,8 @@ TwoPhaseG2PReport two_phase_g2p_impl(
           }
           double speed;
           detail::two_phase_g2p_health(points, q, vS[0] * vS[0] + vS[1] * vS[1],
-                                       vL[0] * vL[0] + vL[1] * vL[1], ox, oy, dx, xmax, ymax,
-                                       speed, nonfinite, outside);
+                                       vL[0] * vL[0] + vL[1] * vL[1], ox, oy, dx, xmax, ymax, speed,
+                                       nonfinite, outside);
           if (speed > vm) vm = speed;
         },
         Kokkos::Max<double>(vmax), load, viscous, Kokkos::Max<double>(cmax),

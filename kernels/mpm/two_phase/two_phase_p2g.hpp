@@ -74,10 +74,12 @@ namespace detail {
 // point-by-point scatter (two_phase_p2g_point) and the host's blocked one (two_phase_p2g_block).
 // `Points`: TwoPhaseParticles, or TwoPhasePointArrays on the host.
 template <class Points, class Add>
-KOKKOS_FORCEINLINE_FUNCTION void two_phase_point_contributions(
-    const Points& p, const int q, const double ox, const double oy, const double dx,
-    const double inv_dx, const double gx, const double gy, const double rhoLg, Stencil1D& sx,
-    Stencil1D& sy, const Add& add) {
+KOKKOS_FORCEINLINE_FUNCTION void two_phase_point_contributions(const Points& p, const int q,
+                                                               const double ox, const double oy,
+                                                               const double dx, const double inv_dx,
+                                                               const double gx, const double gy,
+                                                               const double rhoLg, Stencil1D& sx,
+                                                               Stencil1D& sy, const Add& add) {
   namespace nf = node_field;
   const auto& s = p.solid;
   const double xp = s.position(q, 0) - ox, yp = s.position(q, 1) - oy;
@@ -143,10 +145,9 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_point_contributions(
 template <bool Atomic, class Points>
 KOKKOS_INLINE_FUNCTION void two_phase_p2g_mirrors(const Points& p, const int q, double* buf,
                                                   const lsi::mpm::detail::NodeTile& tile,
-                                                  const double ox, const double oy,
-                                                  const double dx, const double inv_dx,
-                                                  const double gx, const double gy,
-                                                  const MirrorWalls& mw) {
+                                                  const double ox, const double oy, const double dx,
+                                                  const double inv_dx, const double gx,
+                                                  const double gy, const MirrorWalls& mw) {
   using lsi::mpm::detail::scatter_add;
   namespace nf = node_field;
   constexpr int F = nf::Count;
@@ -201,11 +202,11 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_p2g_point(
   using lsi::mpm::detail::scatter_add;
   constexpr int F = node_field::Count;
   Stencil1D sx, sy;
-  two_phase_point_contributions(
-      p, q, ox, oy, dx, inv_dx, gx, gy, rhoLg, sx, sy,
-      [&](const int b, const int a, const int field, const double v) {
-        scatter_add<Atomic>(buf + F * tile.offset(sx.base + a, sy.base + b) + field, v);
-      });
+  two_phase_point_contributions(p, q, ox, oy, dx, inv_dx, gx, gy, rhoLg, sx, sy,
+                                [&](const int b, const int a, const int field, const double v) {
+                                  scatter_add<Atomic>(
+                                      buf + F * tile.offset(sx.base + a, sy.base + b) + field, v);
+                                });
   bi = sx.base;
   bj = sy.base;
   if (mw.any) two_phase_p2g_mirrors<Atomic>(p, q, buf, tile, ox, oy, dx, inv_dx, gx, gy, mw);
@@ -220,11 +221,11 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_p2g_point(
 // (the per-point vectors A..E below), the sums of two_phase_point_contributions up to
 // round-off; then the point's mirror images (the order of two_phase_p2g_point). Widens
 // i0..i1 x j0..j1 by the stencils.
-inline void two_phase_p2g_block(
-    const TwoPhasePointArrays p, const int q0, const int q1, double* const buf, const int nx,
-    const double ox, const double oy, const double dx, const double inv_dx, const double gx,
-    const double gy, const double rhoLg, const MirrorWalls& mw, int& i0, int& i1, int& j0,
-    int& j1) {
+inline void two_phase_p2g_block(const TwoPhasePointArrays p, const int q0, const int q1,
+                                double* const buf, const int nx, const double ox, const double oy,
+                                const double dx, const double inv_dx, const double gx,
+                                const double gy, const double rhoLg, const MirrorWalls& mw, int& i0,
+                                int& i1, int& j0, int& j1) {
   namespace nf = node_field;
   constexpr int F = nf::Count;
   const lsi::mpm::detail::NodeTile grid{0, 0, nx};
@@ -292,8 +293,8 @@ struct TwoPhaseP2GBlock {
   KOKKOS_INLINE_FUNCTION void operator()(const int q0, const int q1, double* buf, int& i0, int& i1,
                                          int& j0, int& j1) const {
 #if !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)  // host buffers only
-    two_phase_p2g_block(TwoPhasePointArrays(p), q0, q1, buf, nx, ox, oy, dx, inv_dx, gx, gy,
-                        rhoLg, mw, i0, i1, j0, j1);
+    two_phase_p2g_block(TwoPhasePointArrays(p), q0, q1, buf, nx, ox, oy, dx, inv_dx, gx, gy, rhoLg,
+                        mw, i0, i1, j0, j1);
 #endif
   }
 };

@@ -89,8 +89,8 @@ struct TwoPhasePointArrays {
         viscous_pressure{p.viscous_pressure.data()} {
     static_assert(std::is_same_v<typename decltype(p.liquid_velocity)::array_layout,
                                  Kokkos::LayoutRight>);  // point-interleaved on the host
-    static_assert(std::is_same_v<typename decltype(p.liquid_affine)::array_layout,
-                                 Kokkos::LayoutRight>);
+    static_assert(
+        std::is_same_v<typename decltype(p.liquid_affine)::array_layout, Kokkos::LayoutRight>);
   }
 };
 

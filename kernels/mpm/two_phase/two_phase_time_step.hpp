@@ -85,7 +85,8 @@ struct TwoPhaseConstants {
 // step, s. Without branches, so that the host's loop over a block of points vectorises
 // (two_phase_g2p.hpp).
 template <class Points>
-KOKKOS_FORCEINLINE_FUNCTION void point_wave_speed_and_permeability_step(const Points& p, const int q,
+KOKKOS_FORCEINLINE_FUNCTION void point_wave_speed_and_permeability_step(const Points& p,
+                                                                        const int q,
                                                                         const PreparedMaterial& m,
                                                                         const TwoPhaseConstants& k,
                                                                         double& cq2, double& tq) {
