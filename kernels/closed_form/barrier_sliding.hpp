@@ -58,26 +58,30 @@ struct BarrierMotion {
 // infinities (e.g. t* = g'/k1 with k1 = 0); they are never selected.
 KOKKOS_INLINE_FUNCTION BarrierMotion barrier_motion(const ForcePulse& p, const SlidingBlock& b) {
   const double g_friction = b.base_friction * gravity;  // g' = g tan(delta_b)
+  // One division by the mass for every phase, and one by aC for both the time to rest and the
+  // distance of phase C: in a vectorised loop a division costs several multiplications.
+  const double drive_per_mass = b.drive / b.mass;
   // Moves only if the peak drive beats friction.
-  const bool moves = (b.drive > 0.0) & (b.acceleration(p.peak) > 0.0);
-  const double k1 = b.drive * p.peak / (b.mass * p.rise_time);
+  const bool moves = (b.drive > 0.0) & (drive_per_mass * p.peak - g_friction > 0.0);
+  const double k1 = drive_per_mass * p.peak / p.rise_time;
   const double start_time = g_friction / k1;  // t*
   const double uA = p.rise_time - start_time;
   const double v_T1 = 0.5 * k1 * uA * uA;
   const double x_T1 = k1 * uA * uA * uA / 6.0;
   const double a1 = k1 * uA;  // = acceleration at T1
   const double dT = p.duration - p.rise_time;
-  const double sB = b.drive * (p.residual - p.peak) / (b.mass * dT);
+  const double sB = drive_per_mass * (p.residual - p.peak) / dT;
   const double uStop = first_stop(v_T1, a1, sB, dT);
   const bool stops_before_T2 = uStop >= 0.0;  // friction stops it before T2
   const double x_stop =
       x_T1 + v_T1 * uStop + 0.5 * a1 * uStop * uStop + sB * uStop * uStop * uStop / 6.0;
   const double v_T2 = v_T1 + a1 * dT + 0.5 * sB * dT * dT;
   const double x_T2 = x_T1 + v_T1 * dT + 0.5 * a1 * dT * dT + sB * dT * dT * dT / 6.0;
-  const double aC = b.acceleration(p.residual);
+  const double aC = drive_per_mass * p.residual - g_friction;
   const bool decelerates = aC < 0.0;  // after T2: to rest, or never
-  const double stop_C = decelerates ? p.duration - v_T2 / aC : math::infinity();
-  const double x_C = decelerates ? x_T2 - 0.5 * v_T2 * v_T2 / aC : math::infinity();
+  const double time_to_rest = -v_T2 / aC;
+  const double stop_C = decelerates ? p.duration + time_to_rest : math::infinity();
+  const double x_C = decelerates ? x_T2 + 0.5 * v_T2 * time_to_rest : math::infinity();
 
   BarrierMotion m;
   m.T1 = p.rise_time;

@@ -69,8 +69,11 @@ KOKKOS_FORCEINLINE_FUNCTION void log_two_doubles(double x, double& hi, double& l
   const double f = m - 1.0;
   const double v = 2.0 + f;
   const double v_lo = f - (v - 2.0);
-  const double s = f / v;
-  const double s_lo = (fused_multiply_add(-s, v, f) - s * v_lo) / v;
+  // One division: s = f (1/v) is within an ulp or two of f / v, and the remainder
+  // f - s v (exact by the fused multiply-add) times 1/v restores what s lacks to ~2^-104.
+  const double inv_v = 1.0 / v;
+  const double s = f * inv_v;
+  const double s_lo = (fused_multiply_add(-s, v, f) - s * v_lo) * inv_v;
   // log m = 2 s + (2/3) s^3 + s^5 (2/5 + 2/7 s^2 + ... + 2/23 s^18): 2 s and (2/3) s^3 in two
   // doubles each (the latter is up to 1 % of log m), the rest (below 2e-4 of it) in one.
   const double z = s * s;
@@ -82,16 +85,17 @@ KOKKOS_FORCEINLINE_FUNCTION void log_two_doubles(double x, double& hi, double& l
   const double third = cube * two_thirds_hi;
   const double third_lo = fused_multiply_add(cube, two_thirds_hi, -third) +
                           (cube * two_thirds_lo + cube_lo * two_thirds_hi);
-  double p = 2.0 / 23.0;
-  p = 2.0 / 21.0 + z * p;
-  p = 2.0 / 19.0 + z * p;
-  p = 2.0 / 17.0 + z * p;
-  p = 2.0 / 15.0 + z * p;
-  p = 2.0 / 13.0 + z * p;
-  p = 2.0 / 11.0 + z * p;
-  p = 2.0 / 9.0 + z * p;
-  p = 2.0 / 7.0 + z * p;
-  p = 2.0 / 5.0 + z * p;
+  // In Estrin's order (pairs, then powers z^2, z^4, z^8): a shorter chain of dependent
+  // multiply-adds than Horner's, so that the vectorised loops calling this overlap more work.
+  const double z2 = z * z, z4 = z2 * z2, z8 = z4 * z4;
+  const double p01 = fused_multiply_add(2.0 / 7.0, z, 2.0 / 5.0);
+  const double p23 = fused_multiply_add(2.0 / 11.0, z, 2.0 / 9.0);
+  const double p45 = fused_multiply_add(2.0 / 15.0, z, 2.0 / 13.0);
+  const double p67 = fused_multiply_add(2.0 / 19.0, z, 2.0 / 17.0);
+  const double p89 = fused_multiply_add(2.0 / 23.0, z, 2.0 / 21.0);
+  const double p03 = fused_multiply_add(p23, z2, p01);
+  const double p47 = fused_multiply_add(p67, z2, p45);
+  const double p = fused_multiply_add(p89, z8, fused_multiply_add(p47, z4, p03));
   const double twice_s = 2.0 * s;
   const double log_m_hi = twice_s + third;  // Fast2Sum: |2 s| > |third|
   const double log_m_lo =
@@ -122,24 +126,24 @@ KOKKOS_FORCEINLINE_FUNCTION double exp_two_doubles(double hi, double lo) {
   const double r_virtual = r - r_exact;
   const double r_lo = ((r_exact - (r - r_virtual)) + (-k_lo - r_virtual)) + t_lo;
   // exp(r) - 1 - r = r^2 q(r), the Taylor terms up to r^14 / 14!.
-  double q = 1.0 / 87178291200.0;  // 1/14!
-  q = 1.0 / 6227020800.0 + r * q;  // 1/13!
-  q = 1.0 / 479001600.0 + r * q;   // 1/12!
-  q = 1.0 / 39916800.0 + r * q;    // 1/11!
-  q = 1.0 / 3628800.0 + r * q;     // 1/10!
-  q = 1.0 / 362880.0 + r * q;      // 1/9!
-  q = 1.0 / 40320.0 + r * q;       // 1/8!
-  q = 1.0 / 5040.0 + r * q;        // 1/7!
-  q = 1.0 / 720.0 + r * q;         // 1/6!
-  q = 1.0 / 120.0 + r * q;         // 1/5!
-  q = 1.0 / 24.0 + r * q;          // 1/4!
-  q = 1.0 / 6.0 + r * q;           // 1/3!
-  q = 0.5 + r * q;                 // 1/2!
-  const double expm1_r = r + (r * r) * q;
+  // Estrin's order, as the logarithm's series.
+  const double r2 = r * r, r4 = r2 * r2, r8 = r4 * r4;
+  const double q01 = fused_multiply_add(1.0 / 6.0, r, 0.5);                         // 1/2!, 1/3!
+  const double q23 = fused_multiply_add(1.0 / 120.0, r, 1.0 / 24.0);                // 1/4!, 1/5!
+  const double q45 = fused_multiply_add(1.0 / 5040.0, r, 1.0 / 720.0);              // 1/6!, 1/7!
+  const double q67 = fused_multiply_add(1.0 / 362880.0, r, 1.0 / 40320.0);          // 1/8!, 1/9!
+  const double q89 = fused_multiply_add(1.0 / 39916800.0, r, 1.0 / 3628800.0);      // 1/10!, 1/11!
+  const double qab = fused_multiply_add(1.0 / 6227020800.0, r, 1.0 / 479001600.0);  // 1/12!, 1/13!
+  const double q03 = fused_multiply_add(q23, r2, q01);
+  const double q47 = fused_multiply_add(q67, r2, q45);
+  const double q8c = fused_multiply_add(1.0 / 87178291200.0, r4,  // 1/14!
+                                        fused_multiply_add(qab, r2, q89));
+  const double q = fused_multiply_add(q8c, r8, fused_multiply_add(q47, r4, q03));
+  const double expm1_r = r + r2 * q;
   // exp(r + r_lo) = 1 + r + (r^2 q + r_lo (1 + expm1 r)), with 1 + r summed exactly (Fast2Sum).
   const double one_plus_r = 1.0 + r;
   const double one_plus_r_error = r - (one_plus_r - 1.0);
-  const double tail = (r * r) * q + r_lo * (1.0 + expm1_r) + one_plus_r_error;
+  const double tail = r2 * q + r_lo * (1.0 + expm1_r) + one_plus_r_error;
   const double mantissa = one_plus_r + tail;
   // 2^k as 2^k1 2^k2, k1 = round(k / 2): each within the normal exponents for |k| <= 1587.
   const double k1 = (0.5 * k + round_shift) - round_shift;
