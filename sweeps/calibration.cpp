@@ -428,7 +428,7 @@ EmpiricalFit fit_empirical(const CalibrationCase& c, const CalibrationOptions& o
 // ---------------------------------------------------------------------------------------------
 // Statistics.
 
-GroupStatistic pooled_mean(const std::vector<double>& v, double confidence) {
+GroupStatistic pooled_mean(const std::vector<double>& v, double confidence, Range domain) {
   GroupStatistic s;
   s.confidence = confidence;
   s.n = static_cast<int>(v.size());
@@ -442,7 +442,7 @@ GroupStatistic pooled_mean(const std::vector<double>& v, double confidence) {
   s.stddev = std::sqrt(ss / (s.n - 1));
   const double half =
       stats::student_t_quantile(0.5 * (1.0 + confidence), s.n - 1) * s.stddev / std::sqrt(s.n);
-  s.ci = {s.mean - half, s.mean + half};
+  s.ci = {std::max(s.mean - half, domain.low), std::min(s.mean + half, domain.high)};
   return s;
 }
 
@@ -512,9 +512,10 @@ GroupSummary summarize_group(bool fixed, const std::vector<std::string>& names,
     fr.push_back(empirical[i].froude);
     al.push_back(empirical[i].alpha);
   }
-  g.lambda = pooled_mean(lam, confidence);
-  g.tau = pooled_mean(tau, confidence);
-  g.empirical_tau = pooled_mean(etau, confidence);
+  const double inf = std::numeric_limits<double>::infinity();
+  g.lambda = pooled_mean(lam, confidence, {0.0, inf});  // lambda = s1,max / L1,0 > 0
+  g.tau = pooled_mean(tau, confidence, {0.0, 1.0});     // tau = T1 / T2 in (0, 1)
+  g.empirical_tau = pooled_mean(etau, confidence, {0.0, 1.0});
   g.power_law = fit_power_law(fr, al, confidence);
   return g;
 }

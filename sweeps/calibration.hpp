@@ -162,8 +162,10 @@ struct EmpiricalFit {
 // Throws std::invalid_argument if alpha_MPM <= 0 (MPM peak not above the static part).
 EmpiricalFit fit_empirical(const CalibrationCase& c, const CalibrationOptions& o);
 
-// Mean with a two-sided Student-t confidence interval: mean +- t_{(1+conf)/2, n-1} s / sqrt(n).
-// n = 1: the interval is NaN (no spread can be estimated).
+// Mean with a two-sided Student-t confidence interval: mean +- t_{(1+conf)/2, n-1} s / sqrt(n),
+// cut to the values' domain [domain.low, domain.high] (a mean of values in the domain lies in
+// it, so the cut interval covers it as often as the whole one: e.g. tau's interval stays in
+// [0, 1] when a few values lie near 0). n = 1: the interval is NaN (no spread can be estimated).
 struct GroupStatistic {
   int n = 0;
   double mean = std::numeric_limits<double>::quiet_NaN();
@@ -171,7 +173,9 @@ struct GroupStatistic {
   Range ci;
   double confidence = 0.95;
 };
-GroupStatistic pooled_mean(const std::vector<double>& values, double confidence = 0.95);
+GroupStatistic pooled_mean(const std::vector<double>& values, double confidence = 0.95,
+                           Range domain = {-std::numeric_limits<double>::infinity(),
+                                           std::numeric_limits<double>::infinity()});
 
 // (Student's t quantiles: sweeps/statistics.hpp, stats::student_t_quantile.)
 

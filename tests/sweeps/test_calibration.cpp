@@ -257,6 +257,19 @@ TEST(Calibration, PooledMeanHasTheStudentTInterval) {
   EXPECT_NEAR(g.stddev, std::sqrt(2.5), kUnitArithmeticAbs);
   EXPECT_NEAR(g.ci.low, 3.0 - 2.776445 * std::sqrt(0.5), 1e-5);  // 6-digit table value
   EXPECT_NEAR(g.ci.high, 3.0 + 2.776445 * std::sqrt(0.5), 1e-5);
+  // Values near the edge of their domain: tau in (0, 1). 0.02, 0.03, 0.5: mean 0.18333,
+  // s = 0.27429, half-width t_{0.975,2} s / sqrt(3) = 4.302653 * 0.15836 = 0.68137: the whole
+  // interval reaches -0.498, cut at 0; the high end stays.
+  const GroupStatistic edge = pooled_mean({0.02, 0.03, 0.5}, 0.95, {0.0, 1.0});
+  const double s =
+      std::sqrt(((0.02 - 0.55 / 3) * (0.02 - 0.55 / 3) + (0.03 - 0.55 / 3) * (0.03 - 0.55 / 3) +
+                 (0.5 - 0.55 / 3) * (0.5 - 0.55 / 3)) /
+                2.0);
+  EXPECT_EQ(edge.ci.low, 0.0);
+  EXPECT_NEAR(edge.ci.high, 0.55 / 3 + 4.302653 * s / std::sqrt(3.0), 1e-5);  // table value
+  // The default domain cuts nothing.
+  EXPECT_NEAR(pooled_mean({0.02, 0.03, 0.5}).ci.low, 0.55 / 3 - 4.302653 * s / std::sqrt(3.0),
+              1e-5);
   // One value: a mean but no interval.
   const GroupStatistic one = pooled_mean({0.4});
   EXPECT_EQ(one.n, 1);
