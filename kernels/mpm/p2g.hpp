@@ -25,6 +25,7 @@
 #include <type_traits>
 
 #include "kernels/mpm/grid.hpp"
+#include "kernels/mpm/host_transpose.hpp"
 #include "kernels/mpm/particles.hpp"
 #include "kernels/mpm/shape_function.hpp"
 
@@ -423,14 +424,15 @@ KOKKOS_FORCEINLINE_FUNCTION void p2g_point(const Particles<MemorySpace>& p, cons
 // contributions of every point in one loop, which has no branches and no dependence between
 // the points, so that the compiler vectorises it over the points (component arrays,
 // particles.hpp); then the additions point by point (neighbouring points add into the same
-// nodes). The same sums as p2g_point. Widens i0..i1 x j0..j1 by the stencils.
+// nodes), 8 points' values transposed in registers where host_transpose.hpp is compiled in. The
+// same sums as p2g_point. Widens i0..i1 x j0..j1 by the stencils.
 KOKKOS_FORCEINLINE_FUNCTION void p2g_block(const PointArrays a, const int q0, const int q1,
                                            double* const buf, const int nx, const double ox,
                                            const double oy, const double dx, const double inv_dx,
                                            const double gx, const double gy, int& i0, int& i1,
                                            int& j0, int& j1) {
   constexpr int F = kP2GFields, B = kP2GBlock;
-  double add[3][3 * F][B];
+  alignas(64) double add[3][3 * F][B];
   int first_i[B], first_j[B];
 #pragma GCC ivdep
   for (int q = q0; q < q1; ++q) {
@@ -463,8 +465,40 @@ KOKKOS_FORCEINLINE_FUNCTION void p2g_block(const PointArrays a, const int q0, co
     first_i[k] = sx.base;
     first_j[k] = sy.base;
   }
-  for (int q = q0; q < q1; ++q) {
-    const int k = q - q0;
+  int k = 0;
+#if LSI_MPM_HOST_TRANSPOSE
+  // 8 points at a time: each row's 15 values of the 8 points transposed in registers (values
+  // 0..7 and 7..14, two 8 x 8 transposes), then added with two overlapping vector additions
+  // per row and point: both loads come before both stores, and the two sums of value 7 are the
+  // same. The points in their order, as below: the same sums, bitwise.
+  static_assert(3 * F == 15 && B % 8 == 0);
+  using host_simd::V8;
+  for (; k + 8 <= q1 - q0; k += 8) {
+    V8 t[3][2][8];
+    for (int b = 0; b < 3; ++b) {
+      for (int p = 0; p < 8; ++p) {
+        t[b][0][p] = host_simd::load8(&add[b][p][k]);
+        t[b][1][p] = host_simd::load8(&add[b][7 + p][k]);
+      }
+      host_simd::transpose8(t[b][0]);
+      host_simd::transpose8(t[b][1]);
+    }
+    for (int p = 0; p < 8; ++p) {
+      const int bi = first_i[k + p], bj = first_j[k + p], n = bi + nx * bj;
+      i0 = bi < i0 ? bi : i0;
+      i1 = bi + 2 > i1 ? bi + 2 : i1;
+      j0 = bj < j0 ? bj : j0;
+      j1 = bj + 2 > j1 ? bj + 2 : j1;
+      for (int b = 0; b < 3; ++b) {
+        double* row = buf + F * (n + nx * b);
+        const V8 lo = host_simd::load8(row), hi = host_simd::load8(row + 7);
+        host_simd::store8(row, lo + t[b][0][p]);
+        host_simd::store8(row + 7, hi + t[b][1][p]);
+      }
+    }
+  }
+#endif
+  for (; k < q1 - q0; ++k) {
     const int bi = first_i[k], bj = first_j[k], n = bi + nx * bj;
     i0 = bi < i0 ? bi : i0;
     i1 = bi + 2 > i1 ? bi + 2 : i1;

@@ -5,13 +5,15 @@
 // the rectangle of touched nodes in a kernel of its own, so the rectangle is checked as well.
 // The atomic scatter's tiles (a GPU's default) are checked against the buffered scatter with
 // every team in a tile, with none (tiles too small: the teams add into the buffer directly) and
-// with a mix of both.
+// with a mix of both. The in-register transposes of the host's blocked P2G and G2P
+// (host_transpose.hpp, where compiled in) against plain copies.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
 #include <type_traits>
 
+#include "kernels/mpm/host_transpose.hpp"
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
 #include "support/backends.hpp"
@@ -154,4 +156,29 @@ TYPED_TEST(MpmP2GScatters, TiledAtomicScatterGivesTheSameGrid) {
     c.expect_same_grid(mixed);
   }
 }
+
+#if LSI_MPM_HOST_TRANSPOSE
+TEST(HostTranspose, MovesEveryValueToItsPlace) {
+  namespace hs = detail::host_simd;
+  double a[8][8];
+  hs::V8 r[8];
+  for (int i = 0; i < 8; ++i) {
+    for (int j = 0; j < 8; ++j) a[i][j] = 10 * i + j;
+    r[i] = hs::load8(a[i]);
+  }
+  hs::transpose8(r);
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j) EXPECT_EQ(r[i][j], a[j][i]) << i << " " << j;
+  // Rows of 6 doubles at scattered places of a buffer, the last one at its very end.
+  double buf[64];
+  for (int k = 0; k < 64; ++k) buf[k] = k;
+  const int at[8] = {0, 20, 6, 40, 13, 30, 50, 58};
+  const double* rows[8];
+  for (int p = 0; p < 8; ++p) rows[p] = buf + at[p];
+  hs::V8 out[6];
+  hs::gather_rows6(rows, out);
+  for (int c = 0; c < 6; ++c)
+    for (int p = 0; p < 8; ++p) EXPECT_EQ(out[c][p], buf[at[p] + c]) << c << " " << p;
+}
+#endif
 }  // namespace
