@@ -13,6 +13,7 @@
 
 #include "kernels/common/math.hpp"
 #include "kernels/mpm/grid.hpp"
+#include "kernels/mpm/host_transpose.hpp"
 #include "kernels/mpm/particles.hpp"
 #include "kernels/mpm/shape_function.hpp"
 #include "kernels/mpm/stress_update.hpp"
@@ -143,7 +144,8 @@ struct BlockStencil {
 
 // A block of points [q0, q1) of the host G2P (g2p_impl), in loops over the block's points:
 //  1. the grid velocities of each point's 3 x 3 stencil into the block's arrays (a transpose:
-//     the nodes of neighbouring points are near, not adjacent, in the grid);
+//     the nodes of neighbouring points are near, not adjacent, in the grid; in registers, 8
+//     points at a time, where host_transpose.hpp is compiled in);
 //  2. the transfer (g2p_point, reading those arrays), its velocity gradient into Lb;
 //  3. the trial stress, and whether the point needs the return mapping;
 //  4. the return mappings where needed: those on the main plane vectorised
@@ -169,8 +171,37 @@ KOKKOS_FORCEINLINE_FUNCTION void g2p_block(const PointArrays a, const double* co
   // Whether a point needs the return mapping, as a 64-bit integer: a vector mask in the loops
   // over doubles (GCC vectorises no selection on a bool loaded from memory there).
   std::int64_t needs_return[B];
-  double gv[3][6][B], gvo[3][6][B];
-  for (int q = q0; q < q1; ++q) {
+  alignas(64) double gv[3][6][B], gvo[3][6][B];
+  int k0 = 0;
+#if LSI_MPM_HOST_TRANSPOSE
+  // 8 points at a time: each stencil row's 6 doubles of the 8 points transposed in registers.
+  static_assert(B % 8 == 0);
+  for (; k0 + 8 <= q1 - q0; k0 += 8) {
+    int first[8];
+    for (int p = 0; p < 8; ++p) {
+      const int q = q0 + k0 + p;
+      const int bi = quadratic_bspline(a.position(q, 0) - ox, inv_dx).base;
+      const int bj = quadratic_bspline(a.position(q, 1) - oy, inv_dx).base;
+      first[p] = 2 * (bi + nx * bj);
+    }
+    for (int b = 0; b < 3; ++b) {
+      const double* rows[8];
+      const double* rows_old[8];
+      for (int p = 0; p < 8; ++p) {
+        rows[p] = v + first[p] + 2 * nx * b;
+        rows_old[p] = v_old + first[p] + 2 * nx * b;
+      }
+      host_simd::V8 t[6], t_old[6];
+      host_simd::gather_rows6(rows, t);
+      host_simd::gather_rows6(rows_old, t_old);
+      for (int c = 0; c < 6; ++c) {
+        host_simd::store8(&gv[b][c][k0], t[c]);
+        host_simd::store8(&gvo[b][c][k0], t_old[c]);
+      }
+    }
+  }
+#endif
+  for (int q = q0 + k0; q < q1; ++q) {
     const int k = q - q0;
     const int bi = quadratic_bspline(a.position(q, 0) - ox, inv_dx).base;
     const int bj = quadratic_bspline(a.position(q, 1) - oy, inv_dx).base;
