@@ -23,6 +23,7 @@ namespace lsi::mpm::detail::host_simd {
 
 typedef double V8 __attribute__((vector_size(64)));
 typedef double V4 __attribute__((vector_size(32)));
+typedef double V2 __attribute__((vector_size(16)));
 
 // Unaligned loads and stores of 8 or 4 consecutive doubles.
 inline __attribute__((always_inline)) V8 load8(const double* p) {
@@ -37,6 +38,19 @@ inline __attribute__((always_inline)) V4 load4(const double* p) {
 }
 inline __attribute__((always_inline)) void store8(double* p, const V8 v) {
   __builtin_memcpy(p, &v, sizeof v);
+}
+
+// p[0..6] += x[0..6] (4, 2 and 1 values wide: x[7] is not written anywhere).
+inline __attribute__((always_inline)) void add7(double* p, const V8 x) {
+  V4 a;
+  V2 b;
+  __builtin_memcpy(&a, p, sizeof a);
+  __builtin_memcpy(&b, p + 4, sizeof b);
+  a += __builtin_shufflevector(x, x, 0, 1, 2, 3);
+  b += __builtin_shufflevector(x, x, 4, 5);
+  __builtin_memcpy(p, &a, sizeof a);
+  __builtin_memcpy(p + 4, &b, sizeof b);
+  p[6] += x[6];
 }
 
 // r[i][j] becomes r[j][i] (8 x 8 doubles): pairs of rows interleaved, then pairs of pairs, then

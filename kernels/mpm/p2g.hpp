@@ -468,9 +468,9 @@ KOKKOS_FORCEINLINE_FUNCTION void p2g_block(const PointArrays a, const int q0, co
   int k = 0;
 #if LSI_MPM_HOST_TRANSPOSE
   // 8 points at a time: each row's 15 values of the 8 points transposed in registers (values
-  // 0..7 and 7..14, two 8 x 8 transposes), then added with two overlapping vector additions
-  // per row and point: both loads come before both stores, and the two sums of value 7 are the
-  // same. The points in their order, as below: the same sums, bitwise.
+  // 0..7 and 8..14 with a zero, two 8 x 8 transposes), then added 8 + 4 + 2 + 1 values wide
+  // (never past the row's 15th value). The points in their order, as below: the same sums,
+  // bitwise.
   static_assert(3 * F == 15 && B % 8 == 0);
   using host_simd::V8;
   for (; k + 8 <= q1 - q0; k += 8) {
@@ -478,7 +478,7 @@ KOKKOS_FORCEINLINE_FUNCTION void p2g_block(const PointArrays a, const int q0, co
     for (int b = 0; b < 3; ++b) {
       for (int p = 0; p < 8; ++p) {
         t[b][0][p] = host_simd::load8(&add[b][p][k]);
-        t[b][1][p] = host_simd::load8(&add[b][7 + p][k]);
+        t[b][1][p] = p < 7 ? host_simd::load8(&add[b][8 + p][k]) : V8{};
       }
       host_simd::transpose8(t[b][0]);
       host_simd::transpose8(t[b][1]);
@@ -491,9 +491,8 @@ KOKKOS_FORCEINLINE_FUNCTION void p2g_block(const PointArrays a, const int q0, co
       j1 = bj + 2 > j1 ? bj + 2 : j1;
       for (int b = 0; b < 3; ++b) {
         double* row = buf + F * (n + nx * b);
-        const V8 lo = host_simd::load8(row), hi = host_simd::load8(row + 7);
-        host_simd::store8(row, lo + t[b][0][p]);
-        host_simd::store8(row + 7, hi + t[b][1][p]);
+        host_simd::store8(row, host_simd::load8(row) + t[b][0][p]);
+        host_simd::add7(row + 8, t[b][1][p]);
       }
     }
   }

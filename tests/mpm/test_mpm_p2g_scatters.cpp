@@ -179,6 +179,11 @@ TEST(HostTranspose, MovesEveryValueToItsPlace) {
   hs::gather_rows6(rows, out);
   for (int c = 0; c < 6; ++c)
     for (int p = 0; p < 8; ++p) EXPECT_EQ(out[c][p], buf[at[p] + c]) << c << " " << p;
+  // add7 writes 7 values and leaves the 8th alone.
+  double sum[8] = {1, 2, 3, 4, 5, 6, 7, 8};
+  hs::add7(sum, hs::V8{10, 20, 30, 40, 50, 60, 70, 80});
+  const double expected[8] = {11, 22, 33, 44, 55, 66, 77, 8};
+  for (int k = 0; k < 8; ++k) EXPECT_EQ(sum[k], expected[k]) << k;
 }
 #endif
 }  // namespace
