@@ -120,6 +120,8 @@ def group_sweep(build, repetitions):
     rows = [
         ("lsi sweep %s (%.3g samples), end to end, s" % (os.path.basename(STUDY), samples), wall,
          models_time, "models-only ceiling: the samples / the models' rate"),
+        ("the same, against drawing the samples and running the models alone, s", wall,
+         samples / sample_and_models, "the sampler alone + the models alone"),
         ("stage evaluate (sample, check, both models), s", stage["evaluate"],
          samples / sample_and_models, "the sampler alone + the models alone"),
     ]
@@ -163,8 +165,11 @@ def group_mpm(build, repetitions):
                      bandwidth / DRY_STEP_BYTES[points],
                      "memory (%s): triad %.3g GB/s / %.0f B an update" %
                      (memory, bandwidth / 1e9, DRY_STEP_BYTES[points])))
-    saturated = next(v for n, v in impact_rate.items() if n.startswith("column_step"))
-    rows.append(("saturated column step, 20000 points, particle-updates/s", saturated, None, ""))
+    for points in (199712, 20000):
+        saturated = next(v for n, v in impact_rate.items()
+                         if n.startswith("column_step") and "particles:%d/" % points in n)
+        rows.append(("saturated column step, %d points, particle-updates/s" % points, saturated,
+                     None, ""))
     for cells in (8, 16):
         one = next(v for n, v in impact.items() if "cells:%d/one_after_another" % cells in n)
         side = next(v for n, v in impact.items() if "cells:%d/side_by_side" % cells in n)
