@@ -32,6 +32,7 @@
 #include "kernels/common/math.hpp"
 #include "kernels/mpm/boundary.hpp"
 #include "kernels/mpm/g2p.hpp"
+#include "kernels/mpm/host_transpose.hpp"
 #include "kernels/mpm/shape_function.hpp"
 #include "kernels/mpm/stress_update.hpp"
 #include "kernels/mpm/two_phase/pore_pressure_update.hpp"
@@ -259,7 +260,8 @@ struct TwoPhaseG2PSums {
 
 // A block of points [q0, q1) of the host's two-phase G2P, in loops over the block's points (as
 // the single-phase g2p_block, g2p.hpp):
-//  1. the grids' velocities at each point's 3 x 3 stencil into the block's arrays;
+//  1. the grids' velocities at each point's 3 x 3 stencil into the block's arrays (without
+//     ghosts, in registers 8 points at a time where host_transpose.hpp is compiled in);
 //  2. the transfer (two_phase_g2p_point, reading those arrays);
 //  3. the mixture's volumetric rate (Pore) and the trial effective stress, and whether the point
 //     needs the return mapping;
@@ -283,8 +285,39 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_block(
   constexpr bool plastic = Stress == G2PStress::Plastic;
   constexpr int B = kTwoPhaseG2PBlock;
   const int count = q1 - q0;
-  double gs[3][6][B], gso[3][6][B], gl[3][6][B], glo[Apic ? 1 : 3][6][B];
-  for (int q = q0; q < q1; ++q) {
+  alignas(64) double gs[3][6][B], gso[3][6][B], gl[3][6][B], glo[Apic ? 1 : 3][6][B];
+  int k0 = 0;
+#if LSI_MPM_HOST_TRANSPOSE
+  // Without ghosts, 8 points at a time: each stencil row's 6 doubles of the 8 points transposed
+  // in registers, per grid array (as g2p_block).
+  static_assert(B % 8 == 0);
+  namespace host_simd = lsi::mpm::detail::host_simd;
+  if (!ghosts) {
+    for (; k0 + 8 <= count; k0 += 8) {
+      int first[8];
+      for (int p = 0; p < 8; ++p) {
+        const int q = q0 + k0 + p;
+        const int bi = quadratic_bspline(a.solid.position(q, 0) - ox, inv_dx).base;
+        const int bj = quadratic_bspline(a.solid.position(q, 1) - oy, inv_dx).base;
+        first[p] = 2 * (bi + nx * bj);
+      }
+      const auto gather = [&](const double* const v, const int b, double(*out)[6][B]) {
+        const double* rows[8];
+        for (int p = 0; p < 8; ++p) rows[p] = v + first[p] + 2 * nx * b;
+        host_simd::V8 t[6];
+        host_simd::gather_rows6(rows, t);
+        for (int c = 0; c < 6; ++c) host_simd::store8(&out[b][c][k0], t[c]);
+      };
+      for (int b = 0; b < 3; ++b) {
+        gather(vs, b, gs);
+        gather(vso, b, gso);
+        gather(vl, b, gl);
+        if constexpr (!Apic) gather(vlo, b, glo);
+      }
+    }
+  }
+#endif
+  for (int q = q0 + k0; q < q1; ++q) {
     const int k = q - q0;
     const int bi = quadratic_bspline(a.solid.position(q, 0) - ox, inv_dx).base;
     const int bj = quadratic_bspline(a.solid.position(q, 1) - oy, inv_dx).base;
