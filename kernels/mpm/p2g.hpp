@@ -122,6 +122,16 @@ struct P2GBoxes {
 
 namespace detail {
 
+// Widens the rectangle of nodes i0..i1 x j0..j1 by the 3 x 3 stencil whose first node is
+// (bi, bj).
+KOKKOS_FORCEINLINE_FUNCTION void widen_by_stencil(const int bi, const int bj, int& i0, int& i1,
+                                                  int& j0, int& j1) {
+  i0 = bi < i0 ? bi : i0;
+  i1 = bi + 2 > i1 ? bi + 2 : i1;
+  j0 = bj < j0 ? bj : j0;
+  j1 = bj + 2 > j1 ? bj + 2 : j1;
+}
+
 template <bool Atomic>
 KOKKOS_FORCEINLINE_FUNCTION void scatter_add(double* a, double v) {
   if constexpr (Atomic)
@@ -290,10 +300,7 @@ NodeBox scatter_points(S& scatter, const PositionView& position, const int n_poi
             for (int q = begin; q < end; ++q) {
               int bi, bj;
               point_fn(q, buf, NodeTile{0, 0, nx}, bi, bj);
-              a0 = bi < a0 ? bi : a0;
-              a1 = bi + 2 > a1 ? bi + 2 : a1;
-              b0 = bj < b0 ? bj : b0;
-              b1 = bj + 2 > b1 ? bj + 2 : b1;
+              widen_by_stencil(bi, bj, a0, a1, b0, b1);
             }
           }
           boxes(c, 0) = a0;
@@ -485,10 +492,7 @@ KOKKOS_FORCEINLINE_FUNCTION void p2g_block(const PointArrays a, const int q0, co
     }
     for (int p = 0; p < 8; ++p) {
       const int bi = first_i[k + p], bj = first_j[k + p], n = bi + nx * bj;
-      i0 = bi < i0 ? bi : i0;
-      i1 = bi + 2 > i1 ? bi + 2 : i1;
-      j0 = bj < j0 ? bj : j0;
-      j1 = bj + 2 > j1 ? bj + 2 : j1;
+      widen_by_stencil(bi, bj, i0, i1, j0, j1);
       for (int b = 0; b < 3; ++b) {
         double* row = buf + F * (n + nx * b);
         host_simd::store8(row, host_simd::load8(row) + t[b][0][p]);
@@ -499,10 +503,7 @@ KOKKOS_FORCEINLINE_FUNCTION void p2g_block(const PointArrays a, const int q0, co
 #endif
   for (; k < q1 - q0; ++k) {
     const int bi = first_i[k], bj = first_j[k], n = bi + nx * bj;
-    i0 = bi < i0 ? bi : i0;
-    i1 = bi + 2 > i1 ? bi + 2 : i1;
-    j0 = bj < j0 ? bj : j0;
-    j1 = bj + 2 > j1 ? bj + 2 : j1;
+    widen_by_stencil(bi, bj, i0, i1, j0, j1);
     for (int b = 0; b < 3; ++b) {
       double* row = buf + F * (n + nx * b);
       for (int v = 0; v < 3 * F; ++v) row[v] += add[b][v][k];

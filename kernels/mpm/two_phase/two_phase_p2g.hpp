@@ -275,10 +275,7 @@ inline void two_phase_p2g_block(const TwoPhasePointArrays p, const int q0, const
         for (int f = 0; f < NQ; ++f) node[f] += u * R0[f] + v * R1[f] + w * R2[f];
       }
     }
-    i0 = bi < i0 ? bi : i0;
-    i1 = bi + 2 > i1 ? bi + 2 : i1;
-    j0 = bj < j0 ? bj : j0;
-    j1 = bj + 2 > j1 ? bj + 2 : j1;
+    mpm::detail::widen_by_stencil(bi, bj, i0, i1, j0, j1);
     if (mw.any) two_phase_p2g_mirrors<false>(p, q, buf, grid, ox, oy, dx, inv_dx, gx, gy, mw);
   }
 }
