@@ -3,19 +3,31 @@
 // a scalar call that stops GCC from vectorising the loop).
 //
 // Method: x^y = exp(y log x), with log x and the product y log x carried in two doubles (hi + lo)
-// so that the exponent's rounding error does not grow with |y log x|.
-//   log:  x = 2^e m with m in [sqrt(1/2), sqrt(2)) taken from the bits (subnormal x scaled by
-//         2^54 first); log m = 2 atanh(s), s = (m - 1) / (m + 1), |s| <= 0.1716, s in two
-//         doubles (m - 1 is exact, 2 + (m - 1) carries its error); the series 2 s + 2 s^3 / 3 +
-//         ... + 2 s^23 / 23 (the first neglected term is below 2e-20 of the result) with its two
-//         leading terms in two doubles; e ln 2 with ln 2 split so that e ln2_hi is exact.
-//   exp:  k = round((y log x) / ln 2), r = y log x - k ln 2 (|r| <= 0.35, its error kept),
-//         exp(r) = 1 + r + r^2 (1/2! + ... + r^12 / 14!) (the first neglected term is below
-//         1e-19), 1 + r summed exactly, times 2^k built from the bits in two factors (so that
-//         results near the overflow and underflow thresholds need no special case).
+// so that the exponent's rounding error does not grow with |y log x|. Two ways to the same
+// accuracy: on the host from lookup tables (pow_tables.hpp, written by
+// tools/generate_pow_tables.py), fewer operations per value; on a GPU from series alone, no table
+// in device memory.
+//   log, tables: x = 2^e z, z in [0.705, 1.41) split into 128 sub-intervals by the leading bits of
+//         its significand (subnormal x scaled by 2^54 first); with c the centre of z's
+//         sub-interval (c = 1 for the one holding 1), log x = e ln 2 + log c + log(1 + r),
+//         r = z/c - 1, |r| < 2^-8 + 2^-53: z/c exact in two doubles by a fused multiply-add, the
+//         series of log(1 + r) up to r^8 (first neglected term below 2^-75) with r - r^2/2 in two
+//         doubles; 1/c and log c (in two doubles) from the table.
+//   log, series: x = 2^e m with m in [sqrt(1/2), sqrt(2)); log m = 2 atanh(s), s = (m - 1) /
+//         (m + 1), |s| <= 0.1716, s in two doubles; the series 2 s + 2 s^3 / 3 + ... + 2 s^23 / 23
+//         (the first neglected term is below 2e-20 of the result) with its two leading terms in
+//         two doubles.
+//   Both add e ln 2 with ln 2 split so that e ln2_hi is exact.
+//   exp, tables: t = y log x = n ln2/128 + r, |r| <= ln2/256, exp t = 2^(n/128 rounded down)
+//         2^(j/128) exp(r), j = n mod 128: 2^(j/128) in two doubles from the table, exp(r) - 1 by
+//         its series up to r^6 (first neglected term below 2^-71).
+//   exp, series: t = k ln 2 + r, |r| <= 0.35 (its error kept), exp(r) = 1 + r + r^2 (1/2! + ... +
+//         r^12 / 14!) (the first neglected term is below 1e-19), 1 + r summed exactly.
+//   Both build 2^k from the bits in two factors, so that results near the overflow and underflow
+//   thresholds need no special case.
 // Accuracy: within 1 ulp of the correctly rounded x^y wherever the result is a normal double
-// (the exponent y log x is carried to ~2^-100 relative, so the error does not grow with it);
-// tests/kernels/common/test_pow_nonnegative.cpp measures it against long double libm.
+// (the exponent y log x is carried to ~2^-66 relative, so the error does not grow with it);
+// tests/kernels/common/test_pow_nonnegative.cpp measures both ways against long double libm.
 // Special values as pow: x^0 = 1 and 1^y = 1 (also for NaN), NaN otherwise for a NaN operand,
 // 0^y = +inf (y < 0) or 0 (y > 0), inf^y = 0 (y < 0) or inf (y > 0), overflow to inf and
 // underflow to 0. Unlike pow, a negative x gives NaN for every y != 0 (also an integer y).
@@ -24,6 +36,8 @@
 #include <Kokkos_Macros.hpp>
 #include <cstdint>
 #include <cstring>
+
+#include "kernels/common/pow_tables.hpp"
 
 namespace lsi::math {
 
@@ -55,7 +69,7 @@ inline constexpr double ln2_lo = 1.90821492927058770002e-10;
 inline constexpr double round_shift = 6755399441055744.0;
 
 // log x = hi + lo for a finite x > 0 (subnormals included).
-KOKKOS_FORCEINLINE_FUNCTION void log_two_doubles(double x, double& hi, double& lo) {
+KOKKOS_FORCEINLINE_FUNCTION void log_two_doubles_series(double x, double& hi, double& lo) {
   const bool tiny = x < 2.2250738585072014e-308;         // subnormal: scale into the normal range
   const double xs = tiny ? x * 18014398509481984.0 : x;  // 2^54
   const std::uint64_t u = bits_of(xs);
@@ -111,7 +125,7 @@ KOKKOS_FORCEINLINE_FUNCTION void log_two_doubles(double x, double& hi, double& l
 }
 
 // exp(hi + lo) for |lo| at most a few ulp of hi; hi may be +-inf or NaN.
-KOKKOS_FORCEINLINE_FUNCTION double exp_two_doubles(double hi, double lo) {
+KOKKOS_FORCEINLINE_FUNCTION double exp_two_doubles_series(double hi, double lo) {
   constexpr double limit = 1100.0;  // exp(1100) overflows, exp(-1100) underflows to 0
   const bool in_range = (hi >= -limit) & (hi <= limit);
   double t = hi > limit ? limit : hi;  // NaN stays NaN
@@ -155,19 +169,105 @@ KOKKOS_FORCEINLINE_FUNCTION double exp_two_doubles(double hi, double lo) {
   return (mantissa * scale1) * scale2;
 }
 
-}  // namespace pow_detail
+// The tables' way is compiled for the host only (the tables are host memory).
+#if !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
 
-KOKKOS_FORCEINLINE_FUNCTION double pow_nonnegative(double x, double y) {
-  using namespace pow_detail;
+// log x = hi + lo for a finite x > 0 (subnormals included), from the tables: x = 2^e z with z
+// in [0.705, 1.41) in one of 128 sub-intervals with centre c, log x = e ln 2 + log c +
+// log(1 + r), r = z/c - 1, |r| < 2^-8 + 2^-53.
+inline void log_two_doubles_table(double x, double& hi, double& lo) {
+  // Subnormal (exponent field 0): scaled by 2^54 into the normal range. Tested on the bits, not
+  // as x < DBL_MIN: GCC then does not thread it with the caller's tests of x, which would leave
+  // branches the vectoriser cannot if-convert.
+  // The product is taken for every x (by 1 for the others): a multiplication only on one branch
+  // could trap under -ftrapping-math, which stops GCC from if-converting it.
+  const bool tiny = (bits_of(x) >> 52) == 0;
+  const std::uint64_t u = bits_of(x * (tiny ? 18014398509481984.0 : 1.0));  // 2^54
+  const std::uint64_t shifted = u - log_table_offset;
+  const std::uint64_t i = (shifted >> (52 - log_table_bits)) & ((1u << log_table_bits) - 1);
+  const std::int64_t exponent =
+      (static_cast<std::int64_t>(shifted) >> 52) - (tiny ? 54 : 0);  // arithmetic shift
+  const double z = double_of(u - (shifted & 0xFFF0000000000000ull));
+  // The exponent as a double from the bits of round_shift + exponent (no conversion
+  // instruction, which could raise "inexact" and so is not if-converted either).
+  const double e =
+      double_of(bits_of(round_shift) + static_cast<std::uint64_t>(exponent)) - round_shift;
+  const LogTableRow& row = log_table[i];
+  // z / c = p + p_lo exactly; r = p - 1 exact (Sterbenz), so z / c - 1 = r + p_lo.
+  const double p = z * row.inverse_centre;
+  const double p_lo = fused_multiply_add(z, row.inverse_centre, -p);
+  const double r = p - 1.0;
+  // log(1 + r + p_lo) = r - r^2/2 + r^3 (1/3 - r/4 + ... + r^5/8) + p_lo (1 - r + r^2):
+  // the terms up to r^8 (the first neglected one below 2^-75).
+  const double half_r = 0.5 * r;
+  const double square_hi = -half_r * r;  // -r^2/2 = square_hi + square_lo exactly
+  const double square_lo = fused_multiply_add(-half_r, r, -square_hi);
+  const double r2 = r * r, r4 = r2 * r2;
+  const double c34 = fused_multiply_add(-1.0 / 4.0, r, 1.0 / 3.0);
+  const double c56 = fused_multiply_add(-1.0 / 6.0, r, 1.0 / 5.0);
+  const double c78 = fused_multiply_add(-1.0 / 8.0, r, 1.0 / 7.0);
+  const double series = (r * r2) * fused_multiply_add(c78, r4, fused_multiply_add(c56, r2, c34));
+  const double correction = p_lo * fused_multiply_add(r, r, 1.0 - r);
+  // e ln2_hi + log_c_hi is exact (both multiples of 2^-43); the two sums after it are exact up
+  // to an error kept (Fast2Sum: each addend is the larger, or the running sum is 0).
+  const double s = fused_multiply_add(e, ln2_hi, row.log_centre_hi);
+  const double h = s + r;
+  const double h_error = (s - h) + r;
+  const double h2 = h + square_hi;
+  const double h2_error = (h - h2) + square_hi;
+  const double rest = h_error + h2_error + square_lo + series + correction +
+                      fused_multiply_add(e, ln2_lo, row.log_centre_lo);
+  hi = h2 + rest;
+  lo = rest - (hi - h2);
+}
+
+// exp(hi + lo) for |lo| at most a few ulp of hi; hi may be +-inf or NaN. From the table:
+// hi + lo = (128 k + j) ln2/128 + r, |r| <= ln2/256, exp = 2^k 2^(j/128) exp(r).
+inline double exp_two_doubles_table(double hi, double lo) {
+  constexpr double limit = 1100.0;  // exp(1100) overflows, exp(-1100) underflows to 0
+  // Computed for every hi, also outside [-limit, limit] (the table index is masked, so any hi is
+  // safe) and replaced at the end: clamping hi first lets GCC fold the clamped path into
+  // constants, which leaves the table loads on one branch only and stops the vectoriser.
+  const double t = hi;
+  const double t_lo = lo;
+  constexpr double steps_per_ln2 = 128.0 * 1.4426950408889634;
+  // ln2/128 = step_hi + step_lo, step_hi with 32 significant bits: n step_hi is exact.
+  constexpr double step_hi = ln2_hi / 128.0;
+  constexpr double step_lo = ln2_lo / 128.0;
+  const double n_shifted = t * steps_per_ln2 + round_shift;
+  const double n = n_shifted - round_shift;  // round(t 128 / ln 2)
+  // r = t - n ln2/128: t - n step_hi exact (Sterbenz); the rest rounded (each rounding below
+  // 2^-61 of the result).
+  const double r = (fused_multiply_add(-n, step_hi, t) - n * step_lo) + t_lo;
+  // exp(r) - 1 = r + r^2 (1/2 + r/6 + r^2/24 + r^3/120 + r^4/720): the first neglected term
+  // is below 2^-71.
+  const double r2 = r * r;
+  const double q01 = fused_multiply_add(1.0 / 6.0, r, 0.5);
+  const double q23 = fused_multiply_add(1.0 / 120.0, r, 1.0 / 24.0);
+  const double q = fused_multiply_add(fused_multiply_add(1.0 / 720.0, r2, q23), r2, q01);
+  const double expm1_r = fused_multiply_add(r2, q, r);
+  const std::uint64_t n_bits = bits_of(n_shifted);  // 0x4338000000000000 + n
+  const ExpTableRow& row = exp_table[n_bits & ((1u << exp_table_bits) - 1)];
+  const double mantissa = row.hi + fused_multiply_add(row.hi, expm1_r, row.lo);
+  // 2^k as 2^k1 2^k2, k1 = floor(k / 2): each within the normal exponents for |k| <= 1587.
+  const std::int64_t k = static_cast<std::int64_t>(n_bits - bits_of(round_shift)) >> exp_table_bits;
+  const std::int64_t k1 = k >> 1;
+  const std::int64_t k2 = k - k1;
+  const double scale1 = double_of(static_cast<std::uint64_t>(k1 + 1023) << 52);
+  const double scale2 = double_of(static_cast<std::uint64_t>(k2 + 1023) << 52);
+  const double power = (mantissa * scale1) * scale2;
   constexpr double inf = __builtin_huge_val();
-  const bool regular = (x > 0.0) & (x < inf);  // false for 0, inf, NaN and negative x
-  double log_hi = 0.0, log_lo = 0.0;
-  log_two_doubles(regular ? x : 1.0, log_hi, log_lo);
-  const double t_hi = y * log_hi;
-  const double t_lo = fused_multiply_add(y, log_hi, -t_hi) + y * log_lo;
-  const double power = exp_two_doubles(t_hi, t_lo);
-  // Special operands, in pow's order of precedence; one condition a select, so that GCC
-  // if-converts them (it gives up on a select of more than four values).
+  const double outside = hi > 0.0 ? inf : 0.0;
+  return (hi > limit) | (hi < -limit) ? outside : power;  // NaN: power is NaN
+}
+
+#endif
+
+// x^y from x, y and the power exp(y log x): pow's results for the special operands.
+KOKKOS_FORCEINLINE_FUNCTION double with_special_operands(double x, double y, double power) {
+  constexpr double inf = __builtin_huge_val();
+  // In pow's order of precedence; one condition a select, so that GCC if-converts them (it gives
+  // up on a select of more than four values).
   double r = power;
   const double of_zero = y > 0.0 ? 0.0 : inf;  // y < 0; y = 0 and y NaN below
   r = x == 0.0 ? of_zero : r;
@@ -176,6 +276,40 @@ KOKKOS_FORCEINLINE_FUNCTION double pow_nonnegative(double x, double y) {
   r = (x != x) | (y != y) | (x < 0.0) ? __builtin_nan("") : r;
   r = (y == 0.0) | (x == 1.0) ? 1.0 : r;
   return r;
+}
+
+// Every x goes through the log, also 0, inf, NaN and negative x (finite garbage or NaN, no trap,
+// no index outside the tables), and is replaced by with_special_operands: a select of x before
+// the log lets GCC thread the log's own tests with it into branches that the vectoriser cannot
+// if-convert.
+KOKKOS_FORCEINLINE_FUNCTION double pow_by_series(double x, double y) {
+  double log_hi = 0.0, log_lo = 0.0;
+  log_two_doubles_series(x, log_hi, log_lo);
+  const double t_hi = y * log_hi;
+  const double t_lo = fused_multiply_add(y, log_hi, -t_hi) + y * log_lo;
+  return with_special_operands(x, y, exp_two_doubles_series(t_hi, t_lo));
+}
+
+#if !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
+inline double pow_by_tables(double x, double y) {
+  double log_hi = 0.0, log_lo = 0.0;
+  log_two_doubles_table(x, log_hi, log_lo);
+  const double t_hi = y * log_hi;
+  const double t_lo = fused_multiply_add(y, log_hi, -t_hi) + y * log_lo;
+  return with_special_operands(x, y, exp_two_doubles_table(t_hi, t_lo));
+}
+#endif
+
+}  // namespace pow_detail
+
+// The tables on the host; the series on a GPU, where the tables would have to live in device
+// memory and the arithmetic is cheap next to a lookup.
+KOKKOS_FORCEINLINE_FUNCTION double pow_nonnegative(double x, double y) {
+#if !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
+  return pow_detail::pow_by_tables(x, y);
+#else
+  return pow_detail::pow_by_series(x, y);
+#endif
 }
 
 }  // namespace lsi::math

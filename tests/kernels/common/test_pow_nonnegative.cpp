@@ -1,10 +1,13 @@
-// x^y without a library call (kernels/common/pow_nonnegative.hpp), against long double libm over
-// the range the empirical model uses it in (alpha = a1 Fr^a2) and over the whole double range,
-// and its special values against pow.
+// x^y without a library call (kernels/common/pow_nonnegative.hpp), both ways (tables on the host,
+// series on a GPU, both compiled here), against long double libm over the range the empirical
+// model uses it in (alpha = a1 Fr^a2) and over the whole double range, its special values against
+// pow, and its tables (kernels/common/pow_tables.hpp) against long double libm.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <string>
 #include <limits>
 #include <random>
 
@@ -12,7 +15,17 @@
 
 namespace {
 
-using lsi::math::pow_nonnegative;
+using lsi::math::pow_detail::pow_by_series;
+using lsi::math::pow_detail::pow_by_tables;
+
+// The two ways as one test parameter.
+struct Way {
+  const char* name;
+  double (*pow)(double, double);
+};
+const Way kWays[] = {{"tables", pow_by_tables}, {"series", pow_by_series}};
+
+class PowNonnegative : public ::testing::TestWithParam<Way> {};
 
 // Distance from `value` to `exact` in units in the last place of `exact` (long double libm: its
 // 64-bit significand makes its own error ~1/2000 of a double ulp, negligible here).
@@ -24,8 +37,8 @@ double ulps(double value, long double exact) {
 
 // The largest error over n draws of x = 10^U(lo, hi), y = U(y_lo, y_hi), keeping the results
 // that are normal doubles.
-double worst_ulps(double log10_lo, double log10_hi, double y_lo, double y_hi, int n,
-                  std::uint64_t seed) {
+double worst_ulps(double (*pow_nonnegative)(double, double), double log10_lo, double log10_hi,
+                  double y_lo, double y_hi, int n, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> ux(log10_lo, log10_hi), uy(y_lo, y_hi);
   double worst = 0.0;
@@ -40,29 +53,35 @@ double worst_ulps(double log10_lo, double log10_hi, double y_lo, double y_hi, in
   return worst;
 }
 
-TEST(PowNonnegative, WithinOneUlpOverTheEmpiricalModelsRange) {
+TEST_P(PowNonnegative, WithinOneUlpOverTheEmpiricalModelsRange) {
   // Fr from 1e-3 to 1e3 (a flow 1e6 times faster or slower than its wave speed covers every
   // scene), a2 in [-5, 5] (the range the scene parser allows). 1 ulp: log and exp carry their
   // arguments in two doubles, so only the final rounding (1/2 ulp) and the polynomials' round-off
   // remain.
-  const double worst = worst_ulps(-3, 3, -5, 5, 1 << 20, 1);
-  std::printf("[ pow_nonnegative ] worst error, Fr in [1e-3, 1e3], a2 in [-5, 5]: %.3f ulp\n",
-              worst);
+  const double worst = worst_ulps(GetParam().pow, -3, 3, -5, 5, 1 << 20, 1);
+  std::printf("[ pow_nonnegative, %s ] worst error, Fr in [1e-3, 1e3], a2 in [-5, 5]: %.3f ulp\n",
+              GetParam().name, worst);
   EXPECT_LE(worst, 1.0);
 }
 
-TEST(PowNonnegative, WithinOneUlpOverTheDoubleRange) {
+TEST_P(PowNonnegative, WithinOneUlpOverTheDoubleRange) {
   // x over every normal exponent (and subnormals), y such that x^y stays finite and normal: the
   // exponent y log x reaches 709; carried in two doubles, its error stays far below an ulp of the
   // result, so 1 ulp holds here too.
-  double worst = worst_ulps(-307, 308, -2, 2, 1 << 19, 2);
-  worst = std::fmax(worst, worst_ulps(-320, -308, -1, 1, 1 << 16, 3));  // subnormal x
-  worst = std::fmax(worst, worst_ulps(-1, 1, -300, 300, 1 << 18, 4));   // large |y|
-  std::printf("[ pow_nonnegative ] worst error over the double range: %.3f ulp\n", worst);
+  const auto pow_nonnegative = GetParam().pow;
+  double worst = worst_ulps(pow_nonnegative, -307, 308, -2, 2, 1 << 19, 2);
+  worst =
+      std::fmax(worst, worst_ulps(pow_nonnegative, -320, -308, -1, 1, 1 << 16, 3));     // subnormal
+  worst = std::fmax(worst, worst_ulps(pow_nonnegative, -1, 1, -300, 300, 1 << 18, 4));  // large |y|
+  // x within 2^-20 of 1, where log x is small and y large: the exponent's relative accuracy.
+  worst = std::fmax(worst, worst_ulps(pow_nonnegative, -2.6e-7, 2.6e-7, -1e8, 1e8, 1 << 16, 5));
+  std::printf("[ pow_nonnegative, %s ] worst error over the double range: %.3f ulp\n",
+              GetParam().name, worst);
   EXPECT_LE(worst, 1.0);
 }
 
-TEST(PowNonnegative, SpecialValuesAsPow) {
+TEST_P(PowNonnegative, SpecialValuesAsPow) {
+  const auto pow_nonnegative = GetParam().pow;
   const double inf = std::numeric_limits<double>::infinity();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double xs[] = {0.0, 1.0, 2.0, 0.5, 1e-310, inf, nan};
@@ -92,6 +111,38 @@ TEST(PowNonnegative, SpecialValuesAsPow) {
   EXPECT_TRUE(std::isnan(pow_nonnegative(-2.0, 2.0)));
   EXPECT_TRUE(std::isnan(pow_nonnegative(-inf, 0.5)));
   EXPECT_EQ(pow_nonnegative(-2.0, 0.0), 1.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothWays, PowNonnegative, ::testing::ValuesIn(kWays),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(PowTables, EntriesAgreeWithLongDoubleLibm) {
+  // Each log row: 1/c and log c = -log(1/c) in two doubles; each exp row: 2^(j/128) in two
+  // doubles. Tolerance 2^-62 of the value: long double libm's own error (64-bit significand)
+  // is ~2^-64; an entry off by more than that would show up as pow errors well above 1/2 ulp.
+  using namespace lsi::math::pow_detail;
+  for (int i = 0; i < (1 << log_table_bits); ++i) {
+    const LogTableRow& row = log_table[i];
+    const long double exact = -std::log(static_cast<long double>(row.inverse_centre));
+    const long double stored =
+        static_cast<long double>(row.log_centre_hi) + static_cast<long double>(row.log_centre_lo);
+    EXPECT_LE(std::fabs(stored - exact), std::ldexp(std::fabs(exact), -62) + 0x1p-120L) << i;
+    // The row's sub-interval: z / c - 1 within the bound the series is truncated for.
+    for (const double end : {0.0, 1.0}) {
+      const std::uint64_t bits =
+          log_table_offset + ((static_cast<std::uint64_t>(i) + static_cast<std::uint64_t>(end))
+                              << (52 - log_table_bits));
+      double z;
+      std::memcpy(&z, &bits, sizeof z);
+      EXPECT_LE(std::fabs(static_cast<long double>(z) * row.inverse_centre - 1.0L), 1.01L * 0x1p-8L)
+          << i;
+    }
+  }
+  for (int j = 0; j < (1 << exp_table_bits); ++j) {
+    const long double exact = std::exp2(static_cast<long double>(j) / (1 << exp_table_bits));
+    const long double stored = static_cast<long double>(exp_table[j].hi) + exp_table[j].lo;
+    EXPECT_LE(std::fabs(stored - exact), std::ldexp(exact, -62)) << j;
+  }
 }
 
 }  // namespace
