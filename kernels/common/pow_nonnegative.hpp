@@ -169,8 +169,8 @@ KOKKOS_FORCEINLINE_FUNCTION double exp_two_doubles_series(double hi, double lo) 
   return (mantissa * scale1) * scale2;
 }
 
-// The tables' way is compiled for the host only (the tables are host memory).
-#if !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
+// The tables' way: host functions (the tables are host memory), called from pow_nonnegative only
+// where it is compiled for the host.
 
 // log x = hi + lo for a finite x > 0 (subnormals included), from the tables: x = 2^e z with z
 // in [0.705, 1.41) in one of 128 sub-intervals with centre c, log x = e ln 2 + log c +
@@ -261,8 +261,6 @@ inline double exp_two_doubles_table(double hi, double lo) {
   return (hi > limit) | (hi < -limit) ? outside : power;  // NaN: power is NaN
 }
 
-#endif
-
 // x^y from x, y and the power exp(y log x): pow's results for the special operands.
 KOKKOS_FORCEINLINE_FUNCTION double with_special_operands(double x, double y, double power) {
   constexpr double inf = __builtin_huge_val();
@@ -290,7 +288,6 @@ KOKKOS_FORCEINLINE_FUNCTION double pow_by_series(double x, double y) {
   return with_special_operands(x, y, exp_two_doubles_series(t_hi, t_lo));
 }
 
-#if !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
 inline double pow_by_tables(double x, double y) {
   double log_hi = 0.0, log_lo = 0.0;
   log_two_doubles_table(x, log_hi, log_lo);
@@ -298,7 +295,6 @@ inline double pow_by_tables(double x, double y) {
   const double t_lo = fused_multiply_add(y, log_hi, -t_hi) + y * log_lo;
   return with_special_operands(x, y, exp_two_doubles_table(t_hi, t_lo));
 }
-#endif
 
 }  // namespace pow_detail
 

@@ -270,7 +270,6 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
   constexpr bool host =
       Kokkos::SpaceAccessibility<Kokkos::HostSpace, typename ExecSpace::memory_space>::accessible;
   constexpr bool with_stress = Stress != G2PStress::None;
-  constexpr bool plastic = Stress == G2PStress::Plastic;
   const double ox = g.origin[0], oy = g.origin[1], dx = g.dx, inv_dx = 1.0 / g.dx;
   const double apic = Flip ? 0.0 : 4.0 * inv_dx * inv_dx;
   const double xmax = (g.nx - 2) * dx, ymax = (g.ny - 2) * dx;  // keep 1 cell of padding
@@ -321,9 +320,11 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
           detail::g2p_point<Flip>(
               p, q, detail::GridStencil<decltype(velocity)>{velocity, velocity_old, nx}, ox, oy, dx,
               inv_dx, apic, flip_ratio, dt, L);
-          if constexpr (with_stress)
-            update_point_stress<plastic>(p, q, mats(p.material(q)), L[0][0], L[0][1], L[1][0],
-                                         L[1][1], dt);
+          // The template parameter, not the constexpr locals: nvcc counts a local named in an
+          // `if constexpr` of a device lambda as a capture there, and rejects it.
+          if constexpr (Stress != G2PStress::None)
+            update_point_stress<Stress == G2PStress::Plastic>(p, q, mats(p.material(q)), L[0][0],
+                                                              L[0][1], L[1][0], L[1][1], dt);
           double speed, expansion;
           detail::g2p_health(p, q, ox, oy, dx, xmax, ymax, speed, expansion, nonfinite, outside);
           if (speed > vm) vm = speed;

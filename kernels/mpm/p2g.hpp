@@ -293,13 +293,18 @@ NodeBox scatter_points(S& scatter, const PositionView& position, const int n_poi
           const int end = static_cast<int>(static_cast<long>(n_points) * (c + 1) / nc);
           double* buf = &copies(c, 0);
           int a0 = INT_MAX, a1 = INT_MIN, b0 = INT_MAX, b1 = INT_MIN;
+          // Named here, outside the `if constexpr`: nvcc rejects a lambda whose first use (and so
+          // capture) of a variable is inside one.
+          [[maybe_unused]] const auto& block = block_fn;
+          [[maybe_unused]] const auto& point = point_fn;
+          [[maybe_unused]] const int row_nodes = nx;
           if constexpr (!std::is_same_v<BlockFn, std::nullptr_t>) {
             for (int q = begin; q < end; q += kP2GBlock)
-              block_fn(q, q + kP2GBlock < end ? q + kP2GBlock : end, buf, a0, a1, b0, b1);
+              block(q, q + kP2GBlock < end ? q + kP2GBlock : end, buf, a0, a1, b0, b1);
           } else {
             for (int q = begin; q < end; ++q) {
               int bi, bj;
-              point_fn(q, buf, NodeTile{0, 0, nx}, bi, bj);
+              point(q, buf, NodeTile{0, 0, row_nodes}, bi, bj);
               widen_by_stencil(bi, bj, a0, a1, b0, b1);
             }
           }

@@ -509,20 +509,21 @@ TwoPhaseG2PReport two_phase_g2p_impl(
           [[maybe_unused]] const auto& mats = materials;
           [[maybe_unused]] const bool fuse_pore = pore;
           [[maybe_unused]] const TwoPhaseConstants& constants = kc;
+          [[maybe_unused]] const auto& solid = s;
           const auto& points = p;
           double LS[2][2], divL, vSm[2], vS[2], vL[2];
           detail::two_phase_g2p_point<Apic>(points, q, grid, ox, oy, dx, inv_dx, apic, flip, pic,
                                             dt, LS, divL, vSm, vS, vL);
           wk += dt * (points.traction(q, 0) * vSm[0] + points.traction(q, 1) * vSm[1]);
           if constexpr (Stress != G2PStress::None) {
-            const PreparedMaterial& m = mats(s.material(q));
+            const PreparedMaterial& m = mats(solid.material(q));
             // The pore pressure update needs the porosity of the start of the step (n in D) and
             // the volume of the end (stress update first, as in the unfused sequence).
             if (fuse_pore)
               points.volumetric_rate(q) =
                   mixture_volumetric_rate(points.porosity(q), LS[0][0] + LS[1][1], divL);
-            update_point_stress<Stress == G2PStress::Plastic>(s, q, m, LS[0][0], LS[0][1], LS[1][0],
-                                                              LS[1][1], dt);
+            update_point_stress<Stress == G2PStress::Plastic>(solid, q, m, LS[0][0], LS[0][1],
+                                                              LS[1][0], LS[1][1], dt);
             if (fuse_pore) {
               visc += update_point_pore_pressure(points, q, m, constants, LS[0][0], LS[0][1],
                                                  LS[1][0], LS[1][1], dt);
