@@ -398,14 +398,19 @@ void write_header(hid_t f, const SweepHeader& h, std::uint64_t rows) {
 
 std::vector<SampleDataset> sample_datasets(std::size_t inputs,
                                            const std::vector<std::string>& output_columns) {
+  // The HDF5 types named first: each macro is a comma expression that calls H5open, and nvcc
+  // (CUDA 13, when lsi_io is compiled through Kokkos' nvcc_wrapper) garbles braced lists of them.
+  const hid_t u64_file = H5T_STD_U64LE, u64 = H5T_NATIVE_UINT64;
+  const hid_t i8_file = H5T_STD_I8LE, i8 = H5T_NATIVE_INT8;
+  const hid_t f32_file = H5T_IEEE_F32LE, f32 = H5T_NATIVE_FLOAT;
+  const hid_t f64_file = H5T_IEEE_F64LE, f64 = H5T_NATIVE_DOUBLE;
   std::vector<SampleDataset> d = {
-      {"/samples/index", H5T_STD_U64LE, H5T_NATIVE_UINT64, 1, sizeof(std::uint64_t)},
-      {"/samples/status", H5T_STD_I8LE, H5T_NATIVE_INT8, 1, sizeof(std::int8_t)},
-      {"/samples/wall_time", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, 1, sizeof(float)},
-      {"/samples/inputs", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, static_cast<hsize_t>(inputs),
-       sizeof(double)}};
+      {"/samples/index", u64_file, u64, 1, sizeof(std::uint64_t)},
+      {"/samples/status", i8_file, i8, 1, sizeof(std::int8_t)},
+      {"/samples/wall_time", f32_file, f32, 1, sizeof(float)},
+      {"/samples/inputs", f64_file, f64, static_cast<hsize_t>(inputs), sizeof(double)}};
   for (const auto& c : output_columns)
-    d.push_back({"/samples/" + c, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 1, sizeof(double)});
+    d.push_back({"/samples/" + c, f64_file, f64, 1, sizeof(double)});
   return d;
 }
 
