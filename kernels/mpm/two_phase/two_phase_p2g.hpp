@@ -51,7 +51,7 @@ enum : int {
   LiquidForceX,
   LiquidForceY,
   Drag,
-  Padding,  // unused: the record is 12 doubles, so that the host adds it in vectors of 4
+  Padding,  // unused: the record is 12 doubles, so that the host adds it in vectors of 8 and 4
   Count
 };
 }
@@ -241,38 +241,37 @@ inline void two_phase_p2g_block(const TwoPhasePointArrays p, const int q0, const
     double wxd[3];
     offset_weights(sx, xp, dx, wxd);
     const int bi = sx.base, bj = sy.base;
-    // The records in vectors of 4 fields: (SolidMass, SolidMomentumX, SolidMomentumY,
-    // MixtureForceX), (MixtureForceY, LiquidMass, LiquidMomentumX, LiquidMomentumY),
-    // (LiquidForceX, LiquidForceY, Drag, Padding).
+    // The records in a vector of 8 fields and one of 4: (SolidMass, SolidMomentumX,
+    // SolidMomentumY, MixtureForceX, MixtureForceY, LiquidMass, LiquidMomentumX,
+    // LiquidMomentumY), (LiquidForceX, LiquidForceY, Drag, Padding).
     static_assert(nf::MixtureForceX == 3 && nf::LiquidMomentumY == 7 && nf::Drag == 10 && F == 12);
+    typedef double Oct __attribute__((vector_size(64), aligned(8)));
     typedef double Quad __attribute__((vector_size(32), aligned(8)));
-    constexpr int NQ = F / 4;
     const double mv[4] = {mS * s.velocity(q, 0), mS * s.velocity(q, 1),
                           mL * p.liquid_velocity(q, 0), mL * p.liquid_velocity(q, 1)};
-    const Quad A[NQ] = {{mS, mv[0], mv[1], (mS + mL) * gx + p.traction(q, 0)},
-                        {(mS + mL) * gy + p.traction(q, 1), mL, mv[2], mv[3]},
-                        {mL * gx, mL * gy, Q, 0.0}};
-    const Quad Bv[NQ] = {{0.0, mS * s.affine(q, 0, 1), mS * s.affine(q, 1, 1), 0.0},
-                         {0.0, 0.0, mL * p.liquid_affine(q, 0, 1), mL * p.liquid_affine(q, 1, 1)},
-                         {0.0, 0.0, 0.0, 0.0}};
-    const Quad Cv[NQ] = {{0.0, 0.0, 0.0, -Vs[2]}, {-Vs[1], 0.0, 0.0, 0.0}, {0.0, Vnp, 0.0, 0.0}};
-    const Quad D[NQ] = {{0.0, mS * s.affine(q, 0, 0), mS * s.affine(q, 1, 0), 0.0},
-                        {0.0, 0.0, mL * p.liquid_affine(q, 0, 0), mL * p.liquid_affine(q, 1, 0)},
-                        {0.0, 0.0, 0.0, 0.0}};
-    const Quad E[NQ] = {{0.0, 0.0, 0.0, -Vs[0]}, {-Vs[2], 0.0, 0.0, 0.0}, {Vnp, 0.0, 0.0, 0.0}};
+    const Oct A = {
+        mS, mv[0], mv[1], (mS + mL) * gx + p.traction(q, 0), (mS + mL) * gy + p.traction(q, 1),
+        mL, mv[2], mv[3]};
+    const Quad Ah = {mL * gx, mL * gy, Q, 0.0};
+    const Oct Bv = {0.0, mS * s.affine(q, 0, 1),        mS * s.affine(q, 1, 1),       0.0, 0.0,
+                    0.0, mL * p.liquid_affine(q, 0, 1), mL * p.liquid_affine(q, 1, 1)};
+    const Oct Cv = {0.0, 0.0, 0.0, -Vs[2], -Vs[1], 0.0, 0.0, 0.0};
+    const Quad Ch = {0.0, Vnp, 0.0, 0.0};
+    const Oct D = {0.0, mS * s.affine(q, 0, 0),        mS * s.affine(q, 1, 0),       0.0, 0.0,
+                   0.0, mL * p.liquid_affine(q, 0, 0), mL * p.liquid_affine(q, 1, 0)};
+    const Oct E = {0.0, 0.0, 0.0, -Vs[0], -Vs[2], 0.0, 0.0, 0.0};
+    const Quad Eh = {Vnp, 0.0, 0.0, 0.0};
     for (int b = 0; b < 3; ++b) {
       const double wy = sy.w[b], dwy = sy.dw[b], dyb = (sy.base + b) * dx - yp;
-      Quad R0[NQ], R1[NQ], R2[NQ];
-      for (int f = 0; f < NQ; ++f) {
-        R0[f] = wy * (A[f] + dyb * Bv[f]) + dwy * Cv[f];
-        R1[f] = wy * D[f];
-        R2[f] = wy * E[f];
-      }
+      const Oct R0 = wy * (A + dyb * Bv) + dwy * Cv, R1 = wy * D, R2 = wy * E;
+      const Quad H0 = wy * Ah + dwy * Ch, H2 = wy * Eh;  // no affine or D terms here
       double* row = buf + F * (bi + nx * (bj + b));
       for (int a = 0; a < 3; ++a) {
-        Quad* node = reinterpret_cast<Quad*>(row + F * a);
+        Oct* lo = reinterpret_cast<Oct*>(row + F * a);
+        Quad* hi = reinterpret_cast<Quad*>(row + F * a + 8);
         const double u = sx.w[a], v = wxd[a], w = sx.dw[a];
-        for (int f = 0; f < NQ; ++f) node[f] += u * R0[f] + v * R1[f] + w * R2[f];
+        *lo += u * R0 + v * R1 + w * R2;
+        *hi += u * H0 + w * H2;
       }
     }
     mpm::detail::widen_by_stencil(bi, bj, i0, i1, j0, j1);
