@@ -331,9 +331,38 @@ NodeBox scatter_points(S& scatter, const PositionView& position, const int n_poi
   return scatter_points(scatter, position, n_points, ox, oy, inv_dx, nx, point_fn, nullptr);
 }
 
-// Pass 2 of a P2G: for the touched nodes (clipped to the grid `whole`) and those of
-// `previous_dirty` (last step's values, which must become zero), sums the buffers, zeroes them
-// and calls store(n, acc) with the kFields sums of node n. Returns the new rectangles.
+// The nodes pass 2 of a P2G visits: the touched nodes clipped to the grid `whole` (returned in
+// touched) and those of `previous_dirty` (last step's values, which must become zero).
+inline NodeBox gather_region(NodeBox& touched, const NodeBox& whole,
+                             const NodeBox& previous_dirty) {
+  // Never outside the grid (points beyond its edge are the health check's business).
+  if (!touched.empty()) {
+    touched = {touched.i0 < 0 ? 0 : touched.i0, touched.i1 > whole.i1 ? whole.i1 : touched.i1,
+               touched.j0 < 0 ? 0 : touched.j0, touched.j1 > whole.j1 ? whole.j1 : touched.j1};
+  }
+  return touched.merged(previous_dirty);
+}
+
+// The sums of node n = i + nx j over a scatter's buffers (F fields) into acc; the buffers are
+// zeroed on the way, so the next step needs no reset.
+template <int F, class Copies, class Boxes>
+KOKKOS_FORCEINLINE_FUNCTION void take_node_sums(const Copies& copies, const Boxes& boxes,
+                                                const int nc, const int i, const int j, const int n,
+                                                double acc[F]) {
+  for (int k = 0; k < F; ++k) acc[k] = 0.0;
+  for (int c = 0; c < nc; ++c) {
+    if (nc > 1 && (i < boxes(c, 0) || i > boxes(c, 1) || j < boxes(c, 2) || j > boxes(c, 3)))
+      continue;  // this copy touched no node here: it holds zeros
+    double* b = &copies(c, static_cast<size_t>(F) * n);
+    for (int k = 0; k < F; ++k) {
+      acc[k] += b[k];
+      b[k] = 0.0;
+    }
+  }
+}
+
+// Pass 2 of a P2G: for the nodes of gather_region, sums the buffers, zeroes them and calls
+// store(n, acc) with the kFields sums of node n. Returns the new rectangles.
 template <class S, class StoreFn>
 P2GBoxes gather_nodes(S& scatter, NodeBox touched, const NodeBox& whole,
                       const NodeBox& previous_dirty, const int nx, const StoreFn& store) {
@@ -342,12 +371,7 @@ P2GBoxes gather_nodes(S& scatter, NodeBox touched, const NodeBox& whole,
   const int nc = scatter.copies_count;
   const auto copies = scatter.copies;
   const auto boxes = scatter.boxes;
-  // Never outside the grid (points beyond its edge are the health check's business).
-  if (!touched.empty()) {
-    touched = {touched.i0 < 0 ? 0 : touched.i0, touched.i1 > whole.i1 ? whole.i1 : touched.i1,
-               touched.j0 < 0 ? 0 : touched.j0, touched.j1 > whole.j1 ? whole.j1 : touched.j1};
-  }
-  const NodeBox region = touched.merged(previous_dirty);
+  const NodeBox region = gather_region(touched, whole, previous_dirty);
   if (!region.empty()) {
     const NodeItems<ExecSpace> items(region);
     Kokkos::parallel_for(
@@ -358,17 +382,7 @@ P2GBoxes gather_nodes(S& scatter, NodeBox touched, const NodeBox& whole,
           for (int i = i_begin; i <= i_end; ++i) {  // a row of the region, or one node
             const int n = i + nx * j;
             double acc[F];
-            for (int k = 0; k < F; ++k) acc[k] = 0.0;
-            for (int c = 0; c < nc; ++c) {
-              if (nc > 1 &&
-                  (i < boxes(c, 0) || i > boxes(c, 1) || j < boxes(c, 2) || j > boxes(c, 3)))
-                continue;  // this copy touched no node here: it holds zeros
-              double* b = &copies(c, static_cast<size_t>(F) * n);
-              for (int k = 0; k < F; ++k) {
-                acc[k] += b[k];
-                b[k] = 0.0;
-              }
-            }
+            take_node_sums<F>(copies, boxes, nc, i, j, n, acc);
             store(n, acc);
           }
         });

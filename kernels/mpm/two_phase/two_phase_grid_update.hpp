@@ -40,6 +40,90 @@ struct GridUpdateReport {
   double wall_force[2] = {0.0, 0.0};  // N/m, on the walls
 };
 
+// A node's sums from P2G (two_phase_p2g.hpp): both masses, momenta and forces (the solid's force
+// is the mixture's), and the drag coefficient.
+struct TwoPhaseNodeSums {
+  double mS, mL, pS[2], pL[2], fS[2], fL[2], Q;
+};
+
+// The sums reduced over the nodes of a grid update (GridUpdateReport before it is filled in).
+struct TwoPhaseUpdateSums {
+  double wall_lost, drag_lost, seep, rx, ry;
+};
+
+// The update of node i = ii + nx j from its sums n (see the file comment): its velocities
+// after and before the update into both grids, its share of the reductions into r.
+template <bool SemiImplicit, class GridT>
+KOKKOS_FORCEINLINE_FUNCTION void update_two_phase_node(
+    const GridT& S, const GridT& L, const int i, const int ii, const int j,
+    const TwoPhaseNodeSums& n, const Boundaries& walls, const Boundaries& liquid_walls,
+    const double ox, const double oy, const double dx, const double tol, const double dt,
+    const double gx, const double gy, TwoPhaseUpdateSums& r) {
+  const double mS = n.mS, mL = n.mL;
+  if (!(mS > 0.0)) {
+    for (int d = 0; d < 2; ++d)
+      S.velocity(i, d) = S.velocity_old(i, d) = L.velocity(i, d) = L.velocity_old(i, d) = 0.0;
+    return;
+  }
+  const bool wet = mL > 0.0;
+  const double Q = wet ? n.Q : 0.0;
+  double vS0[2], vL0[2], vS[2], vL[2], wd[2];
+  for (int d = 0; d < 2; ++d) {
+    vS0[d] = n.pS[d] / mS;
+    vL0[d] = wet ? n.pL[d] / mL : vS0[d];
+  }
+  if (!wet) {
+    for (int d = 0; d < 2; ++d) {
+      vS[d] = vS0[d] + dt * n.fS[d] / mS;
+      vL[d] = vS[d];
+      wd[d] = 0.0;
+    }
+  } else if constexpr (SemiImplicit) {
+    const double relax = 1.0 / (1.0 + dt * Q * (1.0 / mL + 1.0 / mS));
+    for (int d = 0; d < 2; ++d) {
+      const double fL = n.fL[d], fmix = n.fS[d];
+      const double vLs = vL0[d] + dt * fL / mL, vSs = vS0[d] + dt * (fmix - fL) / mS;
+      wd[d] = (vLs - vSs) * relax;
+      vL[d] = vLs - dt * Q * wd[d] / mL;
+      const double aL = (vL[d] - vL0[d]) / dt;
+      vS[d] = vS0[d] + dt * (fmix - mL * aL) / mS;
+    }
+  } else {
+    for (int d = 0; d < 2; ++d) {
+      wd[d] = vL0[d] - vS0[d];
+      const double aL = (n.fL[d] - Q * wd[d]) / mL;
+      vL[d] = vL0[d] + dt * aL;
+      vS[d] = vS0[d] + dt * (n.fS[d] - mL * aL) / mS;
+    }
+  }
+  const double bS[2] = {vS[0], vS[1]}, bL[2] = {vL[0], vL[1]};
+  const double x = ox + ii * dx, y = oy + j * dx;
+  const bool hitS = apply_walls(walls, x, y, vS, tol);
+  const bool hitL = wet && apply_walls(liquid_walls, x, y, vL, tol);
+  double vSm[2], vLm[2];
+  for (int d = 0; d < 2; ++d) {
+    vSm[d] = 0.5 * (vS0[d] + vS[d]);
+    vLm[d] = 0.5 * (vL0[d] + vL[d]);
+  }
+  if (hitS || hitL) {
+    for (int d = 0; d < 2; ++d)
+      r.wall_lost -= mS * (vS[d] - bS[d]) * vSm[d] + (wet ? mL * (vL[d] - bL[d]) * vLm[d] : 0.0);
+    r.rx += -(mS * (vS[0] - bS[0]) + (wet ? mL * (vL[0] - bL[0]) : 0.0)) / dt;
+    r.ry += -(mS * (vS[1] - bS[1]) + (wet ? mL * (vL[1] - bL[1]) : 0.0)) / dt;
+  }
+  if (wet) {
+    const double wm[2] = {vLm[0] - vSm[0], vLm[1] - vSm[1]};
+    r.drag_lost += dt * Q * (wd[0] * wm[0] + wd[1] * wm[1]);
+    r.seep += dt * mL * (gx * wm[0] + gy * wm[1]);
+  }
+  for (int d = 0; d < 2; ++d) {
+    S.velocity_old(i, d) = vS0[d];
+    S.velocity(i, d) = vS[d];
+    L.velocity_old(i, d) = vL0[d];
+    L.velocity(i, d) = vL[d];
+  }
+}
+
 template <class ExecSpace, bool SemiImplicit, class MemorySpace>
 GridUpdateReport two_phase_grid_update_impl(const TwoPhaseGrid<MemorySpace>& g,
                                             const Boundaries& walls, const Boundaries& liquid_walls,
@@ -65,74 +149,24 @@ GridUpdateReport two_phase_grid_update_impl(const TwoPhaseGrid<MemorySpace>& g,
                     double& ry) {
         int j, i_begin, i_end;
         items.nodes(t, j, i_begin, i_end);
+        TwoPhaseUpdateSums r{wall_lost, drag_lost, seep, rx, ry};
         for (int ii = i_begin; ii <= i_end; ++ii) {  // a row of the region, or one node
           const int i = ii + nx * j;
-          const double mS = S.mass(i), mL = L.mass(i);
-          if (!(mS > 0.0)) {
-            for (int d = 0; d < 2; ++d)
-              S.velocity(i, d) = S.velocity_old(i, d) = L.velocity(i, d) = L.velocity_old(i, d) =
-                  0.0;
-            continue;
-          }
-          const bool wet = mL > 0.0;
-          const double Q = wet ? drag(i) : 0.0;
-          double vS0[2], vL0[2], vS[2], vL[2], wd[2];
-          for (int d = 0; d < 2; ++d) {
-            vS0[d] = S.momentum(i, d) / mS;
-            vL0[d] = wet ? L.momentum(i, d) / mL : vS0[d];
-          }
-          if (!wet) {
-            for (int d = 0; d < 2; ++d) {
-              vS[d] = vS0[d] + dt * S.force(i, d) / mS;
-              vL[d] = vS[d];
-              wd[d] = 0.0;
-            }
-          } else if constexpr (SemiImplicit) {
-            const double relax = 1.0 / (1.0 + dt * Q * (1.0 / mL + 1.0 / mS));
-            for (int d = 0; d < 2; ++d) {
-              const double fL = L.force(i, d), fmix = S.force(i, d);
-              const double vLs = vL0[d] + dt * fL / mL, vSs = vS0[d] + dt * (fmix - fL) / mS;
-              wd[d] = (vLs - vSs) * relax;
-              vL[d] = vLs - dt * Q * wd[d] / mL;
-              const double aL = (vL[d] - vL0[d]) / dt;
-              vS[d] = vS0[d] + dt * (fmix - mL * aL) / mS;
-            }
-          } else {
-            for (int d = 0; d < 2; ++d) {
-              wd[d] = vL0[d] - vS0[d];
-              const double aL = (L.force(i, d) - Q * wd[d]) / mL;
-              vL[d] = vL0[d] + dt * aL;
-              vS[d] = vS0[d] + dt * (S.force(i, d) - mL * aL) / mS;
-            }
-          }
-          const double bS[2] = {vS[0], vS[1]}, bL[2] = {vL[0], vL[1]};
-          const double x = ox + ii * dx, y = oy + j * dx;
-          const bool hitS = apply_walls(walls, x, y, vS, tol);
-          const bool hitL = wet && apply_walls(liquid_walls, x, y, vL, tol);
-          double vSm[2], vLm[2];
-          for (int d = 0; d < 2; ++d) {
-            vSm[d] = 0.5 * (vS0[d] + vS[d]);
-            vLm[d] = 0.5 * (vL0[d] + vL[d]);
-          }
-          if (hitS || hitL) {
-            for (int d = 0; d < 2; ++d)
-              wall_lost -=
-                  mS * (vS[d] - bS[d]) * vSm[d] + (wet ? mL * (vL[d] - bL[d]) * vLm[d] : 0.0);
-            rx += -(mS * (vS[0] - bS[0]) + (wet ? mL * (vL[0] - bL[0]) : 0.0)) / dt;
-            ry += -(mS * (vS[1] - bS[1]) + (wet ? mL * (vL[1] - bL[1]) : 0.0)) / dt;
-          }
-          if (wet) {
-            const double wm[2] = {vLm[0] - vSm[0], vLm[1] - vSm[1]};
-            drag_lost += dt * Q * (wd[0] * wm[0] + wd[1] * wm[1]);
-            seep += dt * mL * (gx * wm[0] + gy * wm[1]);
-          }
-          for (int d = 0; d < 2; ++d) {
-            S.velocity_old(i, d) = vS0[d];
-            S.velocity(i, d) = vS[d];
-            L.velocity_old(i, d) = vL0[d];
-            L.velocity(i, d) = vL[d];
-          }
+          const TwoPhaseNodeSums n{S.mass(i),
+                                   L.mass(i),
+                                   {S.momentum(i, 0), S.momentum(i, 1)},
+                                   {L.momentum(i, 0), L.momentum(i, 1)},
+                                   {S.force(i, 0), S.force(i, 1)},
+                                   {L.force(i, 0), L.force(i, 1)},
+                                   drag(i)};
+          update_two_phase_node<SemiImplicit>(S, L, i, ii, j, n, walls, liquid_walls, ox, oy, dx,
+                                              tol, dt, gx, gy, r);
         }
+        wall_lost = r.wall_lost;
+        drag_lost = r.drag_lost;
+        seep = r.seep;
+        rx = r.rx;
+        ry = r.ry;
       },
       rep.wall_dissipation, rep.drag_dissipation, rep.seepage_gravity_work, fx, fy);
   // Every node outside the mass rectangle is now zero.

@@ -297,12 +297,16 @@ struct TwoPhaseP2GBlock {
 
 }  // namespace detail
 
+namespace detail {
+
+// Pass 1 of two_phase_p2g (the points' contributions into the scatter's buffers); returns the
+// rectangle of touched nodes.
 template <class ExecSpace, bool Atomic, class MemorySpace>
-void two_phase_p2g(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g,
-                   TwoPhaseScatter<ExecSpace, Atomic>& scatter, const double gravity[2],
-                   double liquid_density, double darcy_gravity, const Boundaries* walls = nullptr,
-                   const Boundaries* liquid_walls = nullptr) {
-  namespace nf = node_field;
+NodeBox two_phase_scatter(const TwoPhaseParticles<MemorySpace>& p,
+                          const TwoPhaseGrid<MemorySpace>& g,
+                          TwoPhaseScatter<ExecSpace, Atomic>& scatter, const double gravity[2],
+                          double liquid_density, double darcy_gravity, const Boundaries* walls,
+                          const Boundaries* liquid_walls) {
   using S = TwoPhaseScatter<ExecSpace, Atomic>;
   const double ox = g.solid.origin[0], oy = g.solid.origin[1], dx = g.solid.dx;
   const double inv_dx = 1.0 / dx;
@@ -322,23 +326,34 @@ void two_phase_p2g(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<M
     mw.at[k] = (ws[k]->active ? ws[k]->position : wl[k]->position) - (k < 2 ? ox : oy);
   }
   // Host buffers with plain additions: the blocked scatter (two_phase_p2g_block).
-  using Block =
-      std::conditional_t<S::atomic, std::nullptr_t, detail::TwoPhaseP2GBlock<MemorySpace>>;
+  using Block = std::conditional_t<S::atomic, std::nullptr_t, TwoPhaseP2GBlock<MemorySpace>>;
   Block block{};
   if constexpr (!S::atomic) block = {p, nx, ox, oy, dx, inv_dx, gx, gy, rhoLg, mw};
-  const NodeBox touched = lsi::mpm::detail::scatter_points(
+  return lsi::mpm::detail::scatter_points(
       scatter, p.solid.position, p.count, ox, oy, inv_dx, nx,
       KOKKOS_LAMBDA(const int q, double* buf, const lsi::mpm::detail::NodeTile& tile, int& bi,
                     int& bj) {
-        detail::two_phase_p2g_point<S::atomic>(p, q, buf, tile, ox, oy, dx, inv_dx, gx, gy, rhoLg,
-                                               mw, bi, bj);
+        two_phase_p2g_point<S::atomic>(p, q, buf, tile, ox, oy, dx, inv_dx, gx, gy, rhoLg, mw, bi,
+                                       bj);
       },
       block);
+}
+
+}  // namespace detail
+
+template <class ExecSpace, bool Atomic, class MemorySpace>
+void two_phase_p2g(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g,
+                   TwoPhaseScatter<ExecSpace, Atomic>& scatter, const double gravity[2],
+                   double liquid_density, double darcy_gravity, const Boundaries* walls = nullptr,
+                   const Boundaries* liquid_walls = nullptr) {
+  namespace nf = node_field;
+  const NodeBox touched = detail::two_phase_scatter(p, g, scatter, gravity, liquid_density,
+                                                    darcy_gravity, walls, liquid_walls);
   const auto S_ = g.solid;
   const auto L_ = g.liquid;
   const auto drag = g.drag;
   const P2GBoxes boxes = lsi::mpm::detail::gather_nodes(
-      scatter, touched, g.solid.whole(), g.solid.dirty_box(), nx,
+      scatter, touched, g.solid.whole(), g.solid.dirty_box(), g.solid.nx,
       KOKKOS_LAMBDA(const int n, const double* acc) {
         S_.mass(n) = acc[nf::SolidMass];
         S_.momentum(n, 0) = acc[nf::SolidMomentumX];

@@ -3,7 +3,8 @@
 //   time step (eq. 25, two_phase_time_step.hpp)
 //   -> P2G of both phases + drag (two_phase_p2g.hpp)
 //   -> grid update: liquid first, solid from the mixture; explicit or semi-implicit drag; walls
-//      for both phases (two_phase_grid_update.hpp)
+//      for both phases (two_phase_grid_update.hpp); in one pass over the nodes with P2G's
+//      gather where nothing runs between them (two_phase_p2g_grid_update.hpp)
 //   [-> barrier contact of both phases (the liquid without friction) -> barrier motion]
 //   -> one pass over the points (two_phase_g2p.hpp, two_phase_g2p_update):
 //      G2P of both phases, points move with the solid, health
@@ -35,6 +36,7 @@
 #include "kernels/mpm/two_phase/mirror_reaction.hpp"
 #include "kernels/mpm/two_phase/two_phase_grid_update.hpp"
 #include "kernels/mpm/two_phase/two_phase_p2g.hpp"
+#include "kernels/mpm/two_phase/two_phase_p2g_grid_update.hpp"
 #include "kernels/mpm/two_phase/two_phase_particles.hpp"
 #include "kernels/mpm/two_phase/two_phase_time_step.hpp"
 #include "kernels/common/constants.hpp"
@@ -112,12 +114,22 @@ class TwoPhaseSolver : public SolverBase<TwoPhaseSolver<ExecSpace>, ExecSpace, T
       return this->status_;
     if (this->sort_due()) sort_points();
     this->observe(StepStage::BeforeP2G);
-    scatter_.visit([&](auto& scatter) {
-      two_phase_p2g(particles_, grid_, scatter, s.gravity, liquid_.density, s.darcy_gravity,
-                    corrected_walls(), corrected_liquid_walls());
-    });
-    this->observe(StepStage::AfterP2G);
-    update_grid();
+    if (!s.wall_correction && !s.track_transfer_dissipation) {
+      // Nothing to do between P2G and the grid update: both in one pass over the nodes.
+      scatter_.visit([&](auto& scatter) {
+        book_grid_update(
+            two_phase_p2g_grid_update(particles_, grid_, scatter, s.gravity, liquid_.density,
+                                      s.darcy_gravity, walls_, liquid_walls_, this->dt_, s.drag),
+            0.0, 0.0);
+      });
+    } else {
+      scatter_.visit([&](auto& scatter) {
+        two_phase_p2g(particles_, grid_, scatter, s.gravity, liquid_.density, s.darcy_gravity,
+                      corrected_walls(), corrected_liquid_walls());
+      });
+      this->observe(StepStage::AfterP2G);
+      update_grid();
+    }
     if (this->barrier_.active()) contact_barrier();
     this->observe(StepStage::AfterGridUpdate);
     const TwoPhaseG2PReport r = g2p_and_point_updates();
@@ -210,13 +222,17 @@ class TwoPhaseSolver : public SolverBase<TwoPhaseSolver<ExecSpace>, ExecSpace, T
     const TwoPhaseSettings& s = this->settings_;
     double mirror[2] = {0.0, 0.0};
     if (s.wall_correction) mirror_wall_reaction<ExecSpace>(grid_, particles_, s.gravity, mirror);
-    const GridUpdateReport gu = two_phase_grid_update<ExecSpace>(grid_, walls_, liquid_walls_,
-                                                                 this->dt_, s.gravity, s.drag);
+    book_grid_update(two_phase_grid_update<ExecSpace>(grid_, walls_, liquid_walls_, this->dt_,
+                                                      s.gravity, s.drag),
+                     mirror[0], mirror[1]);
+  }
+  // The grid update's dissipations and wall force, with the mirror images' share of the force.
+  void book_grid_update(const GridUpdateReport& gu, const double mirror_x, const double mirror_y) {
     this->boundary_ += gu.wall_dissipation;
     drag_ += gu.drag_dissipation;
     seepage_work_ += gu.seepage_gravity_work;
-    this->wall_force_[0] = gu.wall_force[0] + mirror[0];
-    this->wall_force_[1] = gu.wall_force[1] + mirror[1];
+    this->wall_force_[0] = gu.wall_force[0] + mirror_x;
+    this->wall_force_[1] = gu.wall_force[1] + mirror_y;
   }
   // Contact of both phases with the barrier: the solid with the face friction, the liquid
   // without (no shear stress in the pore liquid); the barrier moves under their sum.

@@ -1,0 +1,118 @@
+// Two-phase P2G and grid update in one pass over the nodes: the P2G's scatter
+// (two_phase_p2g.hpp, detail::two_phase_scatter), then, per node of the gather's rectangle, the
+// buffers' sums (stored into the grids as two_phase_p2g stores them) and at once the node's
+// update (two_phase_grid_update.hpp, update_two_phase_node) from those sums still in registers.
+// The same results as two_phase_p2g followed by two_phase_grid_update, bitwise: the same sums,
+// the same per-node arithmetic, and the reductions over the same work items in the same order.
+// It saves the grid update's parallel region and its reading back of the eleven fields.
+// For the solver's steps without anything between the two (no wall correction, whose mirror
+// reaction reads the grid after P2G; no transfer-dissipation account of the grid after P2G).
+#pragma once
+#include <Kokkos_Core.hpp>
+
+#include "kernels/mpm/boundary.hpp"
+#include "kernels/mpm/p2g.hpp"
+#include "kernels/mpm/two_phase/two_phase_grid.hpp"
+#include "kernels/mpm/two_phase/two_phase_grid_update.hpp"
+#include "kernels/mpm/two_phase/two_phase_p2g.hpp"
+#include "kernels/mpm/two_phase/two_phase_particles.hpp"
+
+namespace lsi::mpm::two_phase {
+
+template <class ExecSpace, bool SemiImplicit, bool Atomic, class MemorySpace>
+GridUpdateReport two_phase_p2g_grid_update_impl(const TwoPhaseParticles<MemorySpace>& p,
+                                                const TwoPhaseGrid<MemorySpace>& g,
+                                                TwoPhaseScatter<ExecSpace, Atomic>& scatter,
+                                                const double gravity[2], double liquid_density,
+                                                double darcy_gravity, const Boundaries& walls,
+                                                const Boundaries& liquid_walls, double dt) {
+  namespace nf = node_field;
+  using S = TwoPhaseScatter<ExecSpace, Atomic>;
+  constexpr int F = S::kFields;
+  NodeBox touched = detail::two_phase_scatter(p, g, scatter, gravity, liquid_density, darcy_gravity,
+                                              nullptr, nullptr);
+  const NodeBox region =
+      lsi::mpm::detail::gather_region(touched, g.solid.whole(), g.solid.dirty_box());
+  for (const auto* grid : {&g.solid, &g.liquid}) {
+    grid->set_mass_box(touched);
+    grid->set_dirty_box(region);
+  }
+  GridUpdateReport rep;
+  if (region.empty()) return rep;
+  const int nc = scatter.copies_count;
+  const auto copies = scatter.copies;
+  const auto boxes = scatter.boxes;
+  const auto S_ = g.solid;
+  const auto L_ = g.liquid;
+  const auto drag = g.drag;
+  const double ox = S_.origin[0], oy = S_.origin[1], dx = S_.dx, tol = 1e-9 * S_.dx;
+  const double gx = gravity[0], gy = gravity[1];
+  const int nx = S_.nx;
+  double fx = 0.0, fy = 0.0;
+  const NodeItems<ExecSpace> items(region);
+  Kokkos::parallel_reduce(
+      SemiImplicit ? "lsi::mpm::two_phase::p2g_grid_update_semi_implicit"
+                   : "lsi::mpm::two_phase::p2g_grid_update_explicit",
+      Kokkos::RangePolicy<ExecSpace>(0, items.count()),
+      KOKKOS_LAMBDA(const int t, double& wall_lost, double& drag_lost, double& seep, double& rx,
+                    double& ry) {
+        int j, i_begin, i_end;
+        items.nodes(t, j, i_begin, i_end);
+        TwoPhaseUpdateSums r{wall_lost, drag_lost, seep, rx, ry};
+        for (int ii = i_begin; ii <= i_end; ++ii) {  // a row of the region, or one node
+          const int i = ii + nx * j;
+          double acc[F];
+          lsi::mpm::detail::take_node_sums<F>(copies, boxes, nc, ii, j, i, acc);
+          const TwoPhaseNodeSums n{acc[nf::SolidMass],
+                                   acc[nf::LiquidMass],
+                                   {acc[nf::SolidMomentumX], acc[nf::SolidMomentumY]},
+                                   {acc[nf::LiquidMomentumX], acc[nf::LiquidMomentumY]},
+                                   {acc[nf::MixtureForceX], acc[nf::MixtureForceY]},
+                                   {acc[nf::LiquidForceX], acc[nf::LiquidForceY]},
+                                   acc[nf::Drag]};
+          S_.mass(i) = n.mS;
+          S_.momentum(i, 0) = n.pS[0];
+          S_.momentum(i, 1) = n.pS[1];
+          S_.force(i, 0) = n.fS[0];
+          S_.force(i, 1) = n.fS[1];
+          L_.mass(i) = n.mL;
+          L_.momentum(i, 0) = n.pL[0];
+          L_.momentum(i, 1) = n.pL[1];
+          L_.force(i, 0) = n.fL[0];
+          L_.force(i, 1) = n.fL[1];
+          drag(i) = n.Q;
+          update_two_phase_node<SemiImplicit>(S_, L_, i, ii, j, n, walls, liquid_walls, ox, oy, dx,
+                                              tol, dt, gx, gy, r);
+        }
+        wall_lost = r.wall_lost;
+        drag_lost = r.drag_lost;
+        seep = r.seep;
+        rx = r.rx;
+        ry = r.ry;
+      },
+      rep.wall_dissipation, rep.drag_dissipation, rep.seepage_gravity_work, fx, fy);
+  // Every node outside the mass rectangle is now zero.
+  S_.set_dirty_box(S_.mass_box());
+  L_.set_dirty_box(L_.mass_box());
+  rep.wall_force[0] = fx;
+  rep.wall_force[1] = fy;
+  return rep;
+}
+
+// two_phase_p2g (without the wall correction) followed by two_phase_grid_update, in one pass
+// over the nodes (see the file comment).
+template <class ExecSpace, bool Atomic, class MemorySpace>
+GridUpdateReport two_phase_p2g_grid_update(const TwoPhaseParticles<MemorySpace>& p,
+                                           const TwoPhaseGrid<MemorySpace>& g,
+                                           TwoPhaseScatter<ExecSpace, Atomic>& scatter,
+                                           const double gravity[2], double liquid_density,
+                                           double darcy_gravity, const Boundaries& walls,
+                                           const Boundaries& liquid_walls, double dt, Drag drag) {
+  return drag == Drag::SemiImplicit
+             ? two_phase_p2g_grid_update_impl<ExecSpace, true>(
+                   p, g, scatter, gravity, liquid_density, darcy_gravity, walls, liquid_walls, dt)
+             : two_phase_p2g_grid_update_impl<ExecSpace, false>(
+                   p, g, scatter, gravity, liquid_density, darcy_gravity, walls, liquid_walls, dt);
+}
+
+}  // namespace lsi::mpm::two_phase
