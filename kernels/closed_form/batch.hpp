@@ -8,6 +8,7 @@
 #include "kernels/closed_form/empirical_model.hpp"
 #include "kernels/closed_form/face_resolution.hpp"
 #include "kernels/closed_form/two_body_model.hpp"
+#include "kernels/common/simd_lanes.hpp"
 
 namespace lsi {
 
@@ -35,7 +36,7 @@ struct ClosedFormOutputs {
   View final_displacement;  // m (0 for a fixed barrier, +infinity if it never stops)
 };
 
-// Runs body(i) for every sample i in [0, n). On a GPU one thread a sample; on the host in blocks of
+// The batches' loop over samples. On a GPU one thread a sample; on the host in blocks of
 // kSamplesPerBlock consecutive samples, the loop over a block marked free of dependencies between
 // samples so that GCC evaluates the models for a vector register of samples at once (the models
 // are written without branches or library calls for that: barrier_sliding.hpp, sliding_block.hpp,
@@ -54,28 +55,44 @@ constexpr int kSamplesPerBlock = 64;
 #define LSI_FLATTEN
 #endif
 
+// On the host: full_block(begin) for every full block of kSamplesPerBlock samples from begin,
+// one_sample(i) for each sample of the last, partial block; blocks in parallel.
+template <class ExecSpace, class FullBlock, class OneSample>
+void for_each_block_on_host(const char* name, const ExecSpace& space, int n,
+                            const FullBlock& full_block, const OneSample& one_sample) {
+  const int blocks = (n + kSamplesPerBlock - 1) / kSamplesPerBlock;
+  Kokkos::parallel_for(name, Kokkos::RangePolicy<ExecSpace>(space, 0, blocks),
+                       [=](const int block) LSI_FLATTEN {
+                         const int begin = block * kSamplesPerBlock;
+                         if (begin + kSamplesPerBlock <= n) {
+                           full_block(begin);
+                         } else {
+                           for (int i = begin; i < n; ++i) one_sample(i);
+                         }
+                       });
+}
+
+template <class ExecSpace>
+constexpr bool runs_on_host =
+    Kokkos::SpaceAccessibility<Kokkos::HostSpace, typename ExecSpace::memory_space>::accessible;
+
+// Runs body(i) for every sample i in [0, n), as above.
 template <class ExecSpace, class Body>
 void for_each_sample(const char* name, const ExecSpace& space, int n, const Body& body) {
-  constexpr bool host =
-      Kokkos::SpaceAccessibility<Kokkos::HostSpace, typename ExecSpace::memory_space>::accessible;
-  if constexpr (!host) {
+  if constexpr (!runs_on_host<ExecSpace>) {
     Kokkos::parallel_for(name, Kokkos::RangePolicy<ExecSpace>(space, 0, n), body);
   } else {
-    const int blocks = (n + kSamplesPerBlock - 1) / kSamplesPerBlock;
-    Kokkos::parallel_for(name, Kokkos::RangePolicy<ExecSpace>(space, 0, blocks),
-                         [=](const int block) LSI_FLATTEN {
-                           const int begin = block * kSamplesPerBlock;
-                           if (begin + kSamplesPerBlock <= n) {
+    for_each_block_on_host(
+        name, space, n,
+        [=](const int begin) {
 #if defined(__clang__)
 #pragma clang loop vectorize(assume_safety)
 #elif defined(__GNUC__)
 #pragma GCC ivdep
 #endif
-                             for (int k = 0; k < kSamplesPerBlock; ++k) body(begin + k);
-                           } else {
-                             for (int i = begin; i < n; ++i) body(i);
-                           }
-                         });
+          for (int k = 0; k < kSamplesPerBlock; ++k) body(begin + k);
+        },
+        body);
   }
 }
 
@@ -101,18 +118,61 @@ template <class ExecSpace, class MemorySpace>
 void evaluate_empirical_batch(const ExecSpace& space, const ClosedFormInputs<MemorySpace>& in,
                               const EmpiricalCoefficients& coefficients,
                               const ClosedFormOutputs<MemorySpace>& out) {
-  for_each_sample(
-      "lsi::empirical_batch", space, int(in.velocity.extent(0)), KOKKOS_LAMBDA(const int i) {
-        EmpiricalCoefficients c = coefficients;
-        c.tau = in.tau(i);
-        const EmpiricalImpact imp = empirical_impact(in.thickness(i), in.velocity(i), in.density(i),
-                                                     in.landslide_mass(i), in.face_angle(i), c);
-        out.peak_force(i) = imp.pulse.peak;
-        out.rise_time(i) = imp.pulse.rise_time;
-        out.impact_duration(i) = imp.pulse.duration;
-        out.final_displacement(i) = final_displacement_under(imp.pulse, in.barrier_mass(i),
-                                                             in.base_friction(i), in.face_angle(i));
-      });
+  // The model's second half (eqs. 2-7 and the barrier's motion) for sample i from its approach
+  // and Fr^a2.
+  const auto finish = [=] KOKKOS_FUNCTION(const int i, const EmpiricalApproach& approach,
+                                          const double froude_power) {
+    EmpiricalCoefficients c = coefficients;
+    c.tau = in.tau(i);
+    const EmpiricalImpact imp = empirical_impact(approach, froude_power, in.thickness(i),
+                                                 in.density(i), in.landslide_mass(i), c);
+    out.peak_force(i) = imp.pulse.peak;
+    out.rise_time(i) = imp.pulse.rise_time;
+    out.impact_duration(i) = imp.pulse.duration;
+    out.final_displacement(i) = final_displacement_under(imp.pulse, in.barrier_mass(i),
+                                                         in.base_friction(i), in.face_angle(i));
+  };
+  const auto sample = KOKKOS_LAMBDA(const int i) {
+    const EmpiricalApproach a =
+        empirical_approach(in.thickness(i), in.velocity(i), in.face_angle(i));
+    finish(i, a, math::pow_nonnegative(a.froude, coefficients.a2));
+  };
+  const int n = int(in.velocity.extent(0));
+#if LSI_HOST_SIMD_LANES
+  if constexpr (runs_on_host<ExecSpace>) {
+    // A block in three passes: the approaches (vectorised by GCC), Fr^a2 eight lanes at a time
+    // (pow_nonnegative_each: the tables read by register permutes, which GCC's own vectorisation
+    // of pow_nonnegative turns into scalar loads), the rest (vectorised by GCC). Same bits as
+    // `sample`.
+    for_each_block_on_host(
+        "lsi::empirical_batch", space, n,
+        [=](const int begin) {
+          double normal_velocity[kSamplesPerBlock], tangential_velocity[kSamplesPerBlock];
+          double froude[kSamplesPerBlock], froude_power[kSamplesPerBlock];
+#pragma GCC ivdep
+          for (int k = 0; k < kSamplesPerBlock; ++k) {
+            const int i = begin + k;
+            const EmpiricalApproach a =
+                empirical_approach(in.thickness(i), in.velocity(i), in.face_angle(i));
+            normal_velocity[k] = a.normal_velocity;
+            tangential_velocity[k] = a.tangential_velocity;
+            froude[k] = a.froude;
+          }
+          math::pow_nonnegative_each(froude, coefficients.a2, froude_power, kSamplesPerBlock);
+#pragma GCC ivdep
+          for (int k = 0; k < kSamplesPerBlock; ++k) {
+            EmpiricalApproach a;
+            a.normal_velocity = normal_velocity[k];
+            a.tangential_velocity = tangential_velocity[k];
+            a.froude = froude[k];
+            finish(begin + k, a, froude_power[k]);
+          }
+        },
+        sample);
+    return;
+  }
+#endif
+  for_each_sample("lsi::empirical_batch", space, n, sample);
 }
 
 }  // namespace lsi

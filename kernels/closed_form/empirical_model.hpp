@@ -58,17 +58,35 @@ struct EmpiricalImpact {
   }
 };
 
-KOKKOS_INLINE_FUNCTION EmpiricalImpact empirical_impact(double thickness, double velocity,
+// The flow as it reaches the face: eqs. 1 and 9's v_n, v_t. The first half of empirical_impact,
+// apart so that a batch can raise many Froude numbers to a2 at once (closed_form/batch.hpp).
+struct EmpiricalApproach {
+  double normal_velocity = 0.0;      // v_n, m/s
+  double tangential_velocity = 0.0;  // v_t, m/s
+  double froude = 0.0;               // Fr
+};
+
+KOKKOS_INLINE_FUNCTION EmpiricalApproach empirical_approach(double thickness, double velocity,
+                                                            double face_angle_rad) {
+  EmpiricalApproach a;
+  const math::SinCos face = math::sincos_first_quadrant(face_angle_rad);
+  a.normal_velocity = velocity * face.sin;
+  a.tangential_velocity = velocity * face.cos;
+  a.froude = a.normal_velocity / math::sqrt(gravity * thickness);  // eq. 1
+  return a;
+}
+
+// The impact from the approach and froude_power = Fr^a2 (eqs. 2-7).
+KOKKOS_INLINE_FUNCTION EmpiricalImpact empirical_impact(const EmpiricalApproach& a,
+                                                        double froude_power, double thickness,
                                                         double density, double landslide_mass,
-                                                        double face_angle_rad,
                                                         const EmpiricalCoefficients& c) {
   EmpiricalImpact r;
-  const math::SinCos face = math::sincos_first_quadrant(face_angle_rad);
-  r.normal_velocity = velocity * face.sin;
-  r.tangential_velocity = velocity * face.cos;
+  r.normal_velocity = a.normal_velocity;
+  r.tangential_velocity = a.tangential_velocity;
   r.landslide_mass = landslide_mass;
-  r.froude = r.normal_velocity / math::sqrt(gravity * thickness);                          // eq. 1
-  r.alpha = c.a1 * math::pow_nonnegative(r.froude, c.a2);                                  // eq. 2
+  r.froude = a.froude;
+  r.alpha = c.a1 * froude_power;                                                           // eq. 2
   r.peak_dynamic = r.alpha * density * r.normal_velocity * r.normal_velocity * thickness;  // eq. 4
   r.peak_static = 0.5 * c.kappa * density * gravity * thickness * thickness;               // eq. 5
   const double peak = r.peak_dynamic + r.peak_static;                                      // eq. 3
@@ -79,6 +97,15 @@ KOKKOS_INLINE_FUNCTION EmpiricalImpact empirical_impact(double thickness, double
   r.pulse.rise_time = c.tau * T2;  // eq. 7
   r.pulse.residual = r.peak_static;
   return r;
+}
+
+KOKKOS_INLINE_FUNCTION EmpiricalImpact empirical_impact(double thickness, double velocity,
+                                                        double density, double landslide_mass,
+                                                        double face_angle_rad,
+                                                        const EmpiricalCoefficients& c) {
+  const EmpiricalApproach a = empirical_approach(thickness, velocity, face_angle_rad);
+  return empirical_impact(a, math::pow_nonnegative(a.froude, c.a2), thickness, density,
+                          landslide_mass, c);
 }
 
 }  // namespace lsi
