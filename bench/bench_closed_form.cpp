@@ -1,10 +1,14 @@
 // Closed-form models, batched (kernels/closed_form/batch.hpp): samples per second on the default
-// host execution space (OpenMP when built; set OMP_NUM_THREADS) and on Serial.
+// host execution space (OpenMP when built; set OMP_NUM_THREADS) and on Serial; and the empirical
+// model's x^y alone (kernels/common/pow_nonnegative.hpp), values per second on one thread.
 // Run: build/bench/bench_closed_form --benchmark_out=closed_form.json --benchmark_out_format=json
 #include <benchmark/benchmark.h>
 
 #include <Kokkos_Core.hpp>
+#include <cmath>
+#include <cstdint>
 #include <random>
+#include <vector>
 
 #include "kernels/closed_form/batch.hpp"
 #include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
@@ -65,6 +69,41 @@ void empirical(benchmark::State& state) {
   state.counters["threads"] = Exec().concurrency();
 }
 
+// Fr^a2 for 2^14 Froude numbers in [0.1, 10] (in the L1/L2) and a2 = -0.515.
+struct PowInputs {
+  std::vector<double> froude, power;
+  PowInputs() : froude(1 << 14), power(1 << 14) {
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (double& x : froude) x = std::pow(10.0, u(rng));
+  }
+};
+
+// pow_nonnegative_each: eight values at a time where the host has AVX-512 (the batched empirical
+// model's way).
+void pow_eight_lanes(benchmark::State& state) {
+  PowInputs p;
+  for (auto _ : state) {
+    math::pow_nonnegative_each(p.froude.data(), -0.515, p.power.data(), int(p.froude.size()));
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * std::int64_t(p.froude.size()));
+  state.counters["lanes"] = LSI_HOST_SIMD_LANES ? 8 : 1;
+}
+
+// pow_nonnegative one value at a time, kept scalar (the per-sample sweep kernel's way, and the
+// batch's on hosts without AVX-512).
+void pow_one_lane(benchmark::State& state) {
+  PowInputs p;
+  for (auto _ : state) {
+    for (std::size_t k = 0; k < p.froude.size(); ++k)
+      benchmark::DoNotOptimize(p.power[k] = math::pow_nonnegative(p.froude[k], -0.515));
+  }
+  state.SetItemsProcessed(state.iterations() * std::int64_t(p.froude.size()));
+}
+
+BENCHMARK(pow_eight_lanes);
+BENCHMARK(pow_one_lane);
 BENCHMARK_TEMPLATE(analytical, Kokkos::DefaultHostExecutionSpace)
     ->Arg(1 << 20)  // 128 MB of inputs and outputs: from and to DRAM
     ->Arg(1 << 16)  // 8 MB: in the L3
