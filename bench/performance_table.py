@@ -141,6 +141,10 @@ def group_sweep(build, repetitions):
 # Bytes a dry Mohr-Coulomb step moves per particle update, write-allocate included (the sum over
 # its kernels' fields: docs/notes/performance.md, "bytes per update"): the 20 k column, the 200 k.
 DRY_STEP_BYTES = {20000: 523.0, 199712: 517.0}
+# The same for the saturated (two-phase) column step, bench_impact's
+# column_step/OpenMP/saturated/duplicated: docs/notes/performance.md, "Bytes per update of the
+# saturated step".
+SATURATED_STEP_BYTES = {20000: 909.0, 199712: 897.0}
 
 
 def group_mpm(build, repetitions):
@@ -165,11 +169,13 @@ def group_mpm(build, repetitions):
                      bandwidth / DRY_STEP_BYTES[points],
                      "memory (%s): triad %.3g GB/s / %.0f B an update" %
                      (memory, bandwidth / 1e9, DRY_STEP_BYTES[points])))
-    for points in (199712, 20000):
+    for points, bandwidth, memory in ((199712, dram, "DRAM"), (20000, l3, "L3")):
         saturated = next(v for n, v in impact_rate.items()
                          if n.startswith("column_step") and "particles:%d/" % points in n)
         rows.append(("saturated column step, %d points, particle-updates/s" % points, saturated,
-                     None, ""))
+                     bandwidth / SATURATED_STEP_BYTES[points],
+                     "memory (%s): triad %.3g GB/s / %.0f B an update" %
+                     (memory, bandwidth / 1e9, SATURATED_STEP_BYTES[points])))
     for cells in (8, 16):
         one = next(v for n, v in impact.items() if "cells:%d/one_after_another" % cells in n)
         side = next(v for n, v in impact.items() if "cells:%d/side_by_side" % cells in n)
