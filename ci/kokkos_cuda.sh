@@ -20,7 +20,9 @@ case "$arch" in
   HOPPER90) sm=sm_90 ;;
   *) echo "[kokkos-cuda] LSI_CUDA_ARCH=$arch: expected one of VOLTA70 TURING75 AMPERE80 AMPERE86 HOPPER90" >&2; exit 2 ;;
 esac
-prefix="$cache/kokkos-cuda-$arch"
+# Position-independent code (as ci/kokkos.sh), so that the Python module, a shared object, links
+# the static libraries; "-pic" keeps an older install without it from being reused.
+prefix="$cache/kokkos-cuda-$arch-pic"
 if [ -f "$prefix/.lsi-complete" ]; then echo "$prefix"; exit 0; fi
 log() { echo "[kokkos-cuda] $*" >&2; }
 cuda="${CUDA_HOME:-/usr/local/cuda}"
@@ -86,7 +88,7 @@ cmake -S "$src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREF
   -DCMAKE_CXX_COMPILER="$src/bin/nvcc_wrapper" -DCMAKE_CXX_STANDARD=17 \
   -DKokkos_ENABLE_SERIAL=ON -DKokkos_ENABLE_OPENMP=ON -DKokkos_ENABLE_CUDA=ON \
   -DKokkos_ENABLE_CUDA_LAMBDA=ON "-DKokkos_ARCH_$arch=ON" -DKokkos_ENABLE_TESTS=OFF \
-  -DBUILD_SHARED_LIBS=OFF >"$work/build.log" 2>&1 || { tail -n 40 "$work/build.log" >&2; exit 1; }
+  -DBUILD_SHARED_LIBS=OFF -DCMAKE_POSITION_INDEPENDENT_CODE=ON >"$work/build.log" 2>&1 || { tail -n 40 "$work/build.log" >&2; exit 1; }
 { cmake --build "$work/build" -j "$(nproc)" && cmake --install "$work/build"; } \
   >>"$work/build.log" 2>&1 || { tail -n 40 "$work/build.log" >&2; exit 1; }
 touch "$prefix/.lsi-complete"
