@@ -3,19 +3,16 @@
 // (values of one field for consecutive points are contiguous), while the grid holds a node's
 // fields together, so each block turns one layout into the other. Written with GCC's vector
 // extensions rather than x86 intrinsics; LSI_MPM_HOST_TRANSPOSE is 1 only where they are
-// available with AVX-512 (GCC 12 or later, host code). Everywhere else it is 0 and the callers
-// keep their scalar copies, which give the same sums in the same order.
+// available with AVX-512 (LSI_HOST_SIMD_LANES of kernels/common/simd_lanes.hpp: GCC 12 or later,
+// host code). Everywhere else it is 0 and the callers keep their scalar copies, which give the
+// same sums in the same order.
 #pragma once
+
+#include "kernels/common/simd_lanes.hpp"
 
 // Defined beforehand (to 0), it chooses the scalar copies on any compiler (to compare both).
 #ifndef LSI_MPM_HOST_TRANSPOSE
-#if defined(__GNUC__) && !defined(__clang__) && !defined(__INTEL_COMPILER) && __GNUC__ >= 12 && \
-    defined(__AVX512F__) && !defined(__CUDACC__) && !defined(__HIPCC__) &&                      \
-    !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
-#define LSI_MPM_HOST_TRANSPOSE 1
-#else
-#define LSI_MPM_HOST_TRANSPOSE 0
-#endif
+#define LSI_MPM_HOST_TRANSPOSE LSI_HOST_SIMD_LANES
 #endif
 
 #if LSI_MPM_HOST_TRANSPOSE
