@@ -28,6 +28,7 @@
 #include "model/sweep_statistics.hpp"
 #include "model/sweep_table.hpp"
 #include "sweeps/closed_form_sweep.hpp"
+#include "sweeps/huge_pages.hpp"
 #include "sweeps/sampler.hpp"
 #include "io/resolved_scene.hpp"
 #include "io/scene_parser.hpp"
@@ -84,17 +85,32 @@ class ChunkEvaluator {
     const std::uint64_t first = k * study_.chunk_samples;
     const std::uint64_t count = std::min(study_.chunk_samples, study_.samples - first);
     const int dims = static_cast<int>(study_.inputs.size());
-    if (inputs_.extent(0) != count) {
-      inputs_ = Matrix("sweep inputs", count, dims);
-      outputs_ = Matrix("sweep outputs", count, 2 * sweeps::closed_form_output_count);
-      invalid_ = Kokkos::View<int*, Mem>("sweep invalid field", count);
+    const int columns = 2 * sweeps::closed_form_output_count;
+    if (input_store_.extent(0) < count) {
+      // Allocated once, for the longest chunk, without filling them (the kernel writes every
+      // value it reads back), on huge pages where they are host memory (sweeps/huge_pages.hpp).
+      input_store_ =
+          Matrix(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sweep inputs"), count, dims);
+      output_store_ =
+          Matrix(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sweep outputs"), count, columns);
+      invalid_store_ = Kokkos::View<int*, Mem>(
+          Kokkos::view_alloc(Kokkos::WithoutInitializing, "sweep invalid field"), count);
+      if constexpr (Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible) {
+        sweeps::advise_huge_pages(input_store_.data(), input_store_.span() * sizeof(double));
+        sweeps::advise_huge_pages(output_store_.data(), output_store_.span() * sizeof(double));
+        sweeps::advise_huge_pages(invalid_store_.data(), invalid_store_.span() * sizeof(int));
+      }
     }
+    // A shorter chunk (the last) takes the front of the buffers, as views of its own extents.
+    const Matrix inputs(input_store_.data(), count, dims);
+    const Matrix outputs(output_store_.data(), count, columns);
+    const Kokkos::View<int*, Mem> invalid(invalid_store_.data(), count);
     const auto t0 = Clock::now();
-    sweeps::evaluate_closed_form_chunk(Exec(), sweep_, first, inputs_, outputs_, invalid_);
+    sweeps::evaluate_closed_form_chunk(Exec(), sweep_, first, inputs, outputs, invalid);
     Exec().fence();
-    const auto in = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), inputs_);
-    const auto out = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), outputs_);
-    const auto bad = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), invalid_);
+    const auto in = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), inputs);
+    const auto out = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), outputs);
+    const auto bad = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), invalid);
     const float closed_form_seconds = static_cast<float>(seconds_since(t0) / double(count));
 
     // Columns kept from chunk to chunk: resized, not allocated anew, and every row overwritten.
@@ -218,8 +234,8 @@ class ChunkEvaluator {
   sweeps::ClosedFormSweep<Mem> sweep_;
   std::vector<Source> source_;
   std::vector<std::string> paths_;
-  Matrix inputs_, outputs_;
-  Kokkos::View<int*, Mem> invalid_;
+  Matrix input_store_, output_store_;
+  Kokkos::View<int*, Mem> invalid_store_;
   SweepTable table_;
 };
 

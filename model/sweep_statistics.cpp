@@ -9,6 +9,7 @@
 #include <map>
 #include <thread>
 
+#include "sweeps/huge_pages.hpp"
 #include "sweeps/statistics.hpp"
 
 namespace lsi {
@@ -67,6 +68,7 @@ json sweep_statistics(const Study& study, const SweepTable& table) {
   json j;
   const std::size_t n = table.rows();
   std::vector<std::size_t> ok;
+  sweeps::reserve_on_huge_pages(ok, n);
   std::map<std::string, std::size_t> failed;
   for (std::size_t i = 0; i < n; ++i) {
     if (table.status[i] == static_cast<std::int8_t>(SampleStatus::ok))
@@ -93,10 +95,10 @@ json sweep_statistics(const Study& study, const SweepTable& table) {
   auto describe_column = [&](std::size_t c) {
     const std::string& column = table.output_columns[c];
     std::vector<double> v;
+    sweeps::reserve_on_huge_pages(v, ok.size());
     if (ok.size() == n) {
-      v = table.outputs[c];
+      v.assign(table.outputs[c].begin(), table.outputs[c].end());
     } else {
-      v.reserve(ok.size());
       for (std::size_t i : ok) v.push_back(table.outputs[c][i]);
     }
     json& o = column_stats[c];

@@ -4,6 +4,8 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "sweeps/huge_pages.hpp"
+
 namespace lsi {
 
 const char* describe(SampleStatus s) {
@@ -47,18 +49,18 @@ void SweepTable::append(const SweepTable& o) {
 }
 
 void SweepTable::reserve(std::size_t n) {
-  index.reserve(n);
-  status.reserve(n);
-  wall_time.reserve(n);
-  for (auto& c : inputs) c.reserve(n);
-  for (auto& c : outputs) c.reserve(n);
+  sweeps::reserve_on_huge_pages(index, n);
+  sweeps::reserve_on_huge_pages(status, n);
+  sweeps::reserve_on_huge_pages(wall_time, n);
+  for (auto& c : inputs) sweeps::reserve_on_huge_pages(c, n);
+  for (auto& c : outputs) sweeps::reserve_on_huge_pages(c, n);
 }
 
 void SweepTable::sort_by_index() {
   const std::size_t n = rows();
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
   if (!std::is_sorted(index.begin(), index.end())) {
+    std::vector<std::size_t> order(n);
+    std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(),
               [&](std::size_t a, std::size_t b) { return index[a] < index[b]; });
     auto permute = [&](auto& v) {

@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "sweeps/distribution.hpp"
+#include "sweeps/huge_pages.hpp"
 #include "sweeps/normal_distribution.hpp"
 
 namespace lsi::sweeps {
@@ -229,7 +230,8 @@ inline void sort_values(std::vector<double>& values) {
     return;
   }
   constexpr std::uint64_t sign = std::uint64_t{1} << 63;
-  std::vector<std::uint64_t> a(n), b(n);
+  std::vector<std::uint64_t> a = vector_on_huge_pages<std::uint64_t>(n),
+                             b = vector_on_huge_pages<std::uint64_t>(n);
   std::array<std::array<std::size_t, 256>, 8> count{};
   for (std::size_t i = 0; i < n; ++i) {
     std::uint64_t u;
