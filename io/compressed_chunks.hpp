@@ -2,34 +2,51 @@
 // and deflate filters that the dataset declares are applied here, chunk by chunk in parallel, and
 // the compressed chunks written in order with H5Dwrite_chunk. The chunks are those HDF5's own
 // filter pipeline reads (any HDF5 reader inflates them); the compression runs on several threads
-// and picks zlib's strategy by the numbers' type (compress_chunks). Used for the tables of sweep
+// and picks zlib's strategy by the numbers' type (ChunkCompression). Used for the tables of sweep
 // result files, whose compression dominates their writing.
 #pragma once
 #include <hdf5.h>
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace lsi::hdf5 {
 
 // One chunk to compress: `bytes` bytes of rows (native numbers of `element_size` bytes) at
 // `rows`, padded with zeros (the fill value) to `chunk_bytes`, as HDF5 stores an edge chunk;
-// `floating`: the numbers are floating-point ones (see compress_chunks).
+// `floating`: the numbers are floating-point ones (see ChunkCompression).
 struct ChunkRows {
   const void* rows;
   std::size_t bytes, chunk_bytes, element_size;
   bool floating;
 };
 
-// The chunks as HDF5's shuffle + deflate pipeline stores them, compressed on several threads
-// (OMP_NUM_THREADS when set, else the hardware's); in the order given. Integer chunks are
-// deflated at `level`; floating-point ones with zlib's run-length strategy (Z_RLE): shuffled,
-// their sign and exponent bytes come in long runs, which it finds, while their mantissa bytes
-// barely repeat, where the default strategy's search for matches costs much time and gains a few
-// per cent of the size. The deflate stream does not depend on the strategy: any HDF5 reader
-// inflates both.
-std::vector<std::vector<unsigned char>> compress_chunks(const std::vector<ChunkRows>& chunks,
-                                                        int level);
+// Compresses chunks as HDF5's shuffle + deflate pipeline stores them, on several threads
+// (OMP_NUM_THREADS when set, else the hardware's). Integer chunks are deflated at `level`;
+// floating-point ones with zlib's run-length strategy (Z_RLE): shuffled, their sign and exponent
+// bytes come in long runs, which it finds, while their mantissa bytes barely repeat, where the
+// default strategy's search for matches costs much time and gains a few per cent of the size.
+// The deflate stream does not depend on the strategy: any HDF5 reader inflates both. The
+// threads' zlib streams and buffers and the compressed bytes are kept from call to call: a
+// table of millions of rows is thousands of chunks, and memory allocated anew for each costs a
+// page fault per 4 KiB.
+class ChunkCompression {
+ public:
+  explicit ChunkCompression(int level);
+  ~ChunkCompression();
+  ChunkCompression(const ChunkCompression&) = delete;
+  ChunkCompression& operator=(const ChunkCompression&) = delete;
+
+  // The chunks compressed, in the order given; valid until the next call.
+  const std::vector<std::vector<unsigned char>>& compress(const std::vector<ChunkRows>& chunks);
+
+ private:
+  struct Threads;
+  int level_;
+  std::unique_ptr<Threads> threads_;
+  std::vector<std::vector<unsigned char>> out_;
+};
 
 // Whether a dataset type is a floating-point one: the `floating` of its datasets' chunks.
 bool floating_type(hid_t type);

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "io/compressed_chunks.hpp"
+#include "sweeps/huge_pages.hpp"
 
 namespace lsi {
 
@@ -62,7 +63,7 @@ SweepTableStream::SweepTableStream(const std::string& path, std::vector<std::str
     if (level < 0)
       throw std::runtime_error(path + ": '" + d.name +
                                "': this HDF5 library has no deflate filter to compress the table");
-    level_ = level;
+    if (!compression_) compression_ = std::make_unique<hdf5::ChunkCompression>(level);
     datasets_.emplace_back(
         H5Dcreate2(file_, d.name.c_str(), d.file_type, space, lcpl, dcpl, H5P_DEFAULT), H5Dclose,
         "cannot create dataset '" + d.name + "'");
@@ -74,6 +75,7 @@ std::vector<StoredChunk> SweepTableStream::write_chunks(const SweepTable& t, std
   if (rows == 0) return stored;
   const std::size_t d = input_paths_.size();
   std::vector<double>& inputs = row_major_inputs_;  // the inputs row by row, as the file holds them
+  sweeps::reserve_on_huge_pages(inputs, rows * d);
   inputs.resize(rows * d);
   for (std::size_t k = 0; k < d; ++k)
     for (std::uint64_t i = 0; i < rows; ++i) inputs[i * d + k] = t.inputs[k][i];
@@ -92,7 +94,7 @@ std::vector<StoredChunk> SweepTableStream::write_chunks(const SweepTable& t, std
       stored.push_back({s, (stored_rows_ + begin) / chunk_rows_, 0, 0});
     }
   }
-  const auto compressed = compress_chunks(chunks, level_);
+  const auto& compressed = compression_->compress(chunks);
   for (std::size_t c = 0; c < stored.size(); ++c)
     write_chunk(stored[c], compressed[c].data(), compressed[c].size());
   return stored;

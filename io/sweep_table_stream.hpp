@@ -8,10 +8,12 @@
 // write_sweep_file writes (io/sweep_file.hpp), the same datasets, types and attributes.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "io/compressed_chunks.hpp"
 #include "io/hdf5_io.hpp"
 #include "io/sweep_file.hpp"
 #include "io/sweep_file_layout.hpp"
@@ -71,7 +73,7 @@ class SweepTableStream {
   hdf5::Handle file_;
   std::vector<hdf5::Handle> datasets_;
   std::uint64_t planned_rows_, chunk_rows_, stored_rows_ = 0;
-  int level_ = -1;
+  std::unique_ptr<hdf5::ChunkCompression> compression_;  // every dataset has the same filters
   SweepTable pending_;
   std::vector<double> row_major_inputs_;  // write_chunks' buffer, kept from chunk to chunk
 };
