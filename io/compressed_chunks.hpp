@@ -23,14 +23,15 @@ struct ChunkRows {
 };
 
 // Compresses chunks as HDF5's shuffle + deflate pipeline stores them, on several threads
-// (OMP_NUM_THREADS when set, else the hardware's). Integer chunks are deflated at `level`;
-// floating-point ones with zlib's run-length strategy (Z_RLE): shuffled, their sign and exponent
-// bytes come in long runs, which it finds, while their mantissa bytes barely repeat, where the
-// default strategy's search for matches costs much time and gains a few per cent of the size.
-// The deflate stream does not depend on the strategy: any HDF5 reader inflates both. The
-// threads' zlib streams and buffers and the compressed bytes are kept from call to call: a
-// table of millions of rows is thousands of chunks, and memory allocated anew for each costs a
-// page fault per 4 KiB.
+// (OMP_NUM_THREADS when set, else the hardware's). Integer chunks are deflated at `level`.
+// Floating-point ones are deflated byte plane by byte plane, in one deflate stream: after the
+// shuffle their sign and exponent bytes come in long runs, which zlib's run-length strategy
+// (Z_RLE, at `level`) finds, while their low mantissa bytes look random; those planes are stored
+// (deflate level 0): Huffman coding would take most of the time of writing a large table and
+// save nothing. The format leaves both choices to the writer: any HDF5 reader inflates the
+// stream. The threads' zlib streams and buffers and the compressed bytes are kept from call to
+// call: a table of millions of rows is thousands of chunks, and memory allocated anew for each
+// costs a page fault per 4 KiB.
 class ChunkCompression {
  public:
   explicit ChunkCompression(int level);
