@@ -106,7 +106,13 @@ class ChunkEvaluator {
     const Matrix outputs(output_store_.data(), count, columns);
     const Kokkos::View<int*, Mem> invalid(invalid_store_.data(), count);
     const auto t0 = Clock::now();
-    sweeps::evaluate_closed_form_chunk(Exec(), sweep_, first, inputs, outputs, invalid);
+    if (columns_.column[0].extent(0) < count) {
+      columns_.reserve(count);
+      if constexpr (Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible)
+        for (const auto& c : columns_.column)
+          sweeps::advise_huge_pages(c.data(), c.span() * sizeof(double));
+    }
+    sweeps::evaluate_closed_form_chunk(Exec(), sweep_, first, inputs, outputs, invalid, columns_);
     Exec().fence();
     const auto in = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), inputs);
     const auto out = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), outputs);
@@ -235,6 +241,7 @@ class ChunkEvaluator {
   std::vector<Source> source_;
   std::vector<std::string> paths_;
   Matrix input_store_, output_store_;
+  sweeps::ClosedFormChunkColumns<Mem> columns_;  // the models' inputs, batched
   Kokkos::View<int*, Mem> invalid_store_;
   SweepTable table_;
 };

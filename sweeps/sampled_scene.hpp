@@ -223,32 +223,70 @@ KOKKOS_INLINE_FUNCTION bool in_range(double v, const FieldRange& r) {
   return !r.integer || v == math::floor(v);
 }
 
-// The first invalid field of a sample, or -1 if the scene is valid. Only the fields the scene
-// uses are checked (e.g. length_m only for a rectangle).
-KOKKOS_INLINE_FUNCTION int first_invalid_field(const SceneValues& s) {
-  for (int f = 0; f < scene_field_count; ++f) {
-    if (f == body_squares && s.rectangle) continue;
-    if (f == length_m && !s.rectangle) continue;
-    if (f == barrier_density_kg_m3 && s.barrier_given_by_mass) continue;
-    if (f == barrier_mass_kg_per_m && !s.barrier_given_by_mass) continue;
-    if (f == top_width_m) {
-      const double b = s.value[top_width_m];
-      if (!(b >= 0.0 && b <= s.value[base_width_m] && math::isfinite(b))) return f;
-      continue;
-    }
-    if (!in_range(s.value[f], scene_field_range(f))) return f;
-    // The momentum-consistent empirical variant has no static load after the pulse (the parser:
-    // methods.empirical.kappa must be 0 with it).
-    if (f == empirical_kappa && s.empirical_momentum && s.value[f] > 0.0) return f;
+// Whether field f of a sample fails its check: its range, and the checks between fields that
+// name f (the top width against the base width; kappa with the momentum-consistent empirical
+// variant). Only the fields the scene uses are checked (e.g. length_m only for a rectangle).
+KOKKOS_INLINE_FUNCTION bool field_invalid(const SceneValues& s, int f) {
+  if (f == body_squares && s.rectangle) return false;
+  if (f == length_m && !s.rectangle) return false;
+  if (f == barrier_density_kg_m3 && s.barrier_given_by_mass) return false;
+  if (f == barrier_mass_kg_per_m && !s.barrier_given_by_mass) return false;
+  if (f == top_width_m) {
+    const double b = s.value[top_width_m];
+    return !(b >= 0.0 && b <= s.value[base_width_m] && math::isfinite(b));
   }
-  // The upstream face runs out H / tan(beta) horizontally; it must fit in B - b.
+  if (!in_range(s.value[f], scene_field_range(f))) return true;
+  // The momentum-consistent empirical variant has no static load after the pulse (the parser:
+  // methods.empirical.kappa must be 0 with it).
+  return f == empirical_kappa && s.empirical_momentum && s.value[f] > 0.0;
+}
+
+// Whether the upstream face, which runs out H / tan(beta) horizontally, does not fit in B - b.
+KOKKOS_INLINE_FUNCTION bool face_runs_out(const SceneValues& s) {
   const double beta_deg = s.value[face_angle_deg];
-  if (beta_deg != 90.0) {
-    const double run_out = s.value[height_m] / math::tan(math::degrees_to_radians(beta_deg));
-    if (run_out > s.value[base_width_m] - s.value[top_width_m] + face_run_out_tolerance_m)
-      return face_angle_deg;
-  }
-  return -1;
+  if (beta_deg == 90.0) return false;
+  const double run_out = s.value[height_m] / math::tan(math::degrees_to_radians(beta_deg));
+  return run_out > s.value[base_width_m] - s.value[top_width_m] + face_run_out_tolerance_m;
+}
+
+// The first invalid field of a sample, or -1 if the scene is valid; a face that does not fit
+// is face_angle_deg's, after every field's own check.
+KOKKOS_INLINE_FUNCTION int first_invalid_field(const SceneValues& s) {
+  for (int f = 0; f < scene_field_count; ++f)
+    if (field_invalid(s, f)) return f;
+  return face_runs_out(s) ? face_angle_deg : -1;
+}
+
+// The checks of a sweep's samples: when the base scene is valid and a sample differs from it
+// only in the sampled fields, only those fields (and the top width, when the base width is
+// sampled) can fail, and the face only when one of its four dimensions is sampled; the others
+// are skipped, in the same order, so that the first invalid field is the same. With an invalid
+// base scene every check is made.
+struct SampleChecks {
+  int fields[scene_field_count] = {};
+  int field_count = 0;
+  bool face = true;
+};
+
+inline SampleChecks sample_checks(const SceneValues& base, const int* targets, int target_count) {
+  SampleChecks c;
+  bool sampled[scene_field_count] = {};
+  for (int d = 0; d < target_count; ++d)
+    if (targets[d] >= 0 && targets[d] < scene_field_count) sampled[targets[d]] = true;
+  const bool all = first_invalid_field(base) >= 0;
+  for (int f = 0; f < scene_field_count; ++f)
+    if (all || sampled[f] || (f == top_width_m && sampled[base_width_m]))
+      c.fields[c.field_count++] = f;
+  c.face = all || sampled[height_m] || sampled[base_width_m] || sampled[top_width_m] ||
+           sampled[face_angle_deg];
+  return c;
+}
+
+// first_invalid_field of a sample of the scene `checks` were made for.
+KOKKOS_INLINE_FUNCTION int first_invalid_field(const SceneValues& s, const SampleChecks& checks) {
+  for (int k = 0; k < checks.field_count; ++k)
+    if (field_invalid(s, checks.fields[k])) return checks.fields[k];
+  return checks.face && face_runs_out(s) ? face_angle_deg : -1;
 }
 
 // Model inputs derived from the scene values (as model/closed_form_methods.cpp derives them).

@@ -94,8 +94,8 @@ TEST_F(CompressedChunks, IntegersAndConstantsReadBackBitForBitAndShrink) {
   std::vector<std::uint64_t> index(rows);
   for (std::size_t i = 0; i < rows; ++i) index[i] = 1000000 + i;
   hsize_t stored = 0;
-  const auto back = write_and_read((dir_ / "index.h5").string(), H5T_NATIVE_UINT64, index, rows,
-                                   1, 4096, &stored);
+  const auto back = write_and_read((dir_ / "index.h5").string(), H5T_NATIVE_UINT64, index, rows, 1,
+                                   4096, &stored);
   EXPECT_EQ(back, index);
   // Consecutive integers: each chunk's low byte repeats every 256 rows and the others come in
   // runs; a tenth of the raw size is far more than deflate needs.
