@@ -92,9 +92,11 @@ json sweep_statistics(const Study& study, const SweepTable& table) {
   std::vector<json> column_stats(columns);
   std::vector<json> column_exceed(columns, json::array());
   std::vector<std::exception_ptr> column_error(columns);
-  auto describe_column = [&](std::size_t c) {
+  // v and scratch: a thread's buffers, kept from column to column.
+  auto describe_column = [&](std::size_t c, std::vector<double>& v,
+                             std::vector<std::uint64_t>& scratch) {
     const std::string& column = table.output_columns[c];
-    std::vector<double> v;
+    v.clear();
     sweeps::reserve_on_huge_pages(v, ok.size());
     if (ok.size() == n) {
       v.assign(table.outputs[c].begin(), table.outputs[c].end());
@@ -122,7 +124,7 @@ json sweep_statistics(const Study& study, const SweepTable& table) {
                                   {"probability", json_number(e.probability)},
                                   {"ci", interval(e.ci)}});
     }
-    const sweeps::OutputStatistics s = sweeps::describe(std::move(v), study.confidence);
+    const sweeps::OutputStatistics s = sweeps::describe_in_place(v, scratch, study.confidence);
     o["infinite_count"] = s.infinite_count;
     o["mean"] = json_number(s.mean);
     o["mean_ci"] = interval(s.mean_ci);
@@ -138,9 +140,11 @@ json sweep_statistics(const Study& study, const SweepTable& table) {
   };
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
+    std::vector<double> v;
+    std::vector<std::uint64_t> scratch;
     for (std::size_t c; (c = next.fetch_add(1)) < columns;) {
       try {
-        describe_column(c);
+        describe_column(c, v, scratch);
       } catch (...) {
         column_error[c] = std::current_exception();
       }

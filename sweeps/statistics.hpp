@@ -220,31 +220,46 @@ inline void check_values(const std::vector<double>& values, const char* who) {
 // freedom std::sort has is the relative order of -0 and +0, which compare equal; here -0 comes
 // first), so every statistic computed from it is bitwise the same. An LSD radix sort, one byte a
 // pass, on the order-preserving bit pattern of the doubles (sign bit set for >= +0, all bits
-// flipped for negatives); a pass whose byte is the same for all values (e.g. the sign and the
-// top exponent bits of outputs of one magnitude) is skipped. ~5x faster than std::sort at 1e7
-// values (docs/notes/performance.md, "Sweeps"); small inputs go to std::sort.
-inline void sort_values(std::vector<double>& values) {
+// flipped for negatives), kept in the values' own storage and in `scratch` in turn; a pass whose
+// byte is the same for all values (e.g. the sign and the top exponent bits of outputs of one
+// magnitude) is skipped. ~5x faster than std::sort at 1e7 values (docs/notes/performance.md,
+// "Sweeps"); small inputs go to std::sort. `scratch` is resized to the values' size at least:
+// a caller that sorts many columns keeps it, so that its memory is not new each time.
+inline void sort_values(std::vector<double>& values, std::vector<std::uint64_t>& scratch) {
   const std::size_t n = values.size();
   if (n < 4096) {
     std::sort(values.begin(), values.end());
     return;
   }
+  if (scratch.size() < n) {
+    scratch.clear();
+    reserve_on_huge_pages(scratch, n);
+    scratch.resize(n);
+  }
   constexpr std::uint64_t sign = std::uint64_t{1} << 63;
-  std::vector<std::uint64_t> a = vector_on_huge_pages<std::uint64_t>(n),
-                             b = vector_on_huge_pages<std::uint64_t>(n);
+  // The keys are 8-byte patterns in either buffer, read and written with memcpy.
+  auto load = [](const unsigned char* p, std::size_t i) {
+    std::uint64_t u;
+    std::memcpy(&u, p + 8 * i, sizeof u);
+    return u;
+  };
+  auto store = [](unsigned char* p, std::size_t i, std::uint64_t u) {
+    std::memcpy(p + 8 * i, &u, sizeof u);
+  };
+  unsigned char* const own = reinterpret_cast<unsigned char*>(values.data());
+  unsigned char* const other = reinterpret_cast<unsigned char*>(scratch.data());
   std::array<std::array<std::size_t, 256>, 8> count{};
   for (std::size_t i = 0; i < n; ++i) {
-    std::uint64_t u;
-    std::memcpy(&u, &values[i], sizeof u);
+    std::uint64_t u = load(own, i);
     u = (u & sign) ? ~u : (u | sign);
-    a[i] = u;
+    store(own, i, u);
     for (int byte = 0; byte < 8; ++byte) ++count[byte][(u >> (8 * byte)) & 0xFF];
   }
-  std::uint64_t* from = a.data();
-  std::uint64_t* to = b.data();
+  unsigned char* from = own;
+  unsigned char* to = other;
   for (int byte = 0; byte < 8; ++byte) {
     auto& c = count[byte];
-    if (c[(from[0] >> (8 * byte)) & 0xFF] == n) continue;  // all values share this byte
+    if (c[(load(from, 0) >> (8 * byte)) & 0xFF] == n) continue;  // all values share this byte
     std::size_t offset[256], running = 0;
     for (int k = 0; k < 256; ++k) {
       offset[k] = running;
@@ -252,16 +267,21 @@ inline void sort_values(std::vector<double>& values) {
     }
     const int shift = 8 * byte;
     for (std::size_t i = 0; i < n; ++i) {
-      const std::uint64_t u = from[i];
-      to[offset[(u >> shift) & 0xFF]++] = u;
+      const std::uint64_t u = load(from, i);
+      store(to, offset[(u >> shift) & 0xFF]++, u);
     }
     std::swap(from, to);
   }
   for (std::size_t i = 0; i < n; ++i) {
-    std::uint64_t u = from[i];
+    std::uint64_t u = load(from, i);
     u = (u & sign) ? (u & ~sign) : ~u;
-    std::memcpy(&values[i], &u, sizeof u);
+    store(own, i, u);
   }
+}
+
+inline void sort_values(std::vector<double>& values) {
+  std::vector<std::uint64_t> scratch;
+  sort_values(values, scratch);
 }
 
 inline Interval quantile_interval(const std::vector<double>& sorted, double q, double confidence) {
@@ -274,12 +294,14 @@ inline Interval quantile_interval(const std::vector<double>& sorted, double q, d
 }
 }  // namespace stats
 
-// Throws std::invalid_argument on NaN or -inf or empty input (the caller excludes failed samples), and
-// for a confidence outside (0,1).
-inline OutputStatistics describe(std::vector<double> values, double confidence = 0.95) {
+// describe() of `values`, sorted in place (they are left sorted) with `scratch` as the sort's
+// buffer (stats::sort_values): a caller that describes many columns keeps both.
+inline OutputStatistics describe_in_place(std::vector<double>& values,
+                                          std::vector<std::uint64_t>& scratch,
+                                          double confidence = 0.95) {
   stats::check_values(values, "describe");
   stats::check_confidence(confidence);
-  stats::sort_values(values);
+  stats::sort_values(values, scratch);
   OutputStatistics s;
   const std::size_t n = values.size();
   s.count = n;
@@ -318,6 +340,13 @@ inline OutputStatistics describe(std::vector<double> values, double confidence =
   s.q50_ci = stats::quantile_interval(values, 0.50, confidence);
   s.q95_ci = stats::quantile_interval(values, 0.95, confidence);
   return s;
+}
+
+// Throws std::invalid_argument on NaN or -inf or empty input (the caller excludes failed samples), and
+// for a confidence outside (0,1).
+inline OutputStatistics describe(std::vector<double> values, double confidence = 0.95) {
+  std::vector<std::uint64_t> scratch;
+  return describe_in_place(values, scratch, confidence);
 }
 
 // P(value > threshold), Wilson score interval at `confidence`. Same input rules as describe().

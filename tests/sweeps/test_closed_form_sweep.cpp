@@ -186,9 +186,9 @@ std::vector<double> points_of(const std::vector<int>& targets, std::size_t n, un
 TYPED_TEST(ClosedFormSweepKernel, BatchedModelsGiveTheScalarModelsOutputs) {
   // 1000 + 37 samples: whole blocks of the batches and a partial last one.
   const std::size_t n = 1037;
-  const std::vector<int> targets = {sw::thickness_m,         sw::velocity_m_s,
-                                    sw::face_angle_deg,      sw::barrier_density_kg_m3,
-                                    sw::base_friction,       sw::analytical_tau};
+  const std::vector<int> targets = {sw::thickness_m,    sw::velocity_m_s,
+                                    sw::face_angle_deg, sw::barrier_density_kg_m3,
+                                    sw::base_friction,  sw::analytical_tau};
   sw::SceneValues base = valid_base();
   base.analytical_tau_given = true;
   base.value[sw::base_width_m] = 6.0;  // room for the face at 60 degrees

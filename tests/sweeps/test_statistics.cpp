@@ -10,8 +10,11 @@
 #include <Kokkos_Core.hpp>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <functional>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -103,6 +106,57 @@ TEST(StatisticsFunctions, OrderStatisticRanks) {
   EXPECT_LE(std::llabs(exact.upper + 1 - approx.upper), 1);
   EXPECT_NEAR(exact.coverage, 0.95, 1e-3);
   EXPECT_NEAR(approx.coverage, 0.95, 1e-3);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The radix sort of describe(): std::sort's sequence, bit for bit
+
+TEST(SortValues, GivesStdSortsSequenceWithItsBufferKeptFromColumnToColumn) {
+  std::mt19937_64 g(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  // Wide-ranging values of both signs with zeros, infinities and subnormals (every byte
+  // differs: eight passes, the keys end in the values' storage); values in [1, 2) (the top byte
+  // the same for all: seven passes, they end in the buffer); a few repeated integers (most
+  // passes skipped).
+  auto wide = [&](std::size_t n) {
+    std::vector<double> v(n);
+    for (auto& x : v) x = (u(g) - 0.5) * std::exp(60.0 * (u(g) - 0.5));
+    v[1] = 0.0;
+    v[2] = -0.0;
+    v[3] = kInf;
+    v[4] = 5e-324;
+    v[5] = -kInf;
+    v[6] = 1e308;
+    return v;
+  };
+  auto one_two = [&](std::size_t n) {
+    std::vector<double> v(n);
+    for (auto& x : v) x = 1.0 + u(g);
+    return v;
+  };
+  auto few = [&](std::size_t n) {
+    std::vector<double> v(n);
+    for (auto& x : v) x = std::floor(8.0 * u(g));
+    return v;
+  };
+  std::vector<std::uint64_t> scratch;  // kept, as sweep_statistics keeps it
+  for (const std::size_t n : {std::size_t{70000}, std::size_t{5000}, std::size_t{131073}})
+    for (const auto& make : {std::function<std::vector<double>(std::size_t)>(wide),
+                             std::function<std::vector<double>(std::size_t)>(one_two),
+                             std::function<std::vector<double>(std::size_t)>(few)}) {
+      std::vector<double> v = make(n), expected = v;
+      std::sort(expected.begin(), expected.end());
+      stats::sort_values(v, scratch);
+      ASSERT_EQ(v.size(), expected.size());
+      for (std::size_t i = 0; i < n; ++i) {
+        // -0 and +0 compare equal and std::sort may put them in either order; the sort puts -0
+        // first. Every other value must match bit for bit.
+        if (v[i] == 0.0 && expected[i] == 0.0) continue;
+        ASSERT_EQ(std::memcmp(&v[i], &expected[i], sizeof(double)), 0)
+            << "n = " << n << ", position " << i << ": " << v[i] << " against " << expected[i];
+      }
+      EXPECT_GE(scratch.size(), n);
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
