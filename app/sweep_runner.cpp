@@ -490,7 +490,16 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
                          chunk_rows);
   const SweepHeader chunk_header = header_of(study, opt.shard, opt.shard_count);
   std::vector<StoredChunk> stored;  // every compressed chunk of the table, where it lies
+  // The rows for the statistics: the inputs (and wall times) only where the MPM at the
+  // quantiles needs them; the file has them all.
   SweepTable all = SweepTable::with_columns(paths, study.output_columns());
+  const bool keep_inputs = study.mpm_at_quantiles.has_value();
+  auto gather = [&](const SweepTable& rows) {
+    if (keep_inputs)
+      all.append(rows);
+    else
+      all.append_results(rows);
+  };
   std::vector<double> rule_values;  // the values the interval rule has seen so far
   if (!earlier.empty()) {
     for (auto& e : earlier) {
@@ -510,7 +519,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     rows.append(table.pending());
     rows.failure_index.clear();
     rows.failure_reason.clear();
-    all.append(rows);
+    gather(rows);
     collect_rule_values(study, all, rule_values);
     earlier.clear();
   }
@@ -547,7 +556,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     progress.update(done_samples, run_here);
     collect_rule_values(study, t, rule_values);
     ts = Clock::now();
-    all.append(t);
+    gather(t);
     gather_s += seconds_since(ts);
     std::string why;
     if (interval_rule_met(study, rule_values, why)) {

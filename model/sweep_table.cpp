@@ -35,13 +35,17 @@ SweepTable SweepTable::with_columns(std::vector<std::string> input_paths,
 }
 
 void SweepTable::append(const SweepTable& o) {
+  append_results(o);
+  wall_time.insert(wall_time.end(), o.wall_time.begin(), o.wall_time.end());
+  for (std::size_t k = 0; k < inputs.size(); ++k)
+    inputs[k].insert(inputs[k].end(), o.inputs[k].begin(), o.inputs[k].end());
+}
+
+void SweepTable::append_results(const SweepTable& o) {
   if (o.input_paths != input_paths || o.output_columns != output_columns)
     throw std::invalid_argument("sweep tables with different columns cannot be joined");
   index.insert(index.end(), o.index.begin(), o.index.end());
   status.insert(status.end(), o.status.begin(), o.status.end());
-  wall_time.insert(wall_time.end(), o.wall_time.begin(), o.wall_time.end());
-  for (std::size_t k = 0; k < inputs.size(); ++k)
-    inputs[k].insert(inputs[k].end(), o.inputs[k].begin(), o.inputs[k].end());
   for (std::size_t c = 0; c < outputs.size(); ++c)
     outputs[c].insert(outputs[c].end(), o.outputs[c].begin(), o.outputs[c].end());
   failure_index.insert(failure_index.end(), o.failure_index.begin(), o.failure_index.end());
@@ -64,6 +68,7 @@ void SweepTable::sort_by_index() {
     std::sort(order.begin(), order.end(),
               [&](std::size_t a, std::size_t b) { return index[a] < index[b]; });
     auto permute = [&](auto& v) {
+      if (v.empty()) return;  // a column left out (append_results)
       auto copy = v;
       for (std::size_t i = 0; i < n; ++i) v[i] = copy[order[i]];
     };
