@@ -124,27 +124,26 @@ KOKKOS_FORCEINLINE_FUNCTION void update_two_phase_node(
   }
 }
 
-template <class ExecSpace, bool SemiImplicit, class MemorySpace>
-GridUpdateReport two_phase_grid_update_impl(const TwoPhaseGrid<MemorySpace>& g,
-                                            const Boundaries& walls, const Boundaries& liquid_walls,
-                                            double dt, const double gravity[2]) {
+// The update of every node of `region` (a reduction of the report's sums over the nodes in
+// rows, NodeItems): node_sums(ii, j, i) gives the sums of node (ii, j), index i (read from the
+// grids here; taken from P2G's buffers, and stored, by two_phase_p2g_grid_update.hpp), then
+// update_two_phase_node. Afterwards every node outside the mass rectangle is zero.
+template <class ExecSpace, bool SemiImplicit, class MemorySpace, class NodeSums>
+GridUpdateReport update_two_phase_nodes(const char* name, const TwoPhaseGrid<MemorySpace>& g,
+                                        const NodeBox& region, const Boundaries& walls,
+                                        const Boundaries& liquid_walls, double dt,
+                                        const double gravity[2], const NodeSums& node_sums) {
   const auto S = g.solid;
   const auto L = g.liquid;
-  const auto drag = g.drag;
   const double ox = S.origin[0], oy = S.origin[1], dx = S.dx, tol = 1e-9 * S.dx;
   const double gx = gravity[0], gy = gravity[1];
   const int nx = S.nx;
   GridUpdateReport rep;
-  double fx = 0.0, fy = 0.0;
-  // Only the nodes whose fields may be nonzero (Grid::active, set by two_phase_p2g for both
-  // grids): outside them nothing moves.
-  const NodeBox region = S.dirty_box();
   if (region.empty()) return rep;
+  double fx = 0.0, fy = 0.0;
   const NodeItems<ExecSpace> items(region);
   Kokkos::parallel_reduce(
-      SemiImplicit ? "lsi::mpm::two_phase::grid_update_semi_implicit"
-                   : "lsi::mpm::two_phase::grid_update_explicit",
-      Kokkos::RangePolicy<ExecSpace>(0, items.count()),
+      name, Kokkos::RangePolicy<ExecSpace>(0, items.count()),
       KOKKOS_LAMBDA(const int t, double& wall_lost, double& drag_lost, double& seep, double& rx,
                     double& ry) {
         int j, i_begin, i_end;
@@ -152,13 +151,7 @@ GridUpdateReport two_phase_grid_update_impl(const TwoPhaseGrid<MemorySpace>& g,
         TwoPhaseUpdateSums r{wall_lost, drag_lost, seep, rx, ry};
         for (int ii = i_begin; ii <= i_end; ++ii) {  // a row of the region, or one node
           const int i = ii + nx * j;
-          const TwoPhaseNodeSums n{S.mass(i),
-                                   L.mass(i),
-                                   {S.momentum(i, 0), S.momentum(i, 1)},
-                                   {L.momentum(i, 0), L.momentum(i, 1)},
-                                   {S.force(i, 0), S.force(i, 1)},
-                                   {L.force(i, 0), L.force(i, 1)},
-                                   drag(i)};
+          const TwoPhaseNodeSums n = node_sums(ii, j, i);
           update_two_phase_node<SemiImplicit>(S, L, i, ii, j, n, walls, liquid_walls, ox, oy, dx,
                                               tol, dt, gx, gy, r);
         }
@@ -169,12 +162,35 @@ GridUpdateReport two_phase_grid_update_impl(const TwoPhaseGrid<MemorySpace>& g,
         ry = r.ry;
       },
       rep.wall_dissipation, rep.drag_dissipation, rep.seepage_gravity_work, fx, fy);
-  // Every node outside the mass rectangle is now zero.
   S.set_dirty_box(S.mass_box());
   L.set_dirty_box(L.mass_box());
   rep.wall_force[0] = fx;
   rep.wall_force[1] = fy;
   return rep;
+}
+
+template <class ExecSpace, bool SemiImplicit, class MemorySpace>
+GridUpdateReport two_phase_grid_update_impl(const TwoPhaseGrid<MemorySpace>& g,
+                                            const Boundaries& walls, const Boundaries& liquid_walls,
+                                            double dt, const double gravity[2]) {
+  const auto S = g.solid;
+  const auto L = g.liquid;
+  const auto drag = g.drag;
+  // Only the nodes whose fields may be nonzero (Grid::active, set by two_phase_p2g for both
+  // grids): outside them nothing moves.
+  return update_two_phase_nodes<ExecSpace, SemiImplicit>(
+      SemiImplicit ? "lsi::mpm::two_phase::grid_update_semi_implicit"
+                   : "lsi::mpm::two_phase::grid_update_explicit",
+      g, S.dirty_box(), walls, liquid_walls, dt, gravity,
+      KOKKOS_LAMBDA(const int, const int, const int i) {
+        return TwoPhaseNodeSums{S.mass(i),
+                                L.mass(i),
+                                {S.momentum(i, 0), S.momentum(i, 1)},
+                                {L.momentum(i, 0), L.momentum(i, 1)},
+                                {S.force(i, 0), S.force(i, 1)},
+                                {L.force(i, 0), L.force(i, 1)},
+                                drag(i)};
+      });
 }
 
 template <class ExecSpace, class MemorySpace>

@@ -37,66 +37,39 @@ GridUpdateReport two_phase_p2g_grid_update_impl(const TwoPhaseParticles<MemorySp
     grid->set_mass_box(touched);
     grid->set_dirty_box(region);
   }
-  GridUpdateReport rep;
-  if (region.empty()) return rep;
   const int nc = scatter.copies_count;
   const auto copies = scatter.copies;
   const auto boxes = scatter.boxes;
-  const auto S_ = g.solid;
-  const auto L_ = g.liquid;
+  const auto solid = g.solid;
+  const auto liquid = g.liquid;
   const auto drag = g.drag;
-  const double ox = S_.origin[0], oy = S_.origin[1], dx = S_.dx, tol = 1e-9 * S_.dx;
-  const double gx = gravity[0], gy = gravity[1];
-  const int nx = S_.nx;
-  double fx = 0.0, fy = 0.0;
-  const NodeItems<ExecSpace> items(region);
-  Kokkos::parallel_reduce(
+  return update_two_phase_nodes<ExecSpace, SemiImplicit>(
       SemiImplicit ? "lsi::mpm::two_phase::p2g_grid_update_semi_implicit"
                    : "lsi::mpm::two_phase::p2g_grid_update_explicit",
-      Kokkos::RangePolicy<ExecSpace>(0, items.count()),
-      KOKKOS_LAMBDA(const int t, double& wall_lost, double& drag_lost, double& seep, double& rx,
-                    double& ry) {
-        int j, i_begin, i_end;
-        items.nodes(t, j, i_begin, i_end);
-        TwoPhaseUpdateSums r{wall_lost, drag_lost, seep, rx, ry};
-        for (int ii = i_begin; ii <= i_end; ++ii) {  // a row of the region, or one node
-          const int i = ii + nx * j;
-          double acc[F];
-          lsi::mpm::detail::take_node_sums<F>(copies, boxes, nc, ii, j, i, acc);
-          const TwoPhaseNodeSums n{acc[nf::SolidMass],
-                                   acc[nf::LiquidMass],
-                                   {acc[nf::SolidMomentumX], acc[nf::SolidMomentumY]},
-                                   {acc[nf::LiquidMomentumX], acc[nf::LiquidMomentumY]},
-                                   {acc[nf::MixtureForceX], acc[nf::MixtureForceY]},
-                                   {acc[nf::LiquidForceX], acc[nf::LiquidForceY]},
-                                   acc[nf::Drag]};
-          S_.mass(i) = n.mS;
-          S_.momentum(i, 0) = n.pS[0];
-          S_.momentum(i, 1) = n.pS[1];
-          S_.force(i, 0) = n.fS[0];
-          S_.force(i, 1) = n.fS[1];
-          L_.mass(i) = n.mL;
-          L_.momentum(i, 0) = n.pL[0];
-          L_.momentum(i, 1) = n.pL[1];
-          L_.force(i, 0) = n.fL[0];
-          L_.force(i, 1) = n.fL[1];
-          drag(i) = n.Q;
-          update_two_phase_node<SemiImplicit>(S_, L_, i, ii, j, n, walls, liquid_walls, ox, oy, dx,
-                                              tol, dt, gx, gy, r);
-        }
-        wall_lost = r.wall_lost;
-        drag_lost = r.drag_lost;
-        seep = r.seep;
-        rx = r.rx;
-        ry = r.ry;
-      },
-      rep.wall_dissipation, rep.drag_dissipation, rep.seepage_gravity_work, fx, fy);
-  // Every node outside the mass rectangle is now zero.
-  S_.set_dirty_box(S_.mass_box());
-  L_.set_dirty_box(L_.mass_box());
-  rep.wall_force[0] = fx;
-  rep.wall_force[1] = fy;
-  return rep;
+      g, region, walls, liquid_walls, dt, gravity,
+      KOKKOS_LAMBDA(const int ii, const int j, const int i) {
+        double acc[F];
+        lsi::mpm::detail::take_node_sums<F>(copies, boxes, nc, ii, j, i, acc);
+        const TwoPhaseNodeSums n{acc[nf::SolidMass],
+                                 acc[nf::LiquidMass],
+                                 {acc[nf::SolidMomentumX], acc[nf::SolidMomentumY]},
+                                 {acc[nf::LiquidMomentumX], acc[nf::LiquidMomentumY]},
+                                 {acc[nf::MixtureForceX], acc[nf::MixtureForceY]},
+                                 {acc[nf::LiquidForceX], acc[nf::LiquidForceY]},
+                                 acc[nf::Drag]};
+        solid.mass(i) = n.mS;
+        solid.momentum(i, 0) = n.pS[0];
+        solid.momentum(i, 1) = n.pS[1];
+        solid.force(i, 0) = n.fS[0];
+        solid.force(i, 1) = n.fS[1];
+        liquid.mass(i) = n.mL;
+        liquid.momentum(i, 0) = n.pL[0];
+        liquid.momentum(i, 1) = n.pL[1];
+        liquid.force(i, 0) = n.fL[0];
+        liquid.force(i, 1) = n.fL[1];
+        drag(i) = n.Q;
+        return n;
+      });
 }
 
 // two_phase_p2g (without the wall correction) followed by two_phase_grid_update, in one pass
