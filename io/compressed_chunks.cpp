@@ -4,10 +4,12 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -173,29 +175,72 @@ bool floating_type(hid_t type) { return H5Tget_class(type) == H5T_FLOAT; }
 
 const std::vector<std::vector<unsigned char>>& ChunkCompression::compress(
     const std::vector<ChunkRows>& chunks) {
-  if (out_.size() < chunks.size()) out_.resize(chunks.size());
-  for (std::size_t c = chunks.size(); c < out_.size(); ++c) out_[c].clear();
-  if (chunks.empty()) return out_;
-  const std::size_t threads = std::min(compression_threads(), chunks.size());
+  compress_each(chunks, [](std::size_t, const std::vector<unsigned char>&) {});
+  return out_;
+}
+
+void ChunkCompression::compress_each(
+    const std::vector<ChunkRows>& chunks,
+    const std::function<void(std::size_t, const std::vector<unsigned char>&)>& ready) {
+  const std::size_t n = chunks.size();
+  if (out_.size() < n) out_.resize(n);
+  for (std::size_t c = n; c < out_.size(); ++c) out_[c].clear();
+  if (n == 0) return;
+  const std::size_t threads = std::min(compression_threads(), n);
   auto& compressors = threads_->compressors;
   while (compressors.size() < threads)
     compressors.push_back(std::make_unique<ChunkCompressor>(level_));
+  // Each chunk's state: 0 not compressed yet, 1 compressed, 2 failed. The chunks are taken in
+  // order, so that the ones before a failed one are all taken, and finish.
+  const std::unique_ptr<std::atomic<int>[]> state(new std::atomic<int>[n]);
+  for (std::size_t c = 0; c < n; ++c) state[c].store(0, std::memory_order_relaxed);
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> stop{false};
   std::vector<std::string> errors(threads);
-  auto work = [&](std::size_t t) {
+  // Thread t compresses the next chunk; false when none is left (or a thread failed).
+  auto compress_one = [&](std::size_t t) {
+    if (stop.load(std::memory_order_relaxed)) return false;
+    const std::size_t c = next.fetch_add(1);
+    if (c >= n) return false;
     try {
-      for (std::size_t c = t; c < chunks.size(); c += threads)
-        compressors[t]->compress(chunks[c], out_[c]);
+      compressors[t]->compress(chunks[c], out_[c]);
+      state[c].store(1, std::memory_order_release);
     } catch (const std::exception& e) {
       errors[t] = e.what();
+      state[c].store(2, std::memory_order_release);
+      stop = true;
     }
+    return true;
   };
   std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work, t);
-  work(0);
+  for (std::size_t t = 1; t < threads; ++t)
+    pool.emplace_back([&compress_one, t] {
+      while (compress_one(t)) {
+      }
+    });
+  // This thread hands over each chunk as soon as it and those before it are compressed, and
+  // compresses when none is ready.
+  std::exception_ptr failure;
+  try {
+    for (std::size_t written = 0; written < n;) {
+      const int s = state[written].load(std::memory_order_acquire);
+      if (s == 1) {
+        ready(written, out_[written]);
+        ++written;
+      } else if (s == 2) {
+        break;
+      } else if (!compress_one(0)) {
+        std::this_thread::yield();  // the chunk is another thread's, still being compressed
+      }
+    }
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  stop = true;
   for (auto& th : pool) th.join();
+  if (failure) std::rethrow_exception(failure);
   for (const auto& e : errors)
     if (!e.empty()) throw std::runtime_error(e);
-  return out_;
 }
 
 bool write_compressed_chunks(hid_t dataset, hid_t dcpl, const void* data, std::size_t rows,
@@ -224,13 +269,11 @@ bool write_compressed_chunks(hid_t dataset, hid_t dcpl, const void* data, std::s
       rows_of.push_back({bytes + begin * row_bytes, (end - begin) * row_bytes, chunk_bytes,
                          element_size, floating});
     }
-    const auto& out = compression.compress(rows_of);
-    for (std::size_t c = first; c < last; ++c) {
-      const hsize_t offset[2] = {static_cast<hsize_t>(c * chunk_rows), 0};
-      check(H5Dwrite_chunk(dataset, H5P_DEFAULT, 0, offset, out[c - first].size(),
-                           out[c - first].data()),
+    compression.compress_each(rows_of, [&](std::size_t k, const std::vector<unsigned char>& out) {
+      const hsize_t offset[2] = {static_cast<hsize_t>((first + k) * chunk_rows), 0};
+      check(H5Dwrite_chunk(dataset, H5P_DEFAULT, 0, offset, out.size(), out.data()),
             "cannot write a compressed chunk");
-    }
+    });
   }
   return true;
 }

@@ -8,6 +8,7 @@
 #include <hdf5.h>
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -41,6 +42,13 @@ class ChunkCompression {
 
   // The chunks compressed, in the order given; valid until the next call.
   const std::vector<std::vector<unsigned char>>& compress(const std::vector<ChunkRows>& chunks);
+  // The same, each compressed chunk handed to ready(index, bytes) on the calling thread, in the
+  // order given, as soon as it and those before it are compressed: the caller writes a chunk
+  // while the other threads compress the next ones (HDF5 calls stay on one thread). An
+  // exception from `ready` or a compression ends the call (after the threads) and propagates.
+  void compress_each(
+      const std::vector<ChunkRows>& chunks,
+      const std::function<void(std::size_t, const std::vector<unsigned char>&)>& ready);
 
  private:
   struct Threads;

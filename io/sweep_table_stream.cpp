@@ -94,9 +94,9 @@ std::vector<StoredChunk> SweepTableStream::write_chunks(const SweepTable& t, std
       stored.push_back({s, (stored_rows_ + begin) / chunk_rows_, 0, 0});
     }
   }
-  const auto& compressed = compression_->compress(chunks);
-  for (std::size_t c = 0; c < stored.size(); ++c)
-    write_chunk(stored[c], compressed[c].data(), compressed[c].size());
+  compression_->compress_each(chunks, [&](std::size_t c, const std::vector<unsigned char>& bytes) {
+    write_chunk(stored[c], bytes.data(), bytes.size());
+  });
   return stored;
 }
 

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -132,6 +133,36 @@ TEST(ChunkCompression, ReusedGivesTheBytesOfANewOne) {
     EXPECT_EQ(again[c], expected[c]) << "chunk " << c;
   }
   EXPECT_EQ(expected[0], expected[3]);  // the same rows, the same bytes
+}
+
+TEST(ChunkCompression, EachChunkHandedOverInOrderAndAFailureStopsTheCall) {
+  // 40 chunks on the threads (OMP_NUM_THREADS or the hardware's): handed over in order, with the
+  // bytes compress() gives.
+  const std::size_t count = 4096, bytes = count * 8;
+  std::vector<std::vector<double>> columns;
+  for (unsigned k = 0; k < 40; ++k) columns.push_back(random_in_one_two(count, 100 + k));
+  std::vector<ChunkRows> chunks;
+  for (const auto& c : columns) chunks.push_back({c.data(), bytes, bytes, 8, true});
+  ChunkCompression compression(1);
+  const auto expected = compression.compress(chunks);
+  std::vector<std::size_t> order;
+  compression.compress_each(chunks, [&](std::size_t c, const std::vector<unsigned char>& b) {
+    order.push_back(c);
+    EXPECT_EQ(b, expected[c]) << "chunk " << c;
+  });
+  ASSERT_EQ(order.size(), chunks.size());
+  for (std::size_t c = 0; c < order.size(); ++c) EXPECT_EQ(order[c], c);
+  // A writer that fails at chunk 5: the call ends with its exception, after chunks 0-5 only,
+  // and the object compresses again afterwards.
+  std::size_t handed = 0;
+  EXPECT_THROW(compression.compress_each(chunks,
+                                         [&](std::size_t c, const std::vector<unsigned char>&) {
+                                           ++handed;
+                                           if (c == 5) throw std::runtime_error("disk full");
+                                         }),
+               std::runtime_error);
+  EXPECT_EQ(handed, 6u);
+  EXPECT_EQ(compression.compress(chunks)[39], expected[39]);
 }
 
 }  // namespace
