@@ -136,6 +136,23 @@ double relative_difference(const std::vector<double>& a, const std::vector<doubl
   return scale > 0.0 ? diff / scale : diff;
 }
 
+// A node field computed two ways.
+struct GridField {
+  std::string name;
+  std::vector<double> first, second;
+};
+
+// Every field has content (the column moves) and its two values agree within kTwoRoutesRel of
+// its largest value (the callers say why that tolerance).
+void expect_same_grid_fields(const std::vector<GridField>& fields) {
+  for (const GridField& f : fields) {
+    double largest = 0.0;
+    for (double v : f.first) largest = std::max(largest, std::fabs(v));
+    EXPECT_GT(largest, 0.0) << f.name;
+    EXPECT_LT(relative_difference(f.first, f.second), kTwoRoutesRel) << f.name;
+  }
+}
+
 TYPED_TEST(MpmTwoPhaseKernels, AtomicAndBufferedP2GGiveTheSameGrid) {
   using Exec = TypeParam;
   using Mem = typename Exec::memory_space;
@@ -171,28 +188,18 @@ TYPED_TEST(MpmTwoPhaseKernels, AtomicAndBufferedP2GGiveTheSameGrid) {
       EXPECT_EQ(a.j1, b.j1);
       EXPECT_FALSE(a.empty());
     }
-    struct Field {
-      std::string name;
-      std::vector<double> buffered, atomic;
-    };
-    const std::vector<Field> fields = {
-        {"solid mass", values(buffered_grid.solid.mass), values(atomic_grid.solid.mass)},
-        {"solid momentum", values(buffered_grid.solid.momentum),
-         values(atomic_grid.solid.momentum)},
-        {"mixture force", values(buffered_grid.solid.force), values(atomic_grid.solid.force)},
-        {"liquid mass", values(buffered_grid.liquid.mass), values(atomic_grid.liquid.mass)},
-        {"liquid momentum", values(buffered_grid.liquid.momentum),
-         values(atomic_grid.liquid.momentum)},
-        {"liquid force", values(buffered_grid.liquid.force), values(atomic_grid.liquid.force)},
-        {"drag", values(buffered_grid.drag), values(atomic_grid.drag)}};
-    for (const Field& f : fields) {
-      double largest = 0.0;
-      for (double v : f.buffered) largest = std::max(largest, std::fabs(v));
-      EXPECT_GT(largest, 0.0) << f.name;  // every field has content (the column moves)
-      // The same terms added in another order: round-off of a few additions, 1e-12 of the
-      // largest nodal value.
-      EXPECT_LT(relative_difference(f.buffered, f.atomic), kTwoRoutesRel) << f.name;
-    }
+    // The same terms added in another order: round-off of a few additions, 1e-12 of the
+    // largest nodal value.
+    expect_same_grid_fields(
+        {{"solid mass", values(buffered_grid.solid.mass), values(atomic_grid.solid.mass)},
+         {"solid momentum", values(buffered_grid.solid.momentum),
+          values(atomic_grid.solid.momentum)},
+         {"mixture force", values(buffered_grid.solid.force), values(atomic_grid.solid.force)},
+         {"liquid mass", values(buffered_grid.liquid.mass), values(atomic_grid.liquid.mass)},
+         {"liquid momentum", values(buffered_grid.liquid.momentum),
+          values(atomic_grid.liquid.momentum)},
+         {"liquid force", values(buffered_grid.liquid.force), values(atomic_grid.liquid.force)},
+         {"drag", values(buffered_grid.drag), values(atomic_grid.drag)}});
   }
 }
 
@@ -214,30 +221,20 @@ TYPED_TEST(MpmTwoPhaseKernels, P2GAndGridUpdateInOnePassMatchTheTwoKernels) {
     const GridUpdateReport a = two_phase_grid_update<Exec>(two, c.walls, c.walls, dt, g, drag);
     const GridUpdateReport b = two_phase_p2g_grid_update<Exec>(
         c.particles, one, one_scatter, g, c.liquid.density, kG, c.walls, c.walls, dt, drag);
-    struct Field {
-      std::string name;
-      std::vector<double> two, one;
-    };
-    const std::vector<Field> fields = {
-        {"solid mass", values(two.solid.mass), values(one.solid.mass)},
-        {"solid momentum", values(two.solid.momentum), values(one.solid.momentum)},
-        {"mixture force", values(two.solid.force), values(one.solid.force)},
-        {"solid velocity", values(two.solid.velocity), values(one.solid.velocity)},
-        {"solid velocity_old", values(two.solid.velocity_old), values(one.solid.velocity_old)},
-        {"liquid mass", values(two.liquid.mass), values(one.liquid.mass)},
-        {"liquid momentum", values(two.liquid.momentum), values(one.liquid.momentum)},
-        {"liquid force", values(two.liquid.force), values(one.liquid.force)},
-        {"liquid velocity", values(two.liquid.velocity), values(one.liquid.velocity)},
-        {"liquid velocity_old", values(two.liquid.velocity_old), values(one.liquid.velocity_old)},
-        {"drag", values(two.drag), values(one.drag)}};
-    for (const Field& f : fields) {
-      double largest = 0.0;
-      for (double v : f.two) largest = std::max(largest, std::fabs(v));
-      EXPECT_GT(largest, 0.0) << f.name;  // every field has content (the column moves)
-      // The same sums and per-node arithmetic; a * b + c contracted into fused multiply-adds may
-      // differ between the two inlining contexts: 1e-12 of the largest nodal value.
-      EXPECT_LT(relative_difference(f.two, f.one), kTwoRoutesRel) << f.name;
-    }
+    // The same sums and per-node arithmetic; a * b + c contracted into fused multiply-adds may
+    // differ between the two inlining contexts: 1e-12 of the largest nodal value.
+    expect_same_grid_fields(
+        {{"solid mass", values(two.solid.mass), values(one.solid.mass)},
+         {"solid momentum", values(two.solid.momentum), values(one.solid.momentum)},
+         {"mixture force", values(two.solid.force), values(one.solid.force)},
+         {"solid velocity", values(two.solid.velocity), values(one.solid.velocity)},
+         {"solid velocity_old", values(two.solid.velocity_old), values(one.solid.velocity_old)},
+         {"liquid mass", values(two.liquid.mass), values(one.liquid.mass)},
+         {"liquid momentum", values(two.liquid.momentum), values(one.liquid.momentum)},
+         {"liquid force", values(two.liquid.force), values(one.liquid.force)},
+         {"liquid velocity", values(two.liquid.velocity), values(one.liquid.velocity)},
+         {"liquid velocity_old", values(two.liquid.velocity_old), values(one.liquid.velocity_old)},
+         {"drag", values(two.drag), values(one.drag)}});
     // The reductions: the column stands on the bottom wall (a force and a wall dissipation) and
     // its liquid seeps (drag dissipation, seepage work).
     const std::vector<double> reports_two = {a.wall_dissipation, a.drag_dissipation,
