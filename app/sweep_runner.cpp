@@ -95,23 +95,15 @@ class ChunkEvaluator {
           Matrix(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sweep outputs"), count, columns);
       invalid_store_ = Kokkos::View<int*, Mem>(
           Kokkos::view_alloc(Kokkos::WithoutInitializing, "sweep invalid field"), count);
-      if constexpr (Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible) {
-        sweeps::advise_huge_pages(input_store_.data(), input_store_.span() * sizeof(double));
-        sweeps::advise_huge_pages(output_store_.data(), output_store_.span() * sizeof(double));
-        sweeps::advise_huge_pages(invalid_store_.data(), invalid_store_.span() * sizeof(int));
-      }
+      sweeps::advise_huge_pages(input_store_);
+      sweeps::advise_huge_pages(output_store_);
+      sweeps::advise_huge_pages(invalid_store_);
     }
     // A shorter chunk (the last) takes the front of the buffers, as views of its own extents.
     const Matrix inputs(input_store_.data(), count, dims);
     const Matrix outputs(output_store_.data(), count, columns);
     const Kokkos::View<int*, Mem> invalid(invalid_store_.data(), count);
     const auto t0 = Clock::now();
-    if (columns_.column[0].extent(0) < count) {
-      columns_.reserve(count);
-      if constexpr (Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible)
-        for (const auto& c : columns_.column)
-          sweeps::advise_huge_pages(c.data(), c.span() * sizeof(double));
-    }
     sweeps::evaluate_closed_form_chunk(Exec(), sweep_, first, inputs, outputs, invalid, columns_);
     Exec().fence();
     const auto in = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), inputs);

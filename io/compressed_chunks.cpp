@@ -122,11 +122,14 @@ class ChunkCompressor {
       // Byte planes in runs of the same treatment: stored (level 0) where the bytes look random,
       // run-length coded at the dataset's level elsewhere; one deflate stream.
       const std::size_t planes = k.element_size;
+      store_.resize(planes);
+      for (std::size_t j = 0; j < planes; ++j)
+        store_[j] = looks_random(plain_.data() + j * count, count);
       std::size_t j = 0;
       while (j < planes) {
-        const bool store = looks_random(plain_.data() + j * count, count);
+        const bool store = store_[j];
         std::size_t end = j + 1;
-        while (end < planes && looks_random(plain_.data() + end * count, count) == store) ++end;
+        while (end < planes && store_[end] == store) ++end;
         if (deflateParams(&s.z, store ? 0 : level_, Z_RLE) != Z_OK)
           throw std::runtime_error("zlib could not set a chunk's compression");
         s.z.next_in = plain_.data() + j * count;
@@ -149,6 +152,7 @@ class ChunkCompressor {
   int level_;
   Stream streams_[2];
   std::vector<unsigned char> plain_, deflated_;
+  std::vector<char> store_;  // whether each byte plane of the chunk is stored
 };
 
 }  // namespace

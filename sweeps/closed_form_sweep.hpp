@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "kernels/closed_form/batch.hpp"
+#include "sweeps/huge_pages.hpp"
 #include "sweeps/sampled_scene.hpp"
 #include "sweeps/sampler.hpp"
 
@@ -30,12 +31,15 @@ struct ClosedFormChunkColumns {
   using Column = Kokkos::View<double*, MemorySpace>;
   static constexpr int count = 11;
   Column column[count];
-  // At least n rows in every column (new ones are not filled: every row used is written).
+  // At least n rows in every column (new ones are not filled: every row used is written; on
+  // huge pages where they are host memory, sweeps/huge_pages.hpp).
   void reserve(std::size_t n) {
     if (column[0].extent(0) >= n) return;
-    for (auto& c : column)
+    for (auto& c : column) {
       c = Column(Kokkos::view_alloc(Kokkos::WithoutInitializing, "lsi::closed_form_sweep column"),
                  n);
+      advise_huge_pages(c);
+    }
   }
 };
 

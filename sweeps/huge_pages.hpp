@@ -7,6 +7,7 @@
 // values and their layout are the same with or without it, and on other systems, with THP off
 // or for buffers under 2 MiB nothing changes.
 #pragma once
+#include <Kokkos_Core.hpp>
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
@@ -31,6 +32,15 @@ inline void advise_huge_pages(const void* data, std::size_t bytes) {
   (void)data;
   (void)bytes;
 #endif
+}
+
+// The same for the whole allocation of a Kokkos View in host-accessible memory; nothing for
+// another memory space (a GPU's).
+template <class View>
+void advise_huge_pages(const View& v) {
+  if constexpr (Kokkos::SpaceAccessibility<Kokkos::HostSpace,
+                                           typename View::memory_space>::accessible)
+    advise_huge_pages(v.data(), v.span() * sizeof(typename View::value_type));
 }
 
 // v.reserve(n), with new storage advised before the values are moved into it.
