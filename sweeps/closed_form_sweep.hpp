@@ -110,47 +110,73 @@ void evaluate_closed_form_chunk(
                face_angle = col[face_angle_column], empirical_tau = col[empirical_tau_column],
                analytical_tau = col[analytical_tau_column],
                analytical_lambda = col[analytical_lambda_column];
-  Kokkos::parallel_for(
-      "lsi::closed_form_sweep", Kokkos::RangePolicy<ExecSpace>(space, 0, n),
-      KOKKOS_LAMBDA(const std::size_t i) {
-        double x[ClosedFormSweep<MemorySpace>::max_inputs];
-        sweep.sampler.sample(first + i, x);
-        SceneValues s = sweep.base;
-        for (int d = 0; d < dims; ++d) {
-          inputs(i, d) = x[d];
-          if (sweep.target[d] >= 0) s.value[sweep.target[d]] = x[d];
-        }
-        const int bad = first_invalid_field(s, checks);
-        invalid_field(i) = bad;
-        if (batch) {
-          const ModelInputs m = model_inputs(s);
-          thickness(i) = s.value[thickness_m];
-          velocity(i) = s.value[velocity_m_s];
-          density(i) = s.value[density_kg_m3];
-          landslide_mass(i) = m.landslide_mass;
-          equivalent_length(i) = m.equivalent_length;
-          barrier_mass(i) = m.barrier_mass;
-          friction(i) = s.value[base_friction];
-          face_angle(i) = m.face_angle_rad;
-          empirical_tau(i) = s.value[sweeps::empirical_tau];
-          TwoBodyCoefficients c = default_two_body_coefficients(s.fixed);
-          if (s.analytical_lambda_given) c.lambda = s.value[sweeps::analytical_lambda];
-          if (s.analytical_tau_given) c.tau = s.value[sweeps::analytical_tau];
-          analytical_tau(i) = c.tau;
-          analytical_lambda(i) = c.lambda;
-        }
-        double out[closed_form_output_count];
-        if (empirical_one) {
-          if (bad < 0) evaluate_empirical(s, out);
-          for (int o = 0; o < closed_form_output_count; ++o)
-            outputs(i, o) = bad < 0 ? out[o] : math::quiet_nan();
-        }
-        if (analytical_one) {
-          if (bad < 0) evaluate_analytical(s, out);
-          for (int o = 0; o < closed_form_output_count; ++o)
-            outputs(i, closed_form_output_count + o) = bad < 0 ? out[o] : math::quiet_nan();
-        }
-      });
+  // Sample i from its inputs x[d * stride] (d < dims): set into the scene, checked, and the
+  // models' inputs written (or the models evaluated, for what does not run batched).
+  const auto one_sample = KOKKOS_LAMBDA(const std::size_t i, const double* x, const int stride) {
+    SceneValues s = sweep.base;
+    for (int d = 0; d < dims; ++d) {
+      inputs(i, d) = x[d * stride];
+      if (sweep.target[d] >= 0) s.value[sweep.target[d]] = x[d * stride];
+    }
+    const int bad = first_invalid_field(s, checks);
+    invalid_field(i) = bad;
+    if (batch) {
+      const ModelInputs m = model_inputs(s);
+      thickness(i) = s.value[thickness_m];
+      velocity(i) = s.value[velocity_m_s];
+      density(i) = s.value[density_kg_m3];
+      landslide_mass(i) = m.landslide_mass;
+      equivalent_length(i) = m.equivalent_length;
+      barrier_mass(i) = m.barrier_mass;
+      friction(i) = s.value[base_friction];
+      face_angle(i) = m.face_angle_rad;
+      empirical_tau(i) = s.value[sweeps::empirical_tau];
+      TwoBodyCoefficients c = default_two_body_coefficients(s.fixed);
+      if (s.analytical_lambda_given) c.lambda = s.value[sweeps::analytical_lambda];
+      if (s.analytical_tau_given) c.tau = s.value[sweeps::analytical_tau];
+      analytical_tau(i) = c.tau;
+      analytical_lambda(i) = c.lambda;
+    }
+    double out[closed_form_output_count];
+    if (empirical_one) {
+      if (bad < 0) evaluate_empirical(s, out);
+      for (int o = 0; o < closed_form_output_count; ++o)
+        outputs(i, o) = bad < 0 ? out[o] : math::quiet_nan();
+    }
+    if (analytical_one) {
+      if (bad < 0) evaluate_analytical(s, out);
+      for (int o = 0; o < closed_form_output_count; ++o)
+        outputs(i, closed_form_output_count + o) = bad < 0 ? out[o] : math::quiet_nan();
+    }
+  };
+  const auto draw_one = KOKKOS_LAMBDA(const std::size_t i) {
+    double x[ClosedFormSweep<MemorySpace>::max_inputs];
+    sweep.sampler.sample(first + i, x);
+    one_sample(i, x, 1);
+  };
+  if constexpr (runs_on_host<ExecSpace>) {
+    // A block of samples drawn at once (Sampler::sample_block), then each finished; the last,
+    // partial block one sample at a time. Not for_each_block_on_host: its `flatten` inlines the
+    // momentum variants' scalar models into the block, and GCC's code there gives other last bits
+    // than the same models called on their own (which the kernel's test compares bit for bit).
+    constexpr int B = Sampler<MemorySpace>::block_size;
+    constexpr int capacity = ClosedFormSweep<MemorySpace>::max_inputs * B;
+    const std::size_t blocks = (n + B - 1) / B;
+    Kokkos::parallel_for("lsi::closed_form_sweep", Kokkos::RangePolicy<ExecSpace>(space, 0, blocks),
+                         [=](const std::size_t block) {
+                           const std::size_t begin = block * B;
+                           if (begin + B <= n) {
+                             double x[capacity];
+                             sweep.sampler.sample_block(first + begin, x);
+                             for (int k = 0; k < B; ++k) one_sample(begin + k, x + k, B);
+                           } else {
+                             for (std::size_t i = begin; i < n; ++i) draw_one(i);
+                           }
+                         });
+  } else {
+    Kokkos::parallel_for("lsi::closed_form_sweep", Kokkos::RangePolicy<ExecSpace>(space, 0, n),
+                         draw_one);
+  }
   if (!batch) return;
   // Column o of `outputs` (LayoutLeft: contiguous).
   auto output_column = [&](int o) {

@@ -39,23 +39,34 @@ KOKKOS_INLINE_FUNCTION void philox_mulhilo(std::uint32_t a, std::uint32_t b, std
 }
 }  // namespace detail
 
+namespace detail {
+constexpr std::uint32_t philox_m0 = 0xD2511F53u, philox_m1 = 0xCD9E8D57u;  // round multipliers
+constexpr std::uint32_t philox_w0 = 0x9E3779B9u,
+                        philox_w1 = 0xBB67AE85u;  // key schedule (golden ratio, sqrt(3)-1)
+
+// One round on the counter words c and the round's key (k0, k1).
+KOKKOS_INLINE_FUNCTION void philox_round(std::uint32_t* c, std::uint32_t k0, std::uint32_t k1) {
+  std::uint32_t hi0, lo0, hi1, lo1;
+  philox_mulhilo(philox_m0, c[0], hi0, lo0);
+  philox_mulhilo(philox_m1, c[2], hi1, lo1);
+  const std::uint32_t next0 = hi1 ^ c[1] ^ k0, next2 = hi0 ^ c[3] ^ k1;
+  c[0] = next0;
+  c[1] = lo1;
+  c[2] = next2;
+  c[3] = lo0;
+}
+}  // namespace detail
+
 // One Philox-4x32 block with `rounds` rounds (10 for Philox-4x32-10; other counts only for the
 // known-answer tests of the round structure).
 KOKKOS_INLINE_FUNCTION Philox4x32Block philox4x32(Philox4x32Block ctr, std::uint32_t k0,
                                                   std::uint32_t k1, int rounds = 10) {
-  constexpr std::uint32_t M0 = 0xD2511F53u, M1 = 0xCD9E8D57u;  // round multipliers
-  constexpr std::uint32_t W0 = 0x9E3779B9u,
-                          W1 = 0xBB67AE85u;  // key schedule (golden ratio, sqrt(3)-1)
   for (int r = 0; r < rounds; ++r) {
     if (r > 0) {
-      k0 += W0;
-      k1 += W1;
+      k0 += detail::philox_w0;
+      k1 += detail::philox_w1;
     }
-    std::uint32_t hi0, lo0, hi1, lo1;
-    detail::philox_mulhilo(M0, ctr.v[0], hi0, lo0);
-    detail::philox_mulhilo(M1, ctr.v[2], hi1, lo1);
-    const Philox4x32Block next{{hi1 ^ ctr.v[1] ^ k0, lo1, hi0 ^ ctr.v[3] ^ k1, lo0}};
-    ctr = next;
+    detail::philox_round(ctr.v, k0, k1);
   }
   return ctr;
 }
@@ -75,9 +86,11 @@ KOKKOS_INLINE_FUNCTION std::uint64_t random_bits64(std::uint64_t seed, std::uint
 // so that u is never 0. The largest value is 1 - 2^-53 < 1. (The obvious (k + 0.5) 2^-53 is not exact
 // in double for k near 2^53 and rounds to 1.0.)
 KOKKOS_INLINE_FUNCTION double bits_to_open01(std::uint64_t bits) {
-  const std::uint64_t k = bits >> 11;
-  constexpr double two_m53 = 1.0 / 9007199254740992.0;  // 2^-53
-  return k == 0 ? 0.5 * two_m53 : static_cast<double>(k) * two_m53;
+  constexpr double two_m53 = 1.0 / 9007199254740992.0;         // 2^-53
+  const double u = static_cast<double>(bits >> 11) * two_m53;  // exact
+  // u is 0 exactly when k is (the test on the double rather than on k lets GCC vectorise a loop
+  // of this, uniform_open01_each).
+  return u == 0.0 ? 0.5 * two_m53 : u;
 }
 
 // Uniform in the OPEN interval (0,1), 53-bit resolution, a pure function of its arguments:
@@ -85,6 +98,28 @@ KOKKOS_INLINE_FUNCTION double bits_to_open01(std::uint64_t bits) {
 KOKKOS_INLINE_FUNCTION double uniform_open01(std::uint64_t seed, std::uint64_t sample,
                                              std::uint32_t stream) {
   return bits_to_open01(random_bits64(seed, sample, stream, 0));
+}
+
+// uniform_open01(seed, first + k, stream) for k < n into out[k] (host code), the same bits: the ten
+// rounds written out, so that GCC vectorises the loop over k (the general philox4x32 takes its
+// round count at run time, and its loop stays scalar).
+inline void uniform_open01_each(std::uint64_t seed, std::uint64_t first, std::uint32_t stream,
+                                double* out, int n) {
+#pragma GCC ivdep
+  for (int k = 0; k < n; ++k) {
+    const std::uint64_t sample = first + static_cast<std::uint64_t>(k);
+    std::uint32_t c[4] = {static_cast<std::uint32_t>(sample),
+                          static_cast<std::uint32_t>(sample >> 32), stream, 0};
+    std::uint32_t k0 = static_cast<std::uint32_t>(seed),
+                  k1 = static_cast<std::uint32_t>(seed >> 32);
+#pragma GCC unroll 10
+    for (int r = 0; r < 10; ++r) {
+      detail::philox_round(c, k0, k1);
+      k0 += detail::philox_w0;
+      k1 += detail::philox_w1;
+    }
+    out[k] = bits_to_open01((static_cast<std::uint64_t>(c[0]) << 32) | c[1]);
+  }
 }
 
 // A 64-bit finaliser (the MurmurHash3 / SplitMix64 mixing constants): a bijection of 64-bit words with

@@ -260,6 +260,41 @@ inline Marginal prepare_marginal(const DistributionSpec& s, std::vector<double>&
   return m;
 }
 
+// The steps of the marginals' quantiles that marginal_quantile and marginal_quantile_each share.
+namespace detail {
+KOKKOS_INLINE_FUNCTION double clamp_to(double x, double lo, double hi) {
+  return x < lo ? lo : (x > hi ? hi : x);
+}
+// Uniform: min + u (max - min), clamped against rounding.
+KOKKOS_INLINE_FUNCTION double uniform_value(const Marginal& m, double u) {
+  return clamp_to(m.a + u * m.b, m.lo, m.hi);
+}
+// TruncatedNormal: the parent's probability (its complement in the upper tail) that u maps to,
+// and the value at that probability's normal quantile z.
+KOKKOS_INLINE_FUNCTION double truncated_probability(const Marginal& m, double u) {
+  return m.upper_tail ? m.p_lo - u * (m.p_lo - m.p_hi) : m.p_lo + u * (m.p_hi - m.p_lo);
+}
+KOKKOS_INLINE_FUNCTION double truncated_value(const Marginal& m, double z) {
+  return clamp_to(m.upper_tail ? m.a - m.b * z : m.a + m.b * z, m.lo, m.hi);
+}
+// Discrete: the first k in [0, count) with u <= cdf[offset + k] (binary search).
+KOKKOS_INLINE_FUNCTION double discrete_value(const Marginal& m, double u, const double* values,
+                                             const double* cdf) {
+  std::uint32_t first = 0, n = m.count;
+  while (n > 0) {
+    const std::uint32_t half = n / 2;
+    if (cdf[m.offset + first + half] < u) {
+      first += half + 1;
+      n -= half + 1;
+    } else {
+      n = half;
+    }
+  }
+  if (first >= m.count) first = m.count - 1;
+  return values[m.offset + first];
+}
+}  // namespace detail
+
 // The marginal's value at the uniform u in (0,1). `z` is the normal score Phi^-1(u) when the caller
 // has it (the copula computes it; pass has_z = false otherwise): Normal and Lognormal then use it
 // directly instead of recomputing Phi^-1(u). `values`/`cdf` are the discrete table.
@@ -268,35 +303,80 @@ KOKKOS_INLINE_FUNCTION double marginal_quantile(const Marginal& m, double u, dou
   switch (m.kind) {
     case DistributionKind::Constant:
       return m.a;
-    case DistributionKind::Uniform: {
-      const double x = m.a + u * m.b;
-      return x < m.lo ? m.lo : (x > m.hi ? m.hi : x);
-    }
+    case DistributionKind::Uniform:
+      return detail::uniform_value(m, u);
     case DistributionKind::Normal:
       return m.a + m.b * (has_z ? z : normal_quantile(u));
     case DistributionKind::Lognormal:
       return detail::exp(m.a + m.b * (has_z ? z : normal_quantile(u)));
-    case DistributionKind::TruncatedNormal: {
-      const double x = m.upper_tail ? m.a - m.b * normal_quantile(m.p_lo - u * (m.p_lo - m.p_hi))
-                                    : m.a + m.b * normal_quantile(m.p_lo + u * (m.p_hi - m.p_lo));
-      return x < m.lo ? m.lo : (x > m.hi ? m.hi : x);
-    }
-    case DistributionKind::Discrete: {
-      std::uint32_t first = 0, n = m.count;  // the first k in [0, count) with u <= cdf[offset + k]
-      while (n > 0) {
-        const std::uint32_t half = n / 2;
-        if (cdf[m.offset + first + half] < u) {
-          first += half + 1;
-          n -= half + 1;
-        } else {
-          n = half;
-        }
-      }
-      if (first >= m.count) first = m.count - 1;
-      return values[m.offset + first];
-    }
+    case DistributionKind::TruncatedNormal:
+      return detail::truncated_value(m, normal_quantile(detail::truncated_probability(m, u)));
+    case DistributionKind::Discrete:
+      return detail::discrete_value(m, u, values, cdf);
   }
   return detail::quiet_nan();
+}
+
+// marginal_quantile for n uniforms u[0..n) (scores z[0..n) when has_z) into out[0..n) (host code),
+// the same bits for each: the kind chosen once, and each step a loop over the n values, which
+// GCC vectorises where it calls no library function (the Uniform, Normal and truncated normal
+// arithmetic, the central region of Phi^-1: normal_quantile_each). out may be u or z.
+inline void marginal_quantile_each(const Marginal& m, const double* u, const double* z, bool has_z,
+                                   const double* values, const double* cdf, double* out, int n) {
+  switch (m.kind) {
+    case DistributionKind::Constant:
+      for (int k = 0; k < n; ++k) out[k] = m.a;
+      return;
+    case DistributionKind::Uniform:
+#pragma GCC ivdep
+      for (int k = 0; k < n; ++k) out[k] = detail::uniform_value(m, u[k]);
+      return;
+    case DistributionKind::Normal:
+    case DistributionKind::Lognormal: {
+      if (!has_z) {
+        normal_quantile_each(u, out, n);
+        z = out;
+      }
+      if (m.kind == DistributionKind::Normal) {
+#pragma GCC ivdep
+        for (int k = 0; k < n; ++k) out[k] = m.a + m.b * z[k];
+      } else {
+        for (int k = 0; k < n; ++k) out[k] = detail::exp(m.a + m.b * z[k]);
+      }
+      return;
+    }
+    case DistributionKind::TruncatedNormal:
+#pragma GCC ivdep
+      for (int k = 0; k < n; ++k) out[k] = detail::truncated_probability(m, u[k]);
+      normal_quantile_each(out, out, n);
+#pragma GCC ivdep
+      for (int k = 0; k < n; ++k) out[k] = detail::truncated_value(m, out[k]);
+      return;
+    case DistributionKind::Discrete:
+      if (m.count > 32) {
+        for (int k = 0; k < n; ++k) out[k] = detail::discrete_value(m, u[k], values, cdf);
+        return;
+      }
+      // A short table: the index counted (how many cumulative weights lie below u), which is
+      // the binary search's answer since the table is sorted, and a loop without branches.
+      for (int begin = 0; begin < n; begin += 64) {
+        const int count = n - begin < 64 ? n - begin : 64;
+        int below[64];
+        for (int k = 0; k < count; ++k) below[k] = 0;
+        for (std::uint32_t j = 0; j < m.count; ++j) {
+          const double c = cdf[m.offset + j];
+#pragma GCC ivdep
+          for (int k = 0; k < count; ++k) below[k] += c < u[begin + k] ? 1 : 0;
+        }
+        const int last = static_cast<int>(m.count) - 1;
+#pragma GCC ivdep
+        for (int k = 0; k < count; ++k)
+          out[begin + k] =
+              values[m.offset + static_cast<std::uint32_t>(below[k] < last ? below[k] : last)];
+      }
+      return;
+  }
+  for (int k = 0; k < n; ++k) out[k] = detail::quiet_nan();
 }
 
 }  // namespace lsi::sweeps

@@ -49,40 +49,43 @@ KOKKOS_INLINE_FUNCTION double normal_pdf(double z) {
   return 0.39894228040143267794 * detail::exp(-0.5 * z * z);
 }
 
+// The central region of AS 241: Phi^-1(0.5 + q) for |q| <= 0.425.
+KOKKOS_INLINE_FUNCTION double normal_quantile_central(double q) {
+  const double r = 0.180625 - q * q;
+  const double num = (((((((2.5090809287301226727e+3 * r + 3.3430575583588128105e+4) * r +
+                           6.7265770927008700853e+4) *
+                              r +
+                          4.5921953931549871457e+4) *
+                             r +
+                         1.3731693765509461125e+4) *
+                            r +
+                        1.9715909503065514427e+3) *
+                           r +
+                       1.3314166789178437745e+2) *
+                          r +
+                      3.3871328727963666080e+0);
+  const double den = (((((((5.2264952788528545610e+3 * r + 2.8729085735721942674e+4) * r +
+                           3.9307895800092710610e+4) *
+                              r +
+                          2.1213794301586595867e+4) *
+                             r +
+                         5.3941960214247511077e+3) *
+                            r +
+                        6.8718700749205790830e+2) *
+                           r +
+                       4.2313330701600911252e+1) *
+                          r +
+                      1.0);
+  return q * num / den;
+}
+
 // Phi^-1(p) for p in (0,1) (AS 241); -inf at p = 0, +inf at p = 1, NaN outside [0,1] or for NaN.
 KOKKOS_INLINE_FUNCTION double normal_quantile(double p) {
   if (!(p >= 0.0 && p <= 1.0)) return detail::quiet_nan();
   if (p == 0.0) return -detail::infinity();
   if (p == 1.0) return detail::infinity();
   const double q = p - 0.5;
-  if ((q < 0 ? -q : q) <= 0.425) {
-    const double r = 0.180625 - q * q;
-    const double num = (((((((2.5090809287301226727e+3 * r + 3.3430575583588128105e+4) * r +
-                             6.7265770927008700853e+4) *
-                                r +
-                            4.5921953931549871457e+4) *
-                               r +
-                           1.3731693765509461125e+4) *
-                              r +
-                          1.9715909503065514427e+3) *
-                             r +
-                         1.3314166789178437745e+2) *
-                            r +
-                        3.3871328727963666080e+0);
-    const double den = (((((((5.2264952788528545610e+3 * r + 2.8729085735721942674e+4) * r +
-                             3.9307895800092710610e+4) *
-                                r +
-                            2.1213794301586595867e+4) *
-                               r +
-                           5.3941960214247511077e+3) *
-                              r +
-                          6.8718700749205790830e+2) *
-                             r +
-                         4.2313330701600911252e+1) *
-                            r +
-                        1.0);
-    return q * num / den;
-  }
+  if ((q < 0 ? -q : q) <= 0.425) return normal_quantile_central(q);
   double r = q < 0 ? p : 1.0 - p;
   r = detail::sqrt(-detail::log(r));
   double value;
@@ -142,6 +145,22 @@ KOKKOS_INLINE_FUNCTION double normal_quantile(double p) {
     value = num / den;
   }
   return q < 0 ? -value : value;
+}
+
+// Phi^-1 of p[0..n) into out[0..n) (host code), the same bits as normal_quantile of each: the
+// central region, where 85 % of uniform probabilities fall, for all n in a loop that GCC
+// vectorises, then normal_quantile again for those outside it (the tails, 0, 1, NaN). out may be p.
+inline void normal_quantile_each(const double* p, double* out, int n) {
+  double central[64];
+  for (int begin = 0; begin < n; begin += 64) {
+    const int m = n - begin < 64 ? n - begin : 64;
+#pragma GCC ivdep
+    for (int k = 0; k < m; ++k) central[k] = normal_quantile_central(p[begin + k] - 0.5);
+    for (int k = 0; k < m; ++k) {
+      const double q = p[begin + k] - 0.5;
+      out[begin + k] = (q < 0 ? -q : q) <= 0.425 ? central[k] : normal_quantile(p[begin + k]);
+    }
+  }
 }
 
 }  // namespace lsi::sweeps

@@ -73,6 +73,12 @@ DistributionSpec constant(double v) {
   s.value = v;
   return s;
 }
+// The values 1 .. n.
+std::vector<double> one_to(int n) {
+  std::vector<double> v;
+  for (int k = 1; k <= n; ++k) v.push_back(k);
+  return v;
+}
 
 // All samples [0, n) of a sampler, drawn on the execution space of its memory (the host's
 // threads for a HostSampler, also in a CUDA build), as a host matrix.
@@ -275,6 +281,40 @@ TEST(NormalDistribution, QuantileRoundTrip) {
   }
 }
 
+TEST(NormalDistribution, QuantileEachIsQuantileBitForBit) {
+  // normal_quantile_each evaluates the central region for all values and the rest one at a time:
+  // each value must be normal_quantile's bits, across the region's edges, in the tails, at the
+  // edges of [0, 1], outside it, and for counts that do not fill its internal block of 64.
+  std::vector<double> p = {0.0,
+                           1.0,
+                           0.5,
+                           0.075,
+                           0.925,
+                           std::nextafter(0.075, 0.0),
+                           std::nextafter(0.925, 1.0),
+                           1e-300,
+                           std::ldexp(1.0, -1074),
+                           1.0 - std::ldexp(1.0, -53),
+                           -0.1,
+                           1.1,
+                           std::nan("")};
+  for (std::uint64_t i = 0; p.size() < 131; ++i) p.push_back(uniform_open01(7, i, 0));
+  for (int n : {1, 13, 64, 65, 131}) {
+    std::vector<double> out(n), in_place(p.begin(), p.begin() + n);
+    normal_quantile_each(p.data(), out.data(), n);
+    normal_quantile_each(in_place.data(), in_place.data(), n);
+    for (int k = 0; k < n; ++k) {
+      const double ref = normal_quantile(p[k]);
+      if (std::isnan(ref)) {
+        EXPECT_TRUE(std::isnan(out[k]) && std::isnan(in_place[k])) << "p = " << p[k];
+      } else {
+        EXPECT_EQ(out[k], ref) << "n = " << n << ", p = " << p[k];
+        EXPECT_EQ(in_place[k], ref) << "in place, n = " << n << ", p = " << p[k];
+      }
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Distributions: validation and marginals
 
@@ -412,6 +452,39 @@ TEST(Distribution, QuantileEdges) {
   // The median of the lognormal is exp(mu) = mean / sqrt(1 + cv^2): 3 / sqrt(1.25), to rounding.
   EXPECT_NEAR(marginal_quantile(ln, 0.5, 0, false, values.data(), cdf.data()), 3 / std::sqrt(1.25),
               1e-14);
+}
+
+TEST(Distribution, QuantileEachIsQuantileBitForBit) {
+  // marginal_quantile_each against marginal_quantile for every kind, with and without a given
+  // score, at the edges of (0, 1), at u equal to a cumulative weight (where the discrete search
+  // and the counted index must both take the lower value), and in place.
+  std::vector<double> values, cdf;
+  std::vector<Marginal> marginals;
+  for (const DistributionSpec& spec :
+       {constant(4), uniform(-1, 5), normal(10, 2), lognormal(3, 1), truncated(0, 1, -3, -0.5),
+        truncated(0, 1, 0.5, 3), truncated(2, 1, 0, 4), discrete({10, 20, 30, 40}, {1, 0, 1, 2}),
+        discrete(one_to(40), {})})
+    marginals.push_back(prepare_marginal(spec, values, cdf));
+  std::vector<double> u = {1e-300, std::ldexp(1.0, -54),       0.25,     0.5,           0.075,
+                           0.925,  1.0 - std::ldexp(1.0, -53), 1.0 / 40, 0.5 + 1.0 / 40};
+  for (std::uint64_t i = 0; u.size() < 100; ++i) u.push_back(uniform_open01(5, i, 1));
+  std::vector<double> z(u.size());
+  for (std::size_t k = 0; k < u.size(); ++k) z[k] = normal_quantile(u[k]);
+  const int n = static_cast<int>(u.size());
+  for (std::size_t m = 0; m < marginals.size(); ++m)
+    for (bool has_z : {false, true}) {
+      std::vector<double> out(u.size()), in_place = u;
+      marginal_quantile_each(marginals[m], u.data(), z.data(), has_z, values.data(), cdf.data(),
+                             out.data(), n);
+      marginal_quantile_each(marginals[m], in_place.data(), z.data(), has_z, values.data(),
+                             cdf.data(), in_place.data(), n);
+      for (int k = 0; k < n; ++k) {
+        const double ref =
+            marginal_quantile(marginals[m], u[k], z[k], has_z, values.data(), cdf.data());
+        EXPECT_EQ(out[k], ref) << "marginal " << m << ", u = " << u[k] << ", has_z " << has_z;
+        EXPECT_EQ(in_place[k], ref) << "in place, marginal " << m << ", u = " << u[k];
+      }
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -754,6 +827,59 @@ double relative_difference(double a, double b) {
   return std::fabs(a - b) / std::max(std::fabs(a), std::fabs(b));
 }
 TYPED_TEST_SUITE(SamplerReproducibility, lsi::test::Backends);
+
+TEST(Sampler, BlockIsSampleBitForBit) {
+  // sample_block runs each stage for a block of samples; every input of every sample must be
+  // sample()'s bits: every marginal kind, with and without the copula (so Normal and Lognormal
+  // both from the copula's score and from their own Phi^-1), the truncated normal in its lower
+  // tail, upper tail and on both sides, a short discrete table (counted) and a long one (searched),
+  // every design, and indices beyond 2^32.
+  const std::vector<DistributionSpec> independent = {constant(4),
+                                                     normal(10, 2),
+                                                     lognormal(3, 1),
+                                                     uniform(-1, 5),
+                                                     truncated(0, 1, -3, -0.5),
+                                                     truncated(0, 1, 0.5, 3),
+                                                     truncated(2, 1, 0, 4),
+                                                     discrete({1, 2, 3, 4}, {1, 0, 2, 1}),
+                                                     discrete(one_to(40), {})};
+  std::vector<std::vector<double>> correlated(independent.size(),
+                                              std::vector<double>(independent.size(), 0.0));
+  for (std::size_t d = 0; d < independent.size(); ++d) correlated[d][d] = 1.0;
+  correlated[1][2] = correlated[2][1] = 0.5;   // normal ~ lognormal: both take the copula's score
+  correlated[3][5] = correlated[5][3] = -0.3;  // uniform ~ truncated: Phi of the mixed score
+  constexpr int B = HostSampler::block_size;
+  const int dims = static_cast<int>(independent.size());
+  for (Design design : {Design::MonteCarlo, Design::LatinHypercube, Design::Sobol, Design::Grid})
+    for (bool with_copula : {false, true}) {
+      std::vector<DistributionSpec> in = independent;
+      std::uint64_t n = 64 * 40;
+      if (design == Design::Grid) {
+        if (with_copula) continue;
+        for (auto& spec : in) spec.values = {1, 2};
+        n = std::uint64_t{1} << in.size();
+      }
+      const HostSampler s(in, with_copula ? correlated : std::vector<std::vector<double>>{}, design,
+                          99, n);
+      std::vector<double> block(static_cast<std::size_t>(dims) * B);
+      double ref[HostSampler::max_dimensions];
+      std::vector<std::uint64_t> firsts;
+      for (std::uint64_t f = 0; f + B <= n; f += B) firsts.push_back(f);
+      firsts.push_back(n - B - 3);  // not a multiple of the block
+      if (design == Design::MonteCarlo || design == Design::Sobol)
+        firsts.push_back((std::uint64_t{1} << 33) + 5);
+      for (std::uint64_t first : firsts) {
+        s.sample_block(first, block.data());
+        for (int k = 0; k < B; ++k) {
+          s.sample(first + k, ref);
+          for (int d = 0; d < dims; ++d)
+            ASSERT_EQ(block[static_cast<std::size_t>(d) * B + k], ref[d])
+                << to_string(design) << (with_copula ? " with the copula" : "") << ", sample "
+                << first + k << ", input " << d;
+        }
+      }
+    }
+}
 
 TYPED_TEST(SamplerReproducibility, SampleIIsTheSameInEveryBatch) {
   // Sample i from (a) the host scalar call, (b) a batch of N starting at 0, (c) batches of 1, 7 and
