@@ -118,20 +118,34 @@ class ChunkEvaluator {
     t.index.resize(count);
     t.status.assign(count, static_cast<std::int8_t>(SampleStatus::ok));
     t.wall_time.assign(count, closed_form_seconds);
+    // The chunk's columns copied into the table's by the host's threads: (destination, source
+    // column of `in` or `out`, or NaN for an MPM column, filled below).
+    struct Copy {
+      double* to;
+      const double* from;
+    };
+    std::vector<Copy> copies;
     for (int d = 0; d < dims; ++d) {
       t.inputs[d].resize(count);
-      for (std::uint64_t i = 0; i < count; ++i) t.inputs[d][i] = in(i, d);
+      copies.push_back({t.inputs[d].data(), in.data() + d * in.stride(1)});
     }
     for (std::size_t c = 0; c < source_.size(); ++c) {
       auto& col = t.outputs[c];
-      col.assign(count, NAN);
+      col.resize(count);
       const int offset = source_[c].method == "empirical"    ? 0
                          : source_[c].method == "analytical" ? sweeps::closed_form_output_count
                                                              : -1;
-      if (offset < 0) continue;  // MPM columns are filled below
-      for (std::uint64_t i = 0; i < count; ++i) col[i] = out(i, offset + source_[c].output);
+      const int o = offset + source_[c].output;
+      copies.push_back({col.data(), offset < 0 ? nullptr : out.data() + o * out.stride(1)});
     }
-    std::iota(t.index.begin(), t.index.end(), first);
+    std::uint64_t* const index = t.index.data();
+    Kokkos::parallel_for(
+        "lsi::sweep_chunk_table",
+        Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, static_cast<std::int64_t>(count)),
+        [&](const std::int64_t i) {
+          for (const Copy& c : copies) c.to[i] = c.from ? c.from[i] : NAN;
+          index[i] = first + static_cast<std::uint64_t>(i);
+        });
     const bool mpm = study_.runs("mpm");
     bool any_invalid = false;
     for (std::uint64_t i = 0; i < count && !any_invalid; ++i) any_invalid = bad(i) >= 0;
