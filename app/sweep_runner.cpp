@@ -146,6 +146,7 @@ class ChunkEvaluator {
           for (const Copy& c : copies) c.to[i] = c.from ? c.from[i] : NAN;
           index[i] = first + static_cast<std::uint64_t>(i);
         });
+    Kokkos::DefaultHostExecutionSpace().fence();  // `copies` is captured by reference
     const bool mpm = study_.runs("mpm");
     bool any_invalid = false;
     for (std::uint64_t i = 0; i < count && !any_invalid; ++i) any_invalid = bad(i) >= 0;

@@ -42,6 +42,7 @@
 #include <string>
 #include <vector>
 
+#include "kernels/common/math.hpp"
 #include "sweeps/counter_rng.hpp"
 #include "sweeps/distribution.hpp"
 #include "sweeps/latin_hypercube.hpp"
@@ -357,11 +358,12 @@ class Sampler {
     }
     double z[max_dimensions];
     for (int d = 0; d < dims_; ++d) z[d] = ((score_mask_ >> d) & 1u) ? normal_quantile(u[d]) : 0.0;
-    // z <- L z in place, from the last row up (row d reads z[0..d], not yet overwritten).
+    // z <- L z in place, from the last row up (row d reads z[0..d], not yet overwritten); each
+    // term a fused multiply-add written out, so that sample_block's rows round alike.
     for (int d = dims_ - 1; d >= 0; --d) {
       if (!((correlated_mask_ >> d) & 1u)) continue;
       double s = 0.0;
-      for (int k = 0; k <= d; ++k) s += cholesky_(d * dims_ + k) * z[k];
+      for (int k = 0; k <= d; ++k) s = math::fused_multiply_add(cholesky_(d * dims_ + k), z[k], s);
       z[d] = s;
       u[d] = normal_cdf(s);
     }
@@ -377,8 +379,8 @@ class Sampler {
   // sample() runs every stage for one sample; this runs each stage for the whole block, in loops
   // that GCC vectorises: the Monte Carlo uniforms (Philox), the central region of Phi^-1, the
   // Cholesky rows and the marginals' arithmetic (marginal_quantile_each). What stays a call per
-  // sample is the same scalar code: the tails of Phi^-1, erfc, exp, the discrete search, and the
-  // other designs' uniforms (the Grid and Points designs run sample() for each).
+  // sample is the same scalar code: the tails of Phi^-1, erfc, exp, a long discrete table's
+  // search, and the other designs' uniforms (the Grid and Points designs run sample() for each).
   void sample_block(std::uint64_t first, double* out) const {
     constexpr int B = block_size;
     if (design_ == Design::Points || design_ == Design::Grid) {
@@ -420,7 +422,7 @@ class Sampler {
           const double c = cholesky_(d * dims_ + j);
           const double* zj = z + j * B;
 #pragma GCC ivdep
-          for (int k = 0; k < B; ++k) s[k] += c * zj[k];
+          for (int k = 0; k < B; ++k) s[k] = math::fused_multiply_add(c, zj[k], s[k]);
         }
         for (int k = 0; k < B; ++k) {
           z[d * B + k] = s[k];
@@ -463,8 +465,7 @@ void sample_batch(const ExecSpace& space, const Sampler<MemorySpace>& s, std::ui
   const Sampler<MemorySpace> sampler = s;
   const auto o = out;
   const int dims = s.dimensions();
-  if constexpr (Kokkos::SpaceAccessibility<Kokkos::HostSpace,
-                                           typename ExecSpace::memory_space>::accessible) {
+  if constexpr (Kokkos::SpaceAccessibility<ExecSpace, Kokkos::HostSpace>::accessible) {
     // On the host a block of samples at a time (sample_block); the last, partial block one by one.
     constexpr int B = Sampler<MemorySpace>::block_size;
     constexpr int capacity = Sampler<MemorySpace>::max_dimensions * B;

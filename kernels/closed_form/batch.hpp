@@ -73,8 +73,7 @@ void for_each_block_on_host(const char* name, const ExecSpace& space, int n,
 }
 
 template <class ExecSpace>
-constexpr bool runs_on_host =
-    Kokkos::SpaceAccessibility<Kokkos::HostSpace, typename ExecSpace::memory_space>::accessible;
+constexpr bool runs_on_host = Kokkos::SpaceAccessibility<ExecSpace, Kokkos::HostSpace>::accessible;
 
 // Runs body(i) for every sample i in [0, n), as above.
 template <class ExecSpace, class Body>

@@ -36,4 +36,14 @@ KOKKOS_INLINE_FUNCTION constexpr double quiet_nan() { return __builtin_nan(""); 
 KOKKOS_INLINE_FUNCTION constexpr double min(double a, double b) { return a < b ? a : b; }
 KOKKOS_INLINE_FUNCTION constexpr double max(double a, double b) { return a > b ? a : b; }
 
+// a b + c rounded once, on every backend: for code whose rounding must not depend on whether the
+// compiler fuses a written a * b + c (GCC does so with -march=native, by context).
+KOKKOS_FORCEINLINE_FUNCTION double fused_multiply_add(double a, double b, double c) {
+#if defined(__CUDA_ARCH__) || defined(__HIP_DEVICE_COMPILE__)
+  return ::fma(a, b, c);
+#else
+  return __builtin_fma(a, b, c);
+#endif
+}
+
 }  // namespace lsi::math

@@ -40,6 +40,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "kernels/common/math.hpp"
 #include "kernels/common/pow_tables.hpp"
 #include "kernels/common/simd_lanes.hpp"
 
@@ -57,13 +58,7 @@ KOKKOS_FORCEINLINE_FUNCTION double double_of(std::uint64_t u) {
   memcpy(&x, &u, sizeof x);
   return x;
 }
-KOKKOS_FORCEINLINE_FUNCTION double fused_multiply_add(double a, double b, double c) {
-#if defined(__CUDA_ARCH__) || defined(__HIP_DEVICE_COMPILE__)
-  return ::fma(a, b, c);
-#else
-  return __builtin_fma(a, b, c);
-#endif
-}
+using math::fused_multiply_add;
 
 // ln 2 = ln2_hi + ln2_lo, ln2_hi with 32 significant bits: k ln2_hi is exact for |k| < 2^21.
 inline constexpr double ln2_hi = 6.93147180369123816490e-01;

@@ -183,6 +183,63 @@ std::vector<double> points_of(const std::vector<int>& targets, std::size_t n, un
   return p;
 }
 
+TYPED_TEST(ClosedFormSweepKernel, DrawsTheSamplersSamples) {
+  // A Monte Carlo design through the copula, 1037 samples from index 100 (neither end on a block
+  // of the host's draw): each sample's inputs in `inputs` and its validity in `invalid_field`
+  // are those of Sampler::sample(100 + i), bit for bit on the host (a device's math library may
+  // round the quantiles differently in the last bit: 1e-13 relative there).
+  using Exec = TypeParam;
+  using Mem = typename Exec::memory_space;
+  sw::DistributionSpec thickness, velocity, friction;
+  thickness.kind = sw::DistributionKind::Lognormal;
+  thickness.mean = 2.0;
+  thickness.sd = 0.6;
+  velocity.kind = sw::DistributionKind::TruncatedNormal;
+  velocity.mean = 6.0;
+  velocity.sd = 3.0;
+  velocity.min = -1.0;  // some samples invalid (velocity must be > 0)
+  velocity.max = 15.0;
+  friction.kind = sw::DistributionKind::Uniform;
+  friction.min = 0.2;
+  friction.max = 0.8;
+  const std::vector<sw::DistributionSpec> specs = {thickness, velocity, friction};
+  const std::vector<std::vector<double>> rho = {{1, 0.4, 0}, {0.4, 1, 0.2}, {0, 0.2, 1}};
+  const std::size_t n = 1037, first = 100;
+  sw::ClosedFormSweep<Mem> sweep(
+      sw::Sampler<Mem>(specs, rho, sw::Design::MonteCarlo, 2022, first + n));
+  const sw::Sampler<Kokkos::HostSpace> host(specs, rho, sw::Design::MonteCarlo, 2022, first + n);
+  sweep.base = valid_base();
+  sweep.target[0] = sw::thickness_m;
+  sweep.target[1] = sw::velocity_m_s;
+  sweep.target[2] = sw::base_friction;
+  sweep.empirical = sweep.analytical = true;
+  Kokkos::View<double**, Kokkos::LayoutLeft, Mem> in("in", n, 3),
+      out("out", n, 2 * sw::closed_form_output_count);
+  Kokkos::View<int*, Mem> bad("bad", n);
+  sw::evaluate_closed_form_chunk(Exec(), sweep, first, in, out, bad);
+  Exec().fence();
+  const auto h_in = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), in);
+  const auto h_bad = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), bad);
+  constexpr bool bitwise = Kokkos::SpaceAccessibility<Exec, Kokkos::HostSpace>::accessible;
+  int invalid = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    double x[3];
+    host.sample(first + i, x);
+    sw::SceneValues s = valid_base();
+    for (int d = 0; d < 3; ++d) {
+      if (bitwise)
+        ASSERT_EQ(h_in(i, d), x[d]) << "sample " << first + i << ", input " << d;
+      else
+        ASSERT_NEAR(h_in(i, d), x[d], 1e-13 * std::fabs(x[d])) << "sample " << first + i;
+      s.value[sweep.target[d]] = h_in(i, d);
+    }
+    ASSERT_EQ(h_bad(i), sw::first_invalid_field(s)) << "sample " << first + i;
+    invalid += h_bad(i) >= 0;
+  }
+  EXPECT_GT(invalid, 0);  // both outcomes exercised
+  EXPECT_LT(invalid, static_cast<int>(n) / 2);
+}
+
 TYPED_TEST(ClosedFormSweepKernel, BatchedModelsGiveTheScalarModelsOutputs) {
   // 1000 + 37 samples: whole blocks of the batches and a partial last one.
   const std::size_t n = 1037;

@@ -833,7 +833,7 @@ TEST(Sampler, BlockIsSampleBitForBit) {
   // sample()'s bits: every marginal kind, with and without the copula (so Normal and Lognormal
   // both from the copula's score and from their own Phi^-1), the truncated normal in its lower
   // tail, upper tail and on both sides, a short discrete table (counted) and a long one (searched),
-  // every design, and indices beyond 2^32.
+  // every design, and blocks across 2^32 and beyond it.
   const std::vector<DistributionSpec> independent = {constant(4),
                                                      normal(10, 2),
                                                      lognormal(3, 1),
@@ -848,8 +848,23 @@ TEST(Sampler, BlockIsSampleBitForBit) {
   for (std::size_t d = 0; d < independent.size(); ++d) correlated[d][d] = 1.0;
   correlated[1][2] = correlated[2][1] = 0.5;   // normal ~ lognormal: both take the copula's score
   correlated[3][5] = correlated[5][3] = -0.3;  // uniform ~ truncated: Phi of the mixed score
+  // lognormal ~ truncated: row 5 reads row 2's score, which the rows, run from the last up, must
+  // not have overwritten yet.
+  correlated[2][5] = correlated[5][2] = 0.3;
   constexpr int B = HostSampler::block_size;
   const int dims = static_cast<int>(independent.size());
+  std::vector<double> block(static_cast<std::size_t>(dims) * B);
+  double ref[HostSampler::max_dimensions];
+  const auto expect_block_is_sample = [&](const HostSampler& s, std::uint64_t first,
+                                          const std::string& what) {
+    s.sample_block(first, block.data());
+    for (int k = 0; k < B; ++k) {
+      s.sample(first + k, ref);
+      for (int d = 0; d < dims; ++d)
+        ASSERT_EQ(block[static_cast<std::size_t>(d) * B + k], ref[d])
+            << what << ", sample " << first + k << ", input " << d;
+    }
+  };
   for (Design design : {Design::MonteCarlo, Design::LatinHypercube, Design::Sobol, Design::Grid})
     for (bool with_copula : {false, true}) {
       std::vector<DistributionSpec> in = independent;
@@ -861,24 +876,21 @@ TEST(Sampler, BlockIsSampleBitForBit) {
       }
       const HostSampler s(in, with_copula ? correlated : std::vector<std::vector<double>>{}, design,
                           99, n);
-      std::vector<double> block(static_cast<std::size_t>(dims) * B);
-      double ref[HostSampler::max_dimensions];
       std::vector<std::uint64_t> firsts;
       for (std::uint64_t f = 0; f + B <= n; f += B) firsts.push_back(f);
       firsts.push_back(n - B - 3);  // not a multiple of the block
-      if (design == Design::MonteCarlo || design == Design::Sobol)
+      if (design == Design::MonteCarlo || design == Design::Sobol) {
+        firsts.push_back((std::uint64_t{1} << 32) - 5);  // the counter's high word changes inside
         firsts.push_back((std::uint64_t{1} << 33) + 5);
-      for (std::uint64_t first : firsts) {
-        s.sample_block(first, block.data());
-        for (int k = 0; k < B; ++k) {
-          s.sample(first + k, ref);
-          for (int d = 0; d < dims; ++d)
-            ASSERT_EQ(block[static_cast<std::size_t>(d) * B + k], ref[d])
-                << to_string(design) << (with_copula ? " with the copula" : "") << ", sample "
-                << first + k << ", input " << d;
-        }
       }
+      for (std::uint64_t first : firsts)
+        expect_block_is_sample(s, first,
+                               std::string(to_string(design)) + (with_copula ? " + copula" : ""));
     }
+  std::vector<double> rows;  // the Points design: given rows
+  for (int i = 0; i < 3 * B * dims; ++i) rows.push_back(0.5 * i - 7);
+  const HostSampler given(rows, dims, 3 * B);
+  for (std::uint64_t first : {0, B + 3}) expect_block_is_sample(given, first, "points");
 }
 
 TYPED_TEST(SamplerReproducibility, SampleIIsTheSameInEveryBatch) {
