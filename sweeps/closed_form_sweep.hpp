@@ -149,33 +149,19 @@ void evaluate_closed_form_chunk(
         outputs(i, closed_form_output_count + o) = bad < 0 ? out[o] : math::quiet_nan();
     }
   };
-  const auto draw_one = KOKKOS_LAMBDA(const std::size_t i) {
-    double x[ClosedFormSweep<MemorySpace>::max_inputs];
-    sweep.sampler.sample(first + i, x);
-    one_sample(i, x, 1);
-  };
   if constexpr (runs_on_host<ExecSpace>) {
-    // A block of samples drawn at once (Sampler::sample_block), then each finished; the last,
-    // partial block one sample at a time. Not for_each_block_on_host: its `flatten` inlines the
-    // momentum variants' scalar models into the block, and GCC's code there gives other last bits
-    // than the same models called on their own (which the kernel's test compares bit for bit).
-    constexpr int B = Sampler<MemorySpace>::block_size;
-    constexpr int capacity = ClosedFormSweep<MemorySpace>::max_inputs * B;
-    const std::size_t blocks = (n + B - 1) / B;
-    Kokkos::parallel_for("lsi::closed_form_sweep", Kokkos::RangePolicy<ExecSpace>(space, 0, blocks),
-                         [=](const std::size_t block) {
-                           const std::size_t begin = block * B;
-                           if (begin + B <= n) {
-                             double x[capacity];
-                             sweep.sampler.sample_block(first + begin, x);
-                             for (int k = 0; k < B; ++k) one_sample(begin + k, x + k, B);
-                           } else {
-                             for (std::size_t i = begin; i < n; ++i) draw_one(i);
-                           }
-                         });
+    // Not for_each_block_on_host: its `flatten` inlines the momentum variants' scalar models
+    // into the block, and GCC's code there gives other last bits than the same models called on
+    // their own (which the kernel's test compares bit for bit).
+    draw_blocks_on_host(space, sweep.sampler, first, n, one_sample);
   } else {
-    Kokkos::parallel_for("lsi::closed_form_sweep", Kokkos::RangePolicy<ExecSpace>(space, 0, n),
-                         draw_one);
+    Kokkos::parallel_for(
+        "lsi::closed_form_sweep", Kokkos::RangePolicy<ExecSpace>(space, 0, n),
+        KOKKOS_LAMBDA(const std::size_t i) {
+          double x[ClosedFormSweep<MemorySpace>::max_inputs];
+          sweep.sampler.sample(first + i, x);
+          one_sample(i, x, 1);
+        });
   }
   if (!batch) return;
   // Column o of `outputs` (LayoutLeft: contiguous).

@@ -37,9 +37,7 @@ KOKKOS_INLINE_FUNCTION void philox_mulhilo(std::uint32_t a, std::uint32_t b, std
   hi = static_cast<std::uint32_t>(p >> 32);
   lo = static_cast<std::uint32_t>(p);
 }
-}  // namespace detail
 
-namespace detail {
 constexpr std::uint32_t philox_m0 = 0xD2511F53u, philox_m1 = 0xCD9E8D57u;  // round multipliers
 constexpr std::uint32_t philox_w0 = 0x9E3779B9u,
                         philox_w1 = 0xBB67AE85u;  // key schedule (golden ratio, sqrt(3)-1)

@@ -451,6 +451,35 @@ class Sampler {
   Kokkos::View<double**, Kokkos::LayoutLeft, MemorySpace> points_;  // Points: sample x input
 };
 
+// On a host execution space: each(i, x, stride) for the samples i in [0, n), with x[d * stride]
+// the inputs of sample first + i: drawn a block at a time (Sampler::sample_block, stride
+// block_size), the last, partial block one sample at a time (Sampler::sample, stride 1); the
+// blocks in parallel on `space`.
+template <class ExecSpace, class MemorySpace, class Each>
+void draw_blocks_on_host(const ExecSpace& space, const Sampler<MemorySpace>& s, std::uint64_t first,
+                         std::size_t n, const Each& each) {
+  static_assert(Kokkos::SpaceAccessibility<ExecSpace, Kokkos::HostSpace>::accessible,
+                "draw_blocks_on_host: sample_block is host code");
+  constexpr int B = Sampler<MemorySpace>::block_size;
+  constexpr int capacity = Sampler<MemorySpace>::max_dimensions * B;
+  const Sampler<MemorySpace> sampler = s;
+  Kokkos::parallel_for("lsi::sweeps::draw_blocks",
+                       Kokkos::RangePolicy<ExecSpace>(space, 0, (n + B - 1) / B),
+                       [=](const std::size_t block) {
+                         const std::size_t begin = block * B;
+                         double x[capacity];
+                         if (begin + B <= n) {
+                           sampler.sample_block(first + begin, x);
+                           for (int k = 0; k < B; ++k) each(begin + k, x + k, B);
+                         } else {
+                           for (std::size_t i = begin; i < n; ++i) {
+                             sampler.sample(first + i, x);
+                             each(i, x, 1);
+                           }
+                         }
+                       });
+}
+
 // Fills out(i, d) = inputs of sample first + i, in one parallel_for on `space`. out must have
 // dimensions() columns (throws std::invalid_argument otherwise).
 template <class ExecSpace, class MemorySpace>
@@ -466,27 +495,11 @@ void sample_batch(const ExecSpace& space, const Sampler<MemorySpace>& s, std::ui
   const auto o = out;
   const int dims = s.dimensions();
   if constexpr (Kokkos::SpaceAccessibility<ExecSpace, Kokkos::HostSpace>::accessible) {
-    // On the host a block of samples at a time (sample_block); the last, partial block one by one.
-    constexpr int B = Sampler<MemorySpace>::block_size;
-    constexpr int capacity = Sampler<MemorySpace>::max_dimensions * B;
-    const std::int64_t n = static_cast<std::int64_t>(out.extent(0));
-    Kokkos::parallel_for(
-        "lsi::sweeps::sample_batch",
-        Kokkos::RangePolicy<ExecSpace, Kokkos::IndexType<std::int64_t>>(space, 0, (n + B - 1) / B),
-        [=](const std::int64_t block) {
-          const std::int64_t begin = block * B;
-          double x[capacity];
-          if (begin + B <= n) {
-            sampler.sample_block(first + static_cast<std::uint64_t>(begin), x);
-            for (int d = 0; d < dims; ++d)
-              for (int k = 0; k < B; ++k) o(begin + k, d) = x[d * B + k];
-          } else {
-            for (std::int64_t i = begin; i < n; ++i) {
-              sampler.sample(first + static_cast<std::uint64_t>(i), x);
-              for (int d = 0; d < dims; ++d) o(i, d) = x[d];
-            }
-          }
-        });
+    // On the host a block of samples at a time.
+    draw_blocks_on_host(space, s, first, out.extent(0),
+                        [=](const std::size_t i, const double* x, const int stride) {
+                          for (int d = 0; d < dims; ++d) o(i, d) = x[d * stride];
+                        });
   } else {
     Kokkos::parallel_for(
         "lsi::sweeps::sample_batch",
