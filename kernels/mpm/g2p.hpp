@@ -148,8 +148,8 @@ struct BlockStencil {
 //     points at a time, where host_transpose.hpp is compiled in);
 //  2. the transfer (g2p_point, reading those arrays), its velocity gradient into Lb;
 //  3. the trial stress, and whether the point needs the return mapping;
-//  4. the return mappings where needed: those on the main plane vectorised
-//     (mohr_coulomb_main_plane), the others point by point;
+//  4. the return mappings where needed: Mohr-Coulomb's vectorised
+//     (mohr_coulomb_return_selected), the rate-dependent ones point by point;
 //  5. the rest of the stress update and the health check.
 // Loops 2, 3 and 5 have no branches and no dependence between points: the compiler vectorises
 // them over the points (component arrays, particles.hpp). Everything the loops read is a

@@ -86,11 +86,10 @@ KOKKOS_INLINE_FUNCTION void return_point_stress(const Points& p, const int q,
 // The return mappings of the points [q0, q1) of a block of the host's blocked G2P (g2p.hpp,
 // two_phase/two_phase_g2p.hpp), between its trial and finish loops: Lb and sb hold each point's
 // velocity gradient and trial stress (component c of the block's point k at [c][k]),
-// needs_return whether it needs the return. The returns to the main plane and the tension
-// cut-off in one loop over the block's points, without branches (mohr_coulomb_main_plane:
-// it vectorises where the block has one material); the rest (edges, the apex, mu(I)) point by
-// point. needs_return is a 64-bit integer: GCC vectorises no selection on a bool loaded from
-// memory in a loop of doubles.
+// needs_return whether it needs the return. The Mohr-Coulomb returns in one loop over the
+// block's points, without branches (mohr_coulomb_return_selected: it vectorises where the block
+// has one material); the rate-dependent ones (mu(I)) point by point. needs_return is a 64-bit
+// integer: GCC vectorises no selection on a bool loaded from memory in a loop of doubles.
 template <int B, class Points, class MaterialOf>
 KOKKOS_FORCEINLINE_FUNCTION void block_return_mappings(const Points& p, const int q0, const int q1,
                                                        const MaterialOf material_of,
@@ -104,12 +103,11 @@ KOKKOS_FORCEINLINE_FUNCTION void block_return_mappings(const Points& p, const in
     const int k = q - q0;
     const PreparedMaterial& m = material_of(q);
     double s[4] = {sb[0][k], sb[1][k], sb[2][k], sb[3][k]};
-    double work = 0.0;
-    const bool main = mohr_coulomb_main_plane(m, s, work) & !m.rate_dependent;
-    const bool done = main & (needs_return[k] != 0);
+    const double work = mohr_coulomb_return_selected(m, s);
+    const bool done = !m.rate_dependent & (needs_return[k] != 0);
     for (int c = 0; c < 4; ++c) sb[c][k] = done ? s[c] : sb[c][k];
     p.plastic_work(q) += p.volume(q) * (done ? work : 0.0);
-    needs_return[k] = main ? 0 : needs_return[k];
+    needs_return[k] = m.rate_dependent ? needs_return[k] : 0;
   }
   for (int q = q0; q < q1; ++q) {
     const int k = q - q0;

@@ -1,5 +1,5 @@
 // Unit tests of the constitutive functions (kernels/mpm/constitutive): the Mohr-Coulomb return
-// mapping `mohr_coulomb_return` (and its branch-free main-plane part `mohr_coulomb_main_plane`)
+// mapping `mohr_coulomb_return` (and its branch-free form `mohr_coulomb_return_selected`)
 // and the Jaumann rotation `jaumann_rotate`. Host-only calls of
 // KOKKOS_INLINE_FUNCTIONs; plain TESTs (no backend typing), Kokkos is initialised by the shared
 // main all the same.
@@ -676,39 +676,57 @@ TEST(MohrCoulombReturn, PrincipalTiesReturnContinuously) {
 // w = (L_xy - L_yx)/2 = -omega): per step, the trace is unchanged to round-off and the von Mises
 // stress to O(dt^2) (forward Euler of a rotation grows the deviatoric radius by
 // sqrt(1 + 4 w^2 dt^2)); over many small steps, the stress is R(omega t) sigma0 R^T.
-// (h) The branch-free main-plane return (mohr_coulomb_main_plane, the host G2P's vectorised
-// path) gives mohr_coulomb_return's stress and work wherever it takes the point, and leaves
-// the stress and work untouched where it hands the point on (an edge or the apex). Both
-// routes must be exercised: the random trials reach the main plane, the edges and the apex.
-TEST(MohrCoulombReturn, MainPlaneReturnEqualsTheFullReturnWhereItApplies) {
+// (h) The branch-free return (mohr_coulomb_return_selected, the host G2P's vectorised path)
+// gives mohr_coulomb_return's stress and work on every route: elastic, the main plane, either
+// edge and the apex, each with and without the tension cut-off. Every route must be exercised.
+TEST(MohrCoulombReturn, SelectedReturnEqualsTheBranchingReturn) {
   std::mt19937 rng(57);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
-  int taken = 0, handed_on = 0;
+  int elastic = 0, main_plane = 0, upper_edge = 0, lower_edge = 0, apex = 0;
   for (const Case& k : kCases)
     for (double cutoff : {1e300, 0.0, 0.3 * k.c}) {
       const lsi::mpm::PreparedMaterial m(mc(k.phi, k.psi, k.c, cutoff));
       for (int rep = 0; rep < 200; ++rep) {
         const V3 t = random_trial(rng, m.material, rep);
         const std::array<double, 4> t4 = tensor_from_sorted(t, rep % 3, kPi * U(rng));
-        double full[4] = {t4[0], t4[1], t4[2], t4[3]}, main[4] = {t4[0], t4[1], t4[2], t4[3]};
+        double full[4] = {t4[0], t4[1], t4[2], t4[3]}, sel[4] = {t4[0], t4[1], t4[2], t4[3]};
         const double w_full = mohr_coulomb_return(m, full);
-        double w_main = -1.0;  // a sentinel that a handed-on point must keep
-        if (lsi::mpm::mohr_coulomb_main_plane(m, main, w_main)) {
-          ++taken;
-          // The same operations in the same order: equal to the last bit but for the
-          // compiler's contraction of multiply-adds (round-off of the stress scale).
-          const double scale = std::fabs(t[0]) + std::fabs(t[2]) + k.c;
-          for (int i = 0; i < 4; ++i) EXPECT_NEAR(main[i], full[i], kRoundOffAbs + 1e-14 * scale);
-          EXPECT_NEAR(w_main, w_full, 1e-14 * scale * scale / m.material.young_modulus);
-        } else {
-          ++handed_on;
-          for (int i = 0; i < 4; ++i) EXPECT_EQ(main[i], t4[i]);
-          EXPECT_EQ(w_main, -1.0);
+        const double w_sel = lsi::mpm::mohr_coulomb_return_selected(m, sel);
+        // The same operations in the same order on each route: equal to the last bit but for
+        // the compiler's contraction of multiply-adds (round-off of the stress scale).
+        const double scale = std::fabs(t[0]) + std::fabs(t[2]) + k.c;
+        for (int i = 0; i < 4; ++i) EXPECT_NEAR(sel[i], full[i], kRoundOffAbs + 1e-14 * scale);
+        EXPECT_NEAR(w_sel, w_full, 1e-14 * scale * scale / m.material.young_modulus);
+        // The route, from the return's own candidates.
+        const lsi::mpm::PrincipalTrial pt = lsi::mpm::principal_trial(t4.data());
+        const double f = lsi::mpm::yield_planes(m, pt.value[0], pt.value[2]);
+        const double tol = 1e-12 * lsi::mpm::return_scale(m, pt);
+        if (!(f > tol)) {
+          ++elastic;
+          continue;
         }
+        const lsi::mpm::FlowDirections D = lsi::mpm::flow_directions(m);
+        double r[3];
+        lsi::mpm::main_plane_return(m, pt.value, f, D, r);
+        const bool upper = r[1] > r[0];
+        if (lsi::mpm::ordered(r) && (r[0] + r[1] + r[2]) / 3.0 <= m.apex)
+          ++main_plane;
+        else if (!lsi::mpm::ordered(r) && lsi::mpm::edge_return(m, pt.value, f, upper, D, tol, r) &&
+                 (r[0] + r[1] + r[2]) / 3.0 <= m.apex)
+          ++(upper ? upper_edge : lower_edge);
+        else
+          ++apex;
       }
     }
-  EXPECT_GT(taken, 500);
-  EXPECT_GT(handed_on, 100);
+  std::printf(
+      "[measured] routes: elastic %d, main plane %d, upper edge %d, lower edge %d, apex %d\n",
+      elastic, main_plane, upper_edge, lower_edge, apex);
+  // Of the 7200 trials, each route takes a tenth or more (a fixed seed).
+  EXPECT_GT(elastic, 500);
+  EXPECT_GT(main_plane, 500);
+  EXPECT_GT(upper_edge, 500);
+  EXPECT_GT(lower_edge, 500);
+  EXPECT_GT(apex, 500);
 }
 
 TEST(JaumannRotate, RigidRotationInvariantsAndAngle) {

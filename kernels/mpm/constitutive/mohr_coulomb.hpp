@@ -7,6 +7,8 @@
 // Plasticity", 2008, ch. 8): the main plane; if the returned stresses leave the sextant, one of the
 // two edges (s1 = s2 or s2 = s3, two active planes); if that fails too, the apex
 // s1 = s2 = s3 = c cot(phi). Finally principal stresses above the tension cut-off are capped.
+// mohr_coulomb_return() takes these routes with branches (the device's and the scalar path);
+// mohr_coulomb_return_selected() computes them all and selects, for loops that vectorise.
 // Returns the plastic work density of the step, sigma : d eps_p (J/m^3).
 #pragma once
 #include "kernels/mpm/constitutive/material.hpp"
@@ -98,6 +100,44 @@ KOKKOS_FORCEINLINE_FUNCTION double returned_stress(const PreparedMaterial& pm,
   return work;
 }
 
+// The main plane's return of the trial principal values (f: their yield function > 0):
+// r = trial - dg D n_a with dg = f / A.
+KOKKOS_FORCEINLINE_FUNCTION void main_plane_return(const PreparedMaterial& pm,
+                                                   const double trial[3], const double f,
+                                                   const FlowDirections& D, double r[3]) {
+  const double Dna[3] = {D.up, D.ls, D.down};
+  const double dg = f * pm.inverse_main;
+  for (int i = 0; i < 3; ++i) r[i] = trial[i] - dg * Dna[i];
+}
+
+// The return to an edge (two active planes) of the trial principal values (f: the main
+// plane's yield function): s1 = s2 (planes a, b) where `upper`, else s2 = s3 (planes a, c).
+// Returns whether it holds: both plastic multipliers non-negative and the order of r kept
+// (within the tolerance tol). No branches.
+KOKKOS_FORCEINLINE_FUNCTION bool edge_return(const PreparedMaterial& pm, const double trial[3],
+                                             const double f, const bool upper,
+                                             const FlowDirections& D, const double tol,
+                                             double r[3]) {
+  // Its second plane through s2, s3 (upper) or s1, s2 (lower): the inputs selected, not the
+  // results, so that a loop over points keeps one computation (and vectorises).
+  const double p = upper ? trial[1] : trial[0], q = upper ? trial[2] : trial[1];
+  const double fb = yield_planes(pm, p, q);
+  const double A = pm.main_plane, B = upper ? pm.edge_upper : pm.edge_lower;
+  const double inv_det = upper ? pm.inverse_det_upper : pm.inverse_det_lower;
+  const double da = (A * f - B * fb) * inv_det, db = (A * fb - B * f) * inv_det;
+  const double Dna[3] = {D.up, D.ls, D.down};
+  // D n of the second plane: b (s1 = s2 side) for the upper edge, c for the lower.
+  const double Dn2[3] = {upper ? D.ls : D.up, upper ? D.up : D.down, upper ? D.down : D.ls};
+  for (int i = 0; i < 3; ++i) r[i] = trial[i] - da * Dna[i] - db * Dn2[i];
+  return (da >= 0.0) & (db >= 0.0) & (r[0] >= r[1] - tol) & (r[1] >= r[2] - tol);
+}
+
+// Whether returned principal values r stay ordered r1 >= r2 >= r3 (a main-plane return that
+// holds).
+KOKKOS_FORCEINLINE_FUNCTION bool ordered(const double r[3]) {
+  return (r[0] >= r[1]) & (r[1] >= r[2]);
+}
+
 // The material's constants of the return (A, B, the apex, the cap, 1/E and the reciprocals that
 // replace its divisions) are computed once per material (PreparedMaterial, material.hpp): on the
 // common path (a main-plane return) the function divides once, to write the stress back.
@@ -111,24 +151,10 @@ KOKKOS_INLINE_FUNCTION double mohr_coulomb_return(const PreparedMaterial& pm, do
   if (f > 1e-12 * scale) {
     plastic = true;
     const FlowDirections D = flow_directions(pm);
-    const double Dna[3] = {D.up, D.ls, D.down};
-    // Main plane: dg = f / A.
-    const double dg = f * pm.inverse_main;
-    for (int i = 0; i < 3; ++i) r[i] = trial[i] - dg * Dna[i];
-    bool ok = r[0] >= r[1] && r[1] >= r[2];
-    if (!ok) {
-      // Edge: s1 = s2 (planes a, b) if s2 came out above s1, else s2 = s3 (planes a, c).
-      const bool upper = r[1] > r[0];
-      const double fb =
-          upper ? yield_planes(pm, trial[1], trial[2]) : yield_planes(pm, trial[0], trial[1]);
-      const double A = pm.main_plane, B = upper ? pm.edge_upper : pm.edge_lower;
-      const double inv_det = upper ? pm.inverse_det_upper : pm.inverse_det_lower;
-      const double da = (A * f - B * fb) * inv_det, db = (A * fb - B * f) * inv_det;
-      // D n of the second plane: b (s1 = s2 side) for the upper edge, c for the lower.
-      const double Dn2[3] = {upper ? D.ls : D.up, upper ? D.up : D.down, upper ? D.down : D.ls};
-      for (int i = 0; i < 3; ++i) r[i] = trial[i] - da * Dna[i] - db * Dn2[i];
-      ok = da >= 0.0 && db >= 0.0 && r[0] >= r[1] - 1e-12 * scale && r[1] >= r[2] - 1e-12 * scale;
-    }
+    main_plane_return(pm, trial, f, D, r);
+    bool ok = ordered(r);
+    // Edge: s1 = s2 if s2 came out above s1, else s2 = s3.
+    if (!ok) ok = edge_return(pm, trial, f, r[1] > r[0], D, 1e-12 * scale, r);
     if (!ok || (r[0] + r[1] + r[2]) / 3.0 > pm.apex) r[0] = r[1] = r[2] = pm.apex;
   }
   plastic |= tension_cap(pm, r);
@@ -136,30 +162,34 @@ KOKKOS_INLINE_FUNCTION double mohr_coulomb_return(const PreparedMaterial& pm, do
   return returned_stress(pm, t, r, s);
 }
 
-// The return of mohr_coulomb_return() for the stresses that need no more than the main plane
-// and the tension cut-off, without branches, so that a loop over points vectorises (g2p.hpp).
-// Returns false, leaving s and work untouched, where the return needs an edge or the apex
-// (then mohr_coulomb_return() does it); otherwise returns true with the same stress and plastic
-// work density as mohr_coulomb_return() in s and work.
-KOKKOS_FORCEINLINE_FUNCTION bool mohr_coulomb_main_plane(const PreparedMaterial& pm, double s[4],
-                                                         double& work) {
+// mohr_coulomb_return() without branches, so that a loop over points vectorises (the host's
+// blocked G2P, stress_update.hpp): the main plane's and the edge's returns are both computed
+// and the one that holds selected (else the apex), then the tension cut-off. The same
+// operations as mohr_coulomb_return() on the route it takes, so the same stress and plastic
+// work density up to the compiler's contraction of multiply-adds.
+KOKKOS_FORCEINLINE_FUNCTION double mohr_coulomb_return_selected(const PreparedMaterial& pm,
+                                                                double s[4]) {
   const PrincipalTrial t = principal_trial(s);
-  const double f = yield_planes(pm, t.value[0], t.value[2]);
-  const bool yields = f > 1e-12 * return_scale(pm, t);
+  const double* const trial = t.value;
+  const double scale = return_scale(pm, t);
+  const double f = yield_planes(pm, trial[0], trial[2]);
+  const bool yields = f > 1e-12 * scale;
   const FlowDirections D = flow_directions(pm);
-  const double Dna[3] = {D.up, D.ls, D.down};
-  const double dg = yields ? f * pm.inverse_main : 0.0;
-  double r[3];
-  for (int i = 0; i < 3; ++i) r[i] = yields ? t.value[i] - dg * Dna[i] : t.value[i];
-  const bool main = (r[0] >= r[1]) & (r[1] >= r[2]) & !((r[0] + r[1] + r[2]) / 3.0 > pm.apex);
+  double main[3], edge[3], r[3];
+  main_plane_return(pm, trial, f, D, main);
+  const bool main_holds = ordered(main);
+  const bool edge_holds = edge_return(pm, trial, f, main[1] > main[0], D, 1e-12 * scale, edge);
+  for (int i = 0; i < 3; ++i) r[i] = main_holds ? main[i] : edge[i];
+  const bool apex = !(main_holds | edge_holds) | ((r[0] + r[1] + r[2]) / 3.0 > pm.apex);
+  // One selection a statement: GCC's if-conversion gave up on the nested one.
+  const bool to_apex = yields & apex, to_plane = yields & !apex;
+  for (int i = 0; i < 3; ++i) r[i] = to_plane ? r[i] : trial[i];
+  for (int i = 0; i < 3; ++i) r[i] = to_apex ? pm.apex : r[i];
   const bool plastic = tension_cap(pm, r) | yields;
   double returned[4] = {s[0], s[1], s[2], s[3]};
-  const double w = returned_stress(pm, t, r, returned);
-  const bool handled = !yields | main;
-  const bool write = handled & plastic;
-  for (int i = 0; i < 4; ++i) s[i] = write ? returned[i] : s[i];
-  work = write ? w : (handled ? 0.0 : work);
-  return handled;
+  const double work = returned_stress(pm, t, r, returned);
+  for (int i = 0; i < 4; ++i) s[i] = plastic ? returned[i] : s[i];
+  return plastic ? work : 0.0;
 }
 
 KOKKOS_INLINE_FUNCTION double mohr_coulomb_return(const Material& m, double s[4]) {

@@ -265,12 +265,12 @@ struct TwoPhaseG2PSums {
 //  2. the transfer (two_phase_g2p_point, reading those arrays);
 //  3. the mixture's volumetric rate (Pore) and the trial effective stress, and whether the point
 //     needs the return mapping;
-//  4. the return mappings, point by point, only where needed (branches: scalar);
+//  4. the return mappings where needed (block_return_mappings, stress_update.hpp);
 //  5. the rest of the stress update, the pore pressure and porosity and the next step's limits
 //     (Pore);
 //  6. with the bulk viscosity on, its pressure and share of the limits, point by point;
 //  7. the health check.
-// Loops 2, 3, 5 and 7 have no branches and no dependence between points: the compiler vectorises
+// Loops 2, 3, 5 and 7 (and 4 but for rate-dependent materials) have no branches and no dependence between points: the compiler vectorises
 // them over the points. The sums and extrema go through arrays and are reduced after the loops
 // in the order of the points (GCC vectorises no floating-point max or sum reduction).
 template <bool Apic, G2PStress Stress, bool Pore, class Grid, class MaterialOf>
@@ -423,8 +423,8 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_block(
 }  // namespace detail
 
 // Host spaces: each work item takes detail::kTwoPhaseG2PBlock consecutive points
-// (detail::two_phase_g2p_block, whose loops vectorise over the points; the Mohr-Coulomb return
-// and the bulk viscosity stay scalar). A device runs one point per thread. Both give the same
+// (detail::two_phase_g2p_block, whose loops vectorise over the points; the rate-dependent
+// return and the bulk viscosity stay scalar). A device runs one point per thread. Both give the same
 // results up to round-off.
 template <class ExecSpace, bool Ghosts, G2PStress Stress, bool Apic, class MemorySpace>
 TwoPhaseG2PReport two_phase_g2p_impl(
