@@ -270,9 +270,10 @@ struct TwoPhaseG2PSums {
 //     (Pore);
 //  6. with the bulk viscosity on, its pressure and share of the limits, point by point;
 //  7. the health check.
-// Loops 2, 3, 5 and 7 (and 4 but for rate-dependent materials) have no branches and no dependence between points: the compiler vectorises
-// them over the points. The sums and extrema go through arrays and are reduced after the loops
-// in the order of the points (GCC vectorises no floating-point max or sum reduction).
+// Loops 2 to 5 and 7 (4 but for rate-dependent materials) have no branches and no dependence
+// between points: the compiler vectorises them over the points. The sums and extrema go through
+// arrays and are reduced after the loops in the order of the points (GCC vectorises no
+// floating-point max or sum reduction).
 template <bool Apic, G2PStress Stress, bool Pore, class Grid, class MaterialOf>
 KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_block(
     const TwoPhasePointArrays a, const Grid& grid, const bool ghosts, const double* const vs,
@@ -424,8 +425,8 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_block(
 
 // Host spaces: each work item takes detail::kTwoPhaseG2PBlock consecutive points
 // (detail::two_phase_g2p_block, whose loops vectorise over the points; the rate-dependent
-// return and the bulk viscosity stay scalar). A device runs one point per thread. Both give the same
-// results up to round-off.
+// return and the bulk viscosity stay scalar). A device runs one point per thread. Both give the
+// same results up to round-off.
 template <class ExecSpace, bool Ghosts, G2PStress Stress, bool Apic, class MemorySpace>
 TwoPhaseG2PReport two_phase_g2p_impl(
     const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g, double dt,
