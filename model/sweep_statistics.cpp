@@ -64,22 +64,35 @@ json json_number(double v) {
   return v > 0 ? "inf" : "-inf";
 }
 
-json sweep_statistics(const Study& study, const SweepTable& table) {
+namespace {
+
+// sweep_statistics of `table`; `sortable`, when given, is the same table, whose output columns
+// may be sorted in place (sweep_statistics_sorting).
+json statistics_of(const Study& study, const SweepTable& table, SweepTable* const sortable) {
   json j;
   const std::size_t n = table.rows();
-  std::vector<std::size_t> ok;
-  sweeps::reserve_on_huge_pages(ok, n);
+  const auto is_ok = [&](std::size_t i) {
+    return table.status[i] == static_cast<std::int8_t>(SampleStatus::ok);
+  };
+  std::size_t ok_count = 0;
   std::map<std::string, std::size_t> failed;
   for (std::size_t i = 0; i < n; ++i) {
-    if (table.status[i] == static_cast<std::int8_t>(SampleStatus::ok))
-      ok.push_back(i);
+    if (is_ok(i))
+      ++ok_count;
     else
       ++failed[describe(static_cast<SampleStatus>(table.status[i]))];
+  }
+  const bool all_ok = ok_count == n;
+  std::vector<std::size_t> ok;  // the rows of the ok samples, where some failed
+  if (!all_ok) {
+    sweeps::reserve_on_huge_pages(ok, ok_count);
+    for (std::size_t i = 0; i < n; ++i)
+      if (is_ok(i)) ok.push_back(i);
   }
   j["design"] = design_name(study.design);
   j["samples_planned"] = study.samples;
   j["samples_done"] = n;
-  j["samples_ok"] = ok.size();
+  j["samples_ok"] = ok_count;
   j["samples_failed"] = failed;
   j["confidence"] = study.confidence;
   if (study.design != sweeps::Design::MonteCarlo)
@@ -92,16 +105,19 @@ json sweep_statistics(const Study& study, const SweepTable& table) {
   std::vector<json> column_stats(columns);
   std::vector<json> column_exceed(columns, json::array());
   std::vector<std::exception_ptr> column_error(columns);
-  // v and scratch: a thread's buffers, kept from column to column.
-  auto describe_column = [&](std::size_t c, std::vector<double>& v,
+  // copy and scratch: a thread's buffers, kept from column to column.
+  auto describe_column = [&](std::size_t c, std::vector<double>& copy,
                              std::vector<std::uint64_t>& scratch) {
     const std::string& column = table.output_columns[c];
-    v.clear();
-    sweeps::reserve_on_huge_pages(v, ok.size());
-    if (ok.size() == n) {
-      v.assign(table.outputs[c].begin(), table.outputs[c].end());
-    } else {
-      for (std::size_t i : ok) v.push_back(table.outputs[c][i]);
+    std::vector<double>& v = all_ok && sortable ? sortable->outputs[c] : copy;
+    if (&v == &copy) {
+      copy.clear();
+      sweeps::reserve_on_huge_pages(copy, ok_count);
+      if (all_ok) {
+        copy.assign(table.outputs[c].begin(), table.outputs[c].end());
+      } else {
+        for (std::size_t i : ok) copy.push_back(table.outputs[c][i]);
+      }
     }
     json& o = column_stats[c];
     o["count"] = v.size();
@@ -165,6 +181,16 @@ json sweep_statistics(const Study& study, const SweepTable& table) {
   j["outputs"] = outputs;
   j["exceedance"] = exceed;
   return j;
+}
+
+}  // namespace
+
+json sweep_statistics(const Study& study, const SweepTable& table) {
+  return statistics_of(study, table, nullptr);
+}
+
+json sweep_statistics_sorting(const Study& study, SweepTable& table) {
+  return statistics_of(study, table, &table);
 }
 
 std::string sweep_statistics_table(const json& s) {
