@@ -159,6 +159,14 @@ TYPED_TEST(MpmTwoPhaseKernels, AtomicAndBufferedP2GGiveTheSameGrid) {
   CollapsingColumn<Exec> c;
   TwoPhaseSolver<Exec> solver(c.grid, c.particles, {c.skeleton}, c.liquid, c.walls, c.settings);
   for (int i = 0; i < 20; ++i) ASSERT_EQ(solver.step(), Status::Running);
+  // A surface load on every point (the column has none), a few newtons per metre of thickness
+  // like the points' weight, so that its lanes of the mixture force are compared too.
+  auto traction = Kokkos::create_mirror_view(c.particles.traction);
+  for (int q = 0; q < c.particles.count; ++q) {
+    traction(q, 0) = 3.0 * (q % 7) - 9.0;
+    traction(q, 1) = -2.0 * (q % 5);
+  }
+  Kokkos::deep_copy(c.particles.traction, traction);
 
   TwoPhaseGrid<Mem> buffered_grid(c.lo, c.hi, c.grid.dx());
   TwoPhaseScatter<Exec, false> buffered(buffered_grid.solid);
