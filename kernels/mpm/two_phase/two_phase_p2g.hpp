@@ -70,8 +70,9 @@ struct MirrorWalls {
 namespace detail {
 
 // The 3 x 3 x node_field::Count values point q adds to the nodes of its stencil (sx, sy, which it
-// returns): add(b, a, field, value) for node (sx.base + a, sy.base + b). Shared by the
-// point-by-point scatter (two_phase_p2g_point) and the host's blocked one (two_phase_p2g_block).
+// returns): add(b, a, field, value) for node (sx.base + a, sy.base + b). The point-by-point
+// scatter's (two_phase_p2g_point); the host's blocked one (two_phase_p2g_block) gives the same
+// sums up to round-off.
 // `Points`: TwoPhaseParticles, or TwoPhasePointArrays on the host.
 template <class Points, class Add>
 KOKKOS_FORCEINLINE_FUNCTION void two_phase_point_contributions(const Points& p, const int q,
@@ -266,15 +267,15 @@ inline void two_phase_p2g_block(const TwoPhasePointArrays p, const int q0, const
   typedef double Oct __attribute__((vector_size(64), aligned(8)));
   typedef double Quad __attribute__((vector_size(32), aligned(8)));
   // Loop 1's results, B points per row: the factors of A (mass, m v, external mixture force),
-  // Bv (m C_.y), Cv (-V sigma_xy, -V sigma_yy total), D (m C_.x), E (-V sigma_xx, -V sigma_xy
-  // total), the liquid's gravity force, the drag coefficient and V n p.
+  // Bv (m C_.y), Cv (-V sigma_xy, -V sigma_yy total), D (m C_.x), E (-V sigma_xx total, and
+  // -V sigma_xy again from Cv's row), the liquid's gravity force, the drag coefficient and V n p.
   // clang-format off
   enum : int {
     kMassS, kMomSx, kMomSy, kForceX, kForceY, kMassL, kMomLx, kMomLy,  // A
     kAffSxy, kAffSyy, kAffLxy, kAffLyy,                                 // Bv
     kStressXy, kStressYy,                                               // Cv
     kAffSxx, kAffSyx, kAffLxx, kAffLyx,                                 // D
-    kStressXx, kStressYx,                                               // E
+    kStressXx,                                                          // E
     kGravityLx, kGravityLy, kDrag, kVnp,
     kFactors
   };
@@ -322,7 +323,6 @@ inline void two_phase_p2g_block(const TwoPhasePointArrays p, const int q0, const
     f[kAffLxx][k] = mL * p.liquid_affine(q, 0, 0);
     f[kAffLyx][k] = mL * p.liquid_affine(q, 1, 0);
     f[kStressXx][k] = -Vs[0];
-    f[kStressYx][k] = -Vs[2];
     f[kGravityLx][k] = mL * gx;
     f[kGravityLy][k] = mL * gy;
     f[kDrag][k] = V * n * n * rhoLg / p.conductivity(q);
@@ -346,7 +346,7 @@ inline void two_phase_p2g_block(const TwoPhasePointArrays p, const int q0, const
                    f[kForceY][k], f[kMassL][k], f[kMomLx][k], f[kMomLy][k]};
     const Oct Bv = {0.0, f[kAffSxy][k], f[kAffSyy][k], 0.0, 0.0, 0.0, f[kAffLxy][k], f[kAffLyy][k]};
     const Oct Cv = {0.0, 0.0, 0.0, f[kStressXy][k], f[kStressYy][k], 0.0, 0.0, 0.0};
-    const Oct DE = {0.0, f[kAffSxx][k], f[kAffSyx][k], f[kStressXx][k], f[kStressYx][k],
+    const Oct DE = {0.0, f[kAffSxx][k], f[kAffSyx][k], f[kStressXx][k], f[kStressXy][k],
                     0.0, f[kAffLxx][k], f[kAffLyx][k]};
     const Quad Ah = {f[kGravityLx][k], f[kGravityLy][k], f[kDrag][k], 0.0};
     const double Vnp = f[kVnp][k];
