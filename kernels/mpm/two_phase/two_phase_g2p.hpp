@@ -33,6 +33,7 @@
 #include "kernels/mpm/boundary.hpp"
 #include "kernels/mpm/g2p.hpp"
 #include "kernels/mpm/host_transpose.hpp"
+#include "kernels/mpm/prefetch_points.hpp"
 #include "kernels/mpm/shape_function.hpp"
 #include "kernels/mpm/stress_update.hpp"
 #include "kernels/mpm/two_phase/pore_pressure_update.hpp"
@@ -251,6 +252,54 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_health(const Points& p, const int
   outside += (px > dx) & (px < xmax) & (py > dx) & (py < ymax) ? 0 : 1;
 }
 
+// Asks the caches for the point data that two_phase_g2p_block reads or writes for the points
+// [q0, q1) (prefetch_points.hpp): up to 29 streams, more than the hardware follows. The block
+// calls it for the next block before its first loop.
+template <bool WithStress, bool Plastic, bool Pore>
+KOKKOS_FORCEINLINE_FUNCTION void prefetch_block_points(const TwoPhasePointArrays& a, const int q0,
+                                                       const int q1) {
+  using lsi::mpm::detail::point_stream;
+  using lsi::mpm::detail::prefetch_streams;
+  const PointArrays& s = a.solid;
+  const lsi::mpm::detail::PointStream transfer[] = {point_stream(s.position.c[0]),
+                                                    point_stream(s.position.c[1]),
+                                                    point_stream(s.velocity.c[0]),
+                                                    point_stream(s.velocity.c[1]),
+                                                    point_stream(s.affine.c[0][0]),
+                                                    point_stream(s.affine.c[0][1]),
+                                                    point_stream(s.affine.c[1][0]),
+                                                    point_stream(s.affine.c[1][1]),
+                                                    point_stream(s.velocity_gradient.c[0][0]),
+                                                    point_stream(s.velocity_gradient.c[0][1]),
+                                                    point_stream(s.velocity_gradient.c[1][0]),
+                                                    point_stream(s.velocity_gradient.c[1][1]),
+                                                    point_stream<double, 2>(a.liquid_velocity.c),
+                                                    point_stream<double, 4>(a.liquid_affine.c),
+                                                    point_stream(a.liquid_divergence.c),
+                                                    point_stream<double, 2>(a.traction.c),
+                                                    point_stream(a.pore_pressure.c)};
+  prefetch_streams<2>(transfer, q0, q1);
+  if constexpr (WithStress) {
+    const lsi::mpm::detail::PointStream stress[] = {
+        point_stream(s.stress.c[0]), point_stream(s.stress.c[1]),
+        point_stream(s.stress.c[2]), point_stream(s.stress.c[3]),
+        point_stream(s.volume.c),    point_stream(s.deviatoric_strain.c),
+        point_stream(s.material.c)};
+    prefetch_streams<2>(stress, q0, q1);
+  }
+  if constexpr (Plastic) {
+    const lsi::mpm::detail::PointStream plastic[] = {point_stream(s.volume0.c),
+                                                     point_stream(s.plastic_work.c)};
+    prefetch_streams<2>(plastic, q0, q1);
+  }
+  if constexpr (Pore) {
+    const lsi::mpm::detail::PointStream pore[] = {point_stream(a.volumetric_rate.c),
+                                                  point_stream(a.porosity.c),
+                                                  point_stream(a.conductivity.c)};
+    prefetch_streams<2>(pore, q0, q1);
+  }
+}
+
 // What a two-phase G2P reduces over its points (TwoPhaseG2PReport before the square root of the
 // wave speed).
 struct TwoPhaseG2PSums {
@@ -259,7 +308,8 @@ struct TwoPhaseG2PSums {
 };
 
 // A block of points [q0, q1) of the host's two-phase G2P, in loops over the block's points (as
-// the single-phase g2p_block, g2p.hpp):
+// the single-phase g2p_block, g2p.hpp), after asking the caches for the next block's point data
+// (prefetch_block_points):
 //  1. the grids' velocities at each point's 3 x 3 stencil into the block's arrays (without
 //     ghosts, in registers 8 points at a time where host_transpose.hpp is compiled in);
 //  2. the transfer (two_phase_g2p_point, reading those arrays);
@@ -287,6 +337,7 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_block(
   constexpr int B = kTwoPhaseG2PBlock;
   const int count = q1 - q0;
   alignas(64) double gs[3][6][B], gso[3][6][B], gl[3][6][B], glo[Apic ? 1 : 3][6][B];
+  prefetch_block_points<with_stress, plastic, Pore>(a, q1, q1 + count);
   int k0 = 0;
 #if LSI_MPM_HOST_TRANSPOSE
   // Without ghosts, 8 points at a time: each stencil row's 6 doubles of the 8 points transposed

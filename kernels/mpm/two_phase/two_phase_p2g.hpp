@@ -31,6 +31,7 @@
 
 #include "kernels/mpm/boundary.hpp"
 #include "kernels/mpm/p2g.hpp"
+#include "kernels/mpm/prefetch_points.hpp"
 #include "kernels/mpm/shape_function.hpp"
 #include "kernels/mpm/two_phase/two_phase_grid.hpp"
 #include "kernels/mpm/two_phase/two_phase_particles.hpp"
@@ -213,31 +214,6 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_p2g_point(
   if (mw.any) two_phase_p2g_mirrors<Atomic>(p, q, buf, tile, ox, oy, dx, inv_dx, gx, gy, mw);
 }
 
-// A stream of point data: `per_point` doubles per point from `values`.
-struct PointStream {
-  const double* values;
-  int per_point;
-};
-
-// Asks the caches for points [q0, q1) of each stream. two_phase_p2g_block calls it for the next
-// block between its two loops: the first loop reads 21 streams of point data with little
-// arithmetic between the loads and, on its own, waits for memory (the hardware's prefetchers do
-// not follow that many streams); prefetched, the loads overlap the second loop's arithmetic. (The
-// dry P2G's first loop, 13 streams, measured no gain from it.) Addresses past the arrays' ends
-// are harmless: a prefetch never faults. Always inlined, with the loop written here: GCC takes a
-// function that only prefetches for one without side effects ("looping pure") and drops the
-// calls to it.
-template <int N>
-__attribute__((always_inline)) inline void prefetch_streams(const PointStream (&streams)[N],
-                                                            const int q0, const int q1) {
-  for (const PointStream& stream : streams) {
-    const char* from =
-        reinterpret_cast<const char*>(stream.values + static_cast<long>(stream.per_point) * q0);
-    const int bytes = static_cast<int>(sizeof(double)) * stream.per_point * (q1 - q0);
-    for (int line = 0; line < bytes; line += 64) __builtin_prefetch(from + line);
-  }
-}
-
 // The host's scatter of points [q0, q1) (plain additions into one buffer), in two loops:
 //  1. per point, the stencil's weights and the factors of its contributions, in a loop with no
 //     branches and no dependence between the points, which the compiler vectorises over the
@@ -251,8 +227,10 @@ __attribute__((always_inline)) inline void prefetch_streams(const PointStream (&
 //     mixture force lanes, where DE holds the affine factors m C_.x and the stress terms of
 //     d/dx respectively: their lanes do not overlap, so one product serves both.
 //     Then the point's mirror images (the order of two_phase_p2g_point).
-// Between the two, the next block's point data is prefetched (prefetch_streams). The sums of
-// two_phase_point_contributions up to round-off. Widens i0..i1 x j0..j1 by the stencils.
+// Between the two, the next block's point data is prefetched (prefetch_points.hpp): loop 1 reads
+// 21 streams with little arithmetic between the loads and, on its own, waits for memory;
+// prefetched, the loads overlap loop 2's arithmetic (the dry P2G's first loop, 13 streams,
+// measured no gain from it). The sums of two_phase_point_contributions up to round-off. Widens i0..i1 x j0..j1 by the stencils.
 inline void two_phase_p2g_block(const TwoPhasePointArrays p, const int q0, const int q1,
                                 double* const buf, const int nx, const double ox, const double oy,
                                 const double dx, const double inv_dx, const double gx,
@@ -332,15 +310,29 @@ inline void two_phase_p2g_block(const TwoPhasePointArrays p, const int q0, const
   const Oct momentum_lanes = {0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 1.0};
   const Oct force_lanes = {0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0};
   const lsi::mpm::detail::NodeTile grid{0, 0, nx};
-  const PointStream streams[] = {
-      {s.position.c[0], 1},     {s.position.c[1], 1},      {s.velocity.c[0], 1},
-      {s.velocity.c[1], 1},     {s.affine.c[0][0], 1},     {s.affine.c[0][1], 1},
-      {s.affine.c[1][0], 1},    {s.affine.c[1][1], 1},     {s.stress.c[0], 1},
-      {s.stress.c[1], 1},       {s.stress.c[2], 1},        {s.mass.c, 1},
-      {s.volume.c, 1},          {p.liquid_mass.c, 1},      {p.porosity.c, 1},
-      {p.pore_pressure.c, 1},   {p.viscous_pressure.c, 1}, {p.conductivity.c, 1},
-      {p.liquid_velocity.c, 2}, {p.traction.c, 2},         {p.liquid_affine.c, 4}};
-  prefetch_streams(streams, q1, q1 + (q1 - q0));
+  using lsi::mpm::detail::point_stream;
+  const lsi::mpm::detail::PointStream streams[] = {point_stream(s.position.c[0]),
+                                                   point_stream(s.position.c[1]),
+                                                   point_stream(s.velocity.c[0]),
+                                                   point_stream(s.velocity.c[1]),
+                                                   point_stream(s.affine.c[0][0]),
+                                                   point_stream(s.affine.c[0][1]),
+                                                   point_stream(s.affine.c[1][0]),
+                                                   point_stream(s.affine.c[1][1]),
+                                                   point_stream(s.stress.c[0]),
+                                                   point_stream(s.stress.c[1]),
+                                                   point_stream(s.stress.c[2]),
+                                                   point_stream(s.mass.c),
+                                                   point_stream(s.volume.c),
+                                                   point_stream(p.liquid_mass.c),
+                                                   point_stream(p.porosity.c),
+                                                   point_stream(p.pore_pressure.c),
+                                                   point_stream(p.viscous_pressure.c),
+                                                   point_stream(p.conductivity.c),
+                                                   point_stream<double, 2>(p.liquid_velocity.c),
+                                                   point_stream<double, 2>(p.traction.c),
+                                                   point_stream<double, 4>(p.liquid_affine.c)};
+  lsi::mpm::detail::prefetch_streams(streams, q1, q1 + (q1 - q0));
   for (int k = 0; k < q1 - q0; ++k) {
     const Oct A = {f[kMassS][k],  f[kMomSx][k], f[kMomSy][k], f[kForceX][k],
                    f[kForceY][k], f[kMassL][k], f[kMomLx][k], f[kMomLy][k]};
