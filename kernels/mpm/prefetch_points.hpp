@@ -31,8 +31,8 @@ KOKKOS_FORCEINLINE_FUNCTION void prefetch_streams(const PointStream (&streams)[N
                                                   const int q1) {
 #if defined(__GNUC__) && !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
   for (const PointStream& stream : streams) {
-    const char* from = static_cast<const char*>(stream.values) +
-                       static_cast<long>(stream.bytes_per_point) * q0;
+    const char* from =
+        static_cast<const char*>(stream.values) + static_cast<long>(stream.bytes_per_point) * q0;
     const int bytes = stream.bytes_per_point * (q1 - q0);
     for (int line = 0; line < bytes; line += 64) __builtin_prefetch(from + line, 0, Locality);
   }
