@@ -12,6 +12,10 @@
 //   BM_chunk_write / BM_chunk_read  write_sweep_file / read_sweep_file (model/sweep_table.hpp) of a
 //                              2^20-row table (5 inputs, 4 output columns) in /tmp, fsync included,
 //                              stored plain as the runner stores its chunks (io/sweep_file.hpp)
+//   BM_table_stream            the same table written as `lsi sweep` writes its result file
+//                              (io/sweep_table_stream.hpp): its chunks compressed on the threads
+//                              (io/compressed_chunks.hpp) and written, then the file finished;
+//                              counter stored_fraction = the file's bytes / the table's
 // items_per_second = samples per second; per-sample cost = 1 / items_per_second.
 // Run (docs/notes/performance.md, "Sweeps", has the numbers and the machine):
 //   OMP_NUM_THREADS=2 OMP_PROC_BIND=false OMP_WAIT_POLICY=passive build/bench/bench_sweep
@@ -34,6 +38,7 @@
 #include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 #include "io/study_parser.hpp"
 #include "io/sweep_file.hpp"
+#include "io/sweep_table_stream.hpp"
 
 namespace {
 using namespace lsi;
@@ -238,7 +243,8 @@ BENCHMARK(BM_sweep_overhead)
     ->Unit(benchmark::kMillisecond)
     ->UseManualTime();
 
-// A chunk of kBatch rows as the sweep writes it: 5 inputs, 4 output columns, all samples ok.
+// A chunk of kBatch rows as the sweep writes it: 5 inputs, the study's 4 output columns, all
+// samples ok.
 SweepTable chunk_table() {
   const Study& s = study();
   std::vector<std::string> paths;
@@ -258,10 +264,18 @@ SweepTable chunk_table() {
     t.inputs[d].resize(kBatch);
     for (std::uint64_t i = 0; i < kBatch; ++i) t.inputs[d][i] = x(i, d);
   }
-  for (std::size_t k = 0; k < t.outputs.size(); ++k) {
-    t.outputs[k].resize(kBatch);
-    for (std::uint64_t i = 0; i < kBatch; ++i) t.outputs[k][i] = y(i, k % y.extent(1));
-  }
+  // The study's output columns ("<method>/<output>", methods outermost), each from its column of
+  // the kernel's outputs (the empirical model's first), as app/sweep_runner.cpp copies them.
+  std::size_t k = 0;
+  for (const auto& m : s.methods)
+    for (const auto& o : s.outputs) {
+      int out = 0;
+      while (sweeps::closed_form_output_name[out] != o) ++out;
+      const int column = (m == "analytical" ? sweeps::closed_form_output_count : 0) + out;
+      t.outputs[k].resize(kBatch);
+      for (std::uint64_t i = 0; i < kBatch; ++i) t.outputs[k][i] = y(i, column);
+      ++k;
+    }
   return t;
 }
 
@@ -306,6 +320,31 @@ void BM_chunk_read(benchmark::State& state) {
       state.iterations() * kBatch * (8 + 1 + 4 + 8 * (t.inputs.size() + t.outputs.size()))));
 }
 BENCHMARK(BM_chunk_read)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_table_stream(benchmark::State& state) {
+  const SweepTable t = chunk_table();
+  const SweepHeader h = chunk_header();
+  const std::string path = chunk_path();
+  const std::uint64_t chunk_rows = SweepTableStream::chunk_rows_for(t.inputs.size(), kBatch);
+  for (auto _ : state) {
+    SweepTableStream stream(path, t.input_paths, t.output_columns, kBatch, chunk_rows);
+    stream.append(t);
+    stream.finish(h, {}, {}, nullptr);
+  }
+  const double raw = double(kBatch * (8 + 1 + 4 + 8 * (t.inputs.size() + t.outputs.size())));
+  FILE* f = std::fopen(path.c_str(), "rb");
+  double stored = 0.0;
+  if (f != nullptr) {
+    std::fseek(f, 0, SEEK_END);
+    stored = double(std::ftell(f));
+    std::fclose(f);
+  }
+  std::remove(path.c_str());
+  state.counters["stored_fraction"] = stored / raw;
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
+  state.SetBytesProcessed(static_cast<std::int64_t>(double(state.iterations()) * raw));
+}
+BENCHMARK(BM_table_stream)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -105,12 +105,17 @@ def group_sweep(build, repetitions):
     with tempfile.TemporaryDirectory(prefix="lsi-performance-") as tmp:
         for _ in range(repetitions):
             kernel_runs.append(benchmark(
-                build, "bench_sweep", "BM_sampler|BM_sweep_kernel/methods:3|BM_models_only/methods:3"))
+                build, "bench_sweep",
+                "BM_sampler|BM_sweep_kernel/methods:3|BM_models_only/methods:3|BM_table_stream"))
             sweep_runs.append(sweep_once(build, tmp))
     k = medians(kernel_runs, rate)
     sampler = next(v for n, v in k.items() if n.startswith("BM_sampler"))
     kernel = next(v for n, v in k.items() if n.startswith("BM_sweep_kernel"))
     models = next(v for n, v in k.items() if n.startswith("BM_models_only"))
+    table_write = next(v for n, v in k.items() if n.startswith("BM_table_stream"))
+    stored = statistics.median(
+        next(v for n, v in r.items() if n.startswith("BM_table_stream"))["stored_fraction"]
+        for r in kernel_runs)
     samples = sweep_runs[0]["samples_done"]
     wall = statistics.median(r["wall_seconds"] for r in sweep_runs)
     stage = {s: statistics.median(r["seconds"][s] for r in sweep_runs)
@@ -134,6 +139,8 @@ def group_sweep(build, repetitions):
          "the sampler alone + the models alone"),
         ("sampler alone, samples/s", sampler, None, ""),
         ("both models alone, samples/s", models, None, ""),
+        ("result table written compressed (2^20 rows; the file %.1f %% of the table's bytes), "
+         "samples/s" % (100.0 * stored), table_write, None, ""),
     ]
     return rows, "sweep", "bench_sweep, lsi sweep " + STUDY
 

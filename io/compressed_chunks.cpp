@@ -55,11 +55,16 @@ void shuffle(const unsigned char* rows, std::size_t n, std::size_t count, std::s
   }
 }
 
-// Whether n bytes look random: the order-0 entropy of every fourth byte (from its histogram) is
-// above 7.5 bits, where Huffman coding would save at most 6 % of their size and costs more time
-// than the rest of the chunk's compression. Random bytes read about 7.8 bits on a sample of a
-// thousand; the sign and exponent bytes of a column of numbers, which come in runs, far less.
-bool looks_random(const unsigned char* bytes, std::size_t n) {
+// How a byte plane of a floating-point column is coded, from the order-0 entropy h of every
+// fourth byte (its histogram): stored (deflate level 0) above 7.5 bits, where Huffman coding
+// would save at most 6 % of its size and costs more time than the rest of the chunk's
+// compression (random bytes read about 7.8 bits on a sample of a thousand); Huffman codes alone
+// above 4 bits, where runs are rare, so that deflate does not look for them byte after byte;
+// run-length coded below (the sign and exponent bytes of a column of numbers, which come in
+// runs).
+enum class PlaneCoding : char { stored, huffman, runs };
+
+PlaneCoding plane_coding(const unsigned char* bytes, std::size_t n) {
   constexpr std::size_t stride = 4;
   std::uint32_t count[256] = {};
   std::size_t sampled = 0;
@@ -71,7 +76,7 @@ bool looks_random(const unsigned char* bytes, std::size_t n) {
       const double p = c * inverse;
       h -= p * std::log2(p);
     }
-  return h > 7.5;
+  return h > 7.5 ? PlaneCoding::stored : h > 4.0 ? PlaneCoding::huffman : PlaneCoding::runs;
 }
 
 // One thread's compressor: its buffers and zlib streams (one per strategy), kept from chunk to
@@ -119,18 +124,19 @@ class ChunkCompressor {
       if (deflate(&s.z, Z_FINISH) != Z_STREAM_END)
         throw std::runtime_error("zlib could not compress a chunk");
     } else {
-      // Byte planes in runs of the same treatment: stored (level 0) where the bytes look random,
-      // run-length coded at the dataset's level elsewhere; one deflate stream.
+      // Byte planes in runs of the same coding (plane_coding): stored (level 0), Huffman codes
+      // alone, or run-length coded, at the dataset's level; one deflate stream.
       const std::size_t planes = k.element_size;
-      store_.resize(planes);
+      coding_.resize(planes);
       for (std::size_t j = 0; j < planes; ++j)
-        store_[j] = looks_random(plain_.data() + j * count, count);
+        coding_[j] = plane_coding(plain_.data() + j * count, count);
       std::size_t j = 0;
       while (j < planes) {
-        const bool store = store_[j];
+        const PlaneCoding coding = coding_[j];
         std::size_t end = j + 1;
-        while (end < planes && store_[end] == store) ++end;
-        if (deflateParams(&s.z, store ? 0 : level_, Z_RLE) != Z_OK)
+        while (end < planes && coding_[end] == coding) ++end;
+        const int strategy = coding == PlaneCoding::huffman ? Z_HUFFMAN_ONLY : Z_RLE;
+        if (deflateParams(&s.z, coding == PlaneCoding::stored ? 0 : level_, strategy) != Z_OK)
           throw std::runtime_error("zlib could not set a chunk's compression");
         s.z.next_in = plain_.data() + j * count;
         s.z.avail_in = static_cast<uInt>((end - j) * count);
@@ -152,7 +158,7 @@ class ChunkCompressor {
   int level_;
   Stream streams_[2];
   std::vector<unsigned char> plain_, deflated_;
-  std::vector<char> store_;  // whether each byte plane of the chunk is stored
+  std::vector<PlaneCoding> coding_;  // how each byte plane of the chunk is coded
 };
 
 }  // namespace
