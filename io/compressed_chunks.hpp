@@ -30,9 +30,10 @@ struct ChunkRows {
 // (Z_RLE, at `level`) finds; the planes between, of few values but no runs, take Huffman codes
 // alone (Z_HUFFMAN_ONLY), and the low mantissa bytes, which look random, are stored (deflate
 // level 0): Huffman coding would take most of the time of writing a large table and save
-// nothing. The format leaves these choices to the writer: any HDF5 reader inflates the stream. The threads' zlib streams and buffers and the compressed bytes are kept from call to
-// call: a table of millions of rows is thousands of chunks, and memory allocated anew for each
-// costs a page fault per 4 KiB.
+// nothing. The format leaves these choices to the writer: any HDF5 reader inflates the stream.
+// The threads' zlib streams and buffers and the compressed bytes are kept from call to call: a
+// table of millions of rows is thousands of chunks, and memory allocated anew for each costs a
+// page fault per 4 KiB.
 class ChunkCompression {
  public:
   explicit ChunkCompression(int level);
