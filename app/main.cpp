@@ -162,7 +162,7 @@ int main(int argc, char** argv) {
   // loads, before main, so they are set here and the program restarts itself once; a user's own
   // setting (e.g. OMP_WAIT_POLICY=active on a dedicated machine) is kept.
   if (lsi::set_openmp_wait_defaults())
-    execv("/proc/self/exe", argv);  // returns only on failure: then run as we are
+    lsi::restart_program("/proc/self/exe", argv);  // returns only on failure: then run as we are
 #endif
   lsi::set_command_line(argc, argv);  // stored in every result file
   CLI::App app{

@@ -271,7 +271,7 @@ int main(int argc, char** argv) {
   if (lsi::set_openmp_wait_defaults()) {
     std::error_code ec;
     const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-    execv(ec ? "/proc/self/exe" : self.c_str(), argv);  // returns only on failure: run as we are
+    lsi::restart_program(ec ? "/proc/self/exe" : self.c_str(), argv);  // returns on failure only
   }
 #endif
   MPI_Init(&argc, &argv);

@@ -5,6 +5,15 @@
 // On a dedicated machine GOMP_SPINCOUNT=1000 (or OMP_WAIT_POLICY=active) is faster still.
 #pragma once
 #include <cstdlib>
+#include <vector>
+
+#if defined(__linux__)
+#include <sched.h>
+#include <unistd.h>
+#endif
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 namespace lsi {
 
@@ -17,5 +26,34 @@ inline bool set_openmp_wait_defaults() {
   if (!std::getenv("GOMP_SPINCOUNT")) setenv("GOMP_SPINCOUNT", "300", 1);
   return true;
 }
+
+#if defined(__linux__)
+// Restarts the program (execv of `path` with `argv`), in the environment as it is now. With a
+// binding (OMP_PROC_BIND, OMP_PLACES) the OpenMP runtime binds the program's first thread to the
+// first place when it loads, and a program started by execv inherits that binding: its runtime
+// would make its places of that one CPU and run every thread there. So the thread first gets
+// back every CPU of the places (made from the CPUs the program was started with). Returns only
+// when execv fails, with the binding as it was.
+inline void restart_program(const char* path, char** argv) {
+#if defined(_OPENMP)
+  cpu_set_t bound;
+  const bool known = sched_getaffinity(0, sizeof bound, &bound) == 0;
+  if (known) {
+    cpu_set_t all = bound;
+    for (int p = 0; p < omp_get_num_places(); ++p) {
+      std::vector<int> ids(static_cast<std::size_t>(omp_get_place_num_procs(p)));
+      omp_get_place_proc_ids(p, ids.data());
+      for (const int id : ids)
+        if (id >= 0 && id < CPU_SETSIZE) CPU_SET(id, &all);
+    }
+    (void)sched_setaffinity(0, sizeof all, &all);
+  }
+#endif
+  execv(path, argv);
+#if defined(_OPENMP)
+  if (known) (void)sched_setaffinity(0, sizeof bound, &bound);
+#endif
+}
+#endif
 
 }  // namespace lsi

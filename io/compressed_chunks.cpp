@@ -7,7 +7,6 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <memory>
@@ -17,18 +16,10 @@
 #include <vector>
 
 #include "io/hdf5_io.hpp"
+#include "model/host_threads.hpp"
 
 namespace lsi::hdf5 {
 namespace {
-
-std::size_t compression_threads() {
-  std::size_t n = std::max(1u, std::thread::hardware_concurrency());
-  if (const char* env = std::getenv("OMP_NUM_THREADS")) {
-    const long k = std::strtol(env, nullptr, 10);
-    if (k > 0) n = static_cast<std::size_t>(k);
-  }
-  return n;
-}
 
 // Byte j of element i to j * count + i (HDF5's shuffle filter), for the first n elements.
 template <std::size_t E>
@@ -196,7 +187,7 @@ void ChunkCompression::compress_each(
   if (out_.size() < n) out_.resize(n);
   for (std::size_t c = n; c < out_.size(); ++c) out_[c].clear();
   if (n == 0) return;
-  const std::size_t threads = std::min(compression_threads(), n);
+  const std::size_t threads = std::min(host_thread_count(), n);
   auto& compressors = threads_->compressors;
   while (compressors.size() < threads)
     compressors.push_back(std::make_unique<ChunkCompressor>(level_));
@@ -222,32 +213,32 @@ void ChunkCompression::compress_each(
     }
     return true;
   };
-  std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < threads; ++t)
-    pool.emplace_back([&compress_one, t] {
+  // The calling thread (t = 0) hands over each chunk as soon as it and those before it are
+  // compressed, and compresses when none is ready; the others compress.
+  std::exception_ptr failure;
+  on_host_threads(threads, [&](std::size_t t) {
+    if (t != 0) {
       while (compress_one(t)) {
       }
-    });
-  // This thread hands over each chunk as soon as it and those before it are compressed, and
-  // compresses when none is ready.
-  std::exception_ptr failure;
-  try {
-    for (std::size_t written = 0; written < n;) {
-      const int s = state[written].load(std::memory_order_acquire);
-      if (s == 1) {
-        ready(written, out_[written]);
-        ++written;
-      } else if (s == 2) {
-        break;
-      } else if (!compress_one(0)) {
-        std::this_thread::yield();  // the chunk is another thread's, still being compressed
-      }
+      return;
     }
-  } catch (...) {
-    failure = std::current_exception();
-  }
-  stop = true;
-  for (auto& th : pool) th.join();
+    try {
+      for (std::size_t written = 0; written < n;) {
+        const int s = state[written].load(std::memory_order_acquire);
+        if (s == 1) {
+          ready(written, out_[written]);
+          ++written;
+        } else if (s == 2) {
+          break;
+        } else if (!compress_one(0)) {
+          std::this_thread::yield();  // the chunk is another thread's, still being compressed
+        }
+      }
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    stop = true;
+  });
   if (failure) std::rethrow_exception(failure);
   for (const auto& e : errors)
     if (!e.empty()) throw std::runtime_error(e);
@@ -269,7 +260,7 @@ bool write_compressed_chunks(hid_t dataset, hid_t dcpl, const void* data, std::s
   const bool floating = floating_type(type);
   // Batches of a few chunks per thread: compressed in parallel, then written in order, so that
   // only a batch of compressed chunks is held at a time.
-  const std::size_t batch = 8 * compression_threads();
+  const std::size_t batch = 8 * host_thread_count();
   ChunkCompression compression(level);
   for (std::size_t first = 0; first < chunks; first += batch) {
     const std::size_t last = std::min(chunks, first + batch);

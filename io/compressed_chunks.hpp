@@ -23,8 +23,8 @@ struct ChunkRows {
   bool floating;
 };
 
-// Compresses chunks as HDF5's shuffle + deflate pipeline stores them, on several threads
-// (OMP_NUM_THREADS when set, else the hardware's). Integer chunks are deflated at `level`.
+// Compresses chunks as HDF5's shuffle + deflate pipeline stores them, on the host's threads
+// (model/host_threads.hpp). Integer chunks are deflated at `level`.
 // Floating-point ones are deflated byte plane by byte plane, in one deflate stream: after the
 // shuffle their sign and exponent bytes come in long runs, which zlib's run-length strategy
 // (Z_RLE, at `level`) finds; the planes between, of few values but no runs, take Huffman codes
@@ -68,7 +68,7 @@ int shuffle_deflate_level(hid_t creation_properties);
 // `element_size` bytes, `rows` rows of `row_elements` elements) into `dataset`, created with
 // compressed_table_properties (hdf5_io.hpp). Returns false, having written nothing, when the
 // dataset is not chunked along its rows with shuffle + deflate and nothing else (the caller then
-// writes it with H5Dwrite). Threads: OMP_NUM_THREADS when set, else the hardware's.
+// writes it with H5Dwrite). Threads: the host's (model/host_threads.hpp).
 bool write_compressed_chunks(hid_t dataset, hid_t creation_properties, const void* data,
                              std::size_t rows, std::size_t row_elements, std::size_t element_size);
 

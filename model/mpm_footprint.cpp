@@ -5,9 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <thread>
 
+#include "model/host_threads.hpp"
 #include "model/input_error.hpp"
 #include "model/messages.hpp"
 #include "model/resource_estimate.hpp"
@@ -34,14 +33,6 @@ double polygon_area(const std::vector<std::array<double, 2>>& p) {
     twice += a[0] * b[1] - b[0] * a[1];
   }
   return 0.5 * std::fabs(twice);
-}
-
-double host_threads() {
-  if (const char* env = std::getenv("OMP_NUM_THREADS")) {
-    const int n = std::atoi(env);
-    if (n > 0) return n;
-  }
-  return std::max(1u, std::thread::hardware_concurrency());
 }
 
 std::string number(double v) { return format_number(v); }
@@ -77,7 +68,7 @@ MpmFootprint estimate_footprint(const MpmCase& c) {
   f.nodes = (std::floor((c.upper[0] - c.lower[0]) / dx + 0.5) + 1.0) *
             (std::floor((c.upper[1] - c.lower[1]) / dx + 0.5) + 1.0);
   const bool saturated = c.two_phase.has_value();
-  const double copies = s.atomic_scatter ? 0.0 : host_threads();
+  const double copies = s.atomic_scatter ? 0.0 : static_cast<double>(host_thread_count());
   f.state_bytes =
       f.points * (saturated ? kSaturatedPointBytes : kDryPointBytes) +
       f.nodes * ((saturated ? kSaturatedNodeBytes : kDryNodeBytes) +

@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <exception>
 #include <map>
-#include <thread>
 
+#include "model/host_threads.hpp"
 #include "sweeps/huge_pages.hpp"
 #include "sweeps/statistics.hpp"
 
@@ -43,17 +43,6 @@ const char* design_name(sweeps::Design d) {
       return "points";
   }
   return "?";
-}
-
-// Threads for the columns: the hardware's, or OMP_NUM_THREADS when set (the same budget as the
-// sweep's kernels); at least 1.
-std::size_t statistics_threads() {
-  std::size_t n = std::max(1u, std::thread::hardware_concurrency());
-  if (const char* env = std::getenv("OMP_NUM_THREADS")) {
-    const long k = std::strtol(env, nullptr, 10);
-    if (k > 0) n = static_cast<std::size_t>(k);
-  }
-  return n;
 }
 
 }  // namespace
@@ -166,11 +155,7 @@ json statistics_of(const Study& study, const SweepTable& table, SweepTable* cons
       }
     }
   };
-  const std::size_t threads = std::min(columns, statistics_threads());
-  std::vector<std::thread> pool;
-  for (std::size_t k = 1; k < threads; ++k) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
+  on_host_threads(std::min(columns, host_thread_count()), [&](std::size_t) { worker(); });
   json outputs = json::object();
   json exceed = json::array();
   for (std::size_t c = 0; c < columns; ++c) {
