@@ -5,6 +5,8 @@
 // On a dedicated machine GOMP_SPINCOUNT=1000 (or OMP_WAIT_POLICY=active) is faster still.
 #pragma once
 #include <cstdlib>
+#include <cstring>
+#include <string>
 #include <vector>
 
 #if defined(__linux__)
@@ -32,26 +34,42 @@ inline bool set_openmp_wait_defaults() {
 // binding (OMP_PROC_BIND, OMP_PLACES) the OpenMP runtime binds the program's first thread to the
 // first place when it loads, and a program started by execv inherits that binding: its runtime
 // would make its places of that one CPU and run every thread there. So the thread first gets
-// back every CPU of the places (made from the CPUs the program was started with). Returns only
+// back every CPU of the places (which the runtime made within the CPUs the program was started
+// with), and where OMP_NUM_THREADS is not set it is set to the runtime's thread count, which
+// the restarted runtime would otherwise take from the CPUs of the places alone. Returns only
 // when execv fails, with the binding as it was.
 inline void restart_program(const char* path, char** argv) {
 #if defined(_OPENMP)
-  cpu_set_t bound;
-  const bool known = sched_getaffinity(0, sizeof bound, &bound) == 0;
-  if (known) {
-    cpu_set_t all = bound;
-    for (int p = 0; p < omp_get_num_places(); ++p) {
-      std::vector<int> ids(static_cast<std::size_t>(omp_get_place_num_procs(p)));
-      omp_get_place_proc_ids(p, ids.data());
+  // CPU sets sized for every CPU the system may have (more than CPU_SETSIZE on large machines).
+  int cpus = CPU_SETSIZE;
+  const long configured = sysconf(_SC_NPROCESSORS_CONF);
+  if (configured > cpus) cpus = static_cast<int>(configured);
+  std::vector<std::vector<int>> places(static_cast<std::size_t>(omp_get_num_places()));
+  for (std::size_t p = 0; p < places.size(); ++p) {
+    places[p].resize(static_cast<std::size_t>(omp_get_place_num_procs(static_cast<int>(p))));
+    omp_get_place_proc_ids(static_cast<int>(p), places[p].data());
+    for (const int id : places[p])
+      if (id >= cpus) cpus = id + 1;
+  }
+  const std::size_t bytes = CPU_ALLOC_SIZE(cpus);
+  cpu_set_t* const bound = CPU_ALLOC(cpus);
+  cpu_set_t* const all = CPU_ALLOC(cpus);
+  const bool known = bound && all && sched_getaffinity(0, bytes, bound) == 0;
+  if (known && !places.empty()) {
+    std::memcpy(all, bound, bytes);
+    for (const auto& ids : places)
       for (const int id : ids)
-        if (id >= 0 && id < CPU_SETSIZE) CPU_SET(id, &all);
-    }
-    (void)sched_setaffinity(0, sizeof all, &all);
+        if (id >= 0) CPU_SET_S(static_cast<std::size_t>(id), bytes, all);
+    if (!std::getenv("OMP_NUM_THREADS"))
+      setenv("OMP_NUM_THREADS", std::to_string(omp_get_max_threads()).c_str(), 1);
+    (void)sched_setaffinity(0, bytes, all);
   }
 #endif
   execv(path, argv);
 #if defined(_OPENMP)
-  if (known) (void)sched_setaffinity(0, sizeof bound, &bound);
+  if (known && !places.empty()) (void)sched_setaffinity(0, bytes, bound);
+  if (bound) CPU_FREE(bound);
+  if (all) CPU_FREE(all);
 #endif
 }
 #endif

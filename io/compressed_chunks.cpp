@@ -11,7 +11,6 @@
 #include <exception>
 #include <memory>
 #include <stdexcept>
-#include <string>
 #include <thread>
 #include <vector>
 
@@ -197,7 +196,7 @@ void ChunkCompression::compress_each(
   for (std::size_t c = 0; c < n; ++c) state[c].store(0, std::memory_order_relaxed);
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stop{false};
-  std::vector<std::string> errors(threads);
+  std::vector<std::exception_ptr> errors(threads);
   // Thread t compresses the next chunk; false when none is left (or a thread failed).
   auto compress_one = [&](std::size_t t) {
     if (stop.load(std::memory_order_relaxed)) return false;
@@ -206,10 +205,10 @@ void ChunkCompression::compress_each(
     try {
       compressors[t]->compress(chunks[c], out_[c]);
       state[c].store(1, std::memory_order_release);
-    } catch (const std::exception& e) {
-      errors[t] = e.what();
+    } catch (...) {  // marked failed first: the thread handing the chunks over stops there
       state[c].store(2, std::memory_order_release);
       stop = true;
+      errors[t] = std::current_exception();
     }
     return true;
   };
@@ -241,7 +240,7 @@ void ChunkCompression::compress_each(
   });
   if (failure) std::rethrow_exception(failure);
   for (const auto& e : errors)
-    if (!e.empty()) throw std::runtime_error(e);
+    if (e) std::rethrow_exception(e);
 }
 
 bool write_compressed_chunks(hid_t dataset, hid_t dcpl, const void* data, std::size_t rows,

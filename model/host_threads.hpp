@@ -14,7 +14,7 @@ namespace lsi {
 std::size_t host_thread_count();
 
 // Calls worker(t) once on each of up to n threads at the same time (at least the calling
-// thread, whose t is 0). Fewer may join (inside a parallel region only the caller does),
+// thread, whose t is 0). Fewer may join (inside a parallel region, down to the caller alone),
 // so the workers share their work through what they capture (an atomic counter of items), never
 // by waiting for a worker that has not started. Returns how many ran. An exception from a worker
 // is rethrown once every worker has returned (the one of the smallest t).

@@ -7,16 +7,23 @@
 # Usage: thread_binding_test.sh THREAD_BINDING_EXE
 set -euo pipefail
 exe=$1
-cpus=$(nproc)
+# The CPUs this test may run on, as a list "0 1 ..." (Cpus_allowed_list: "0-3,6").
+mine=""
+IFS=, read -ra ranges <<<"$(sed -n 's/^Cpus_allowed_list:[[:space:]]*//p' /proc/self/status)"
+for r in "${ranges[@]}"; do
+  for ((c = ${r%-*}; c <= ${r#*-}; ++c)); do mine+="${mine:+ }$c"; done
+done
+cpus=$(wc -w <<<"$mine")
 if [ "$cpus" -lt 2 ]; then
   echo "skipped: $cpus CPU(s) for this test, the bindings need 2"
   exit 77
 fi
 status=0
-run() {  # run LABEL ENV...: prints the harness's lines
-  env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT -u OMP_PLACES -u OMP_PROC_BIND OMP_NUM_THREADS=2 \
-    "$@" "$exe"
-}
+# The harness in an environment of no OpenMP settings but ENV...: prints its lines.
+clean=(env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT -u OMP_PLACES -u OMP_PROC_BIND -u OMP_DYNAMIC
+  -u OMP_THREAD_LIMIT -u OMP_MAX_ACTIVE_LEVELS -u OMP_NESTED -u GOMP_CPU_AFFINITY -u KMP_AFFINITY
+  -u OMP_NUM_THREADS)
+run() { "${clean[@]}" OMP_NUM_THREADS=2 "$@" "$exe"; }
 for wait in restart passive; do
   extra=()
   [ "$wait" = passive ] && extra=(OMP_WAIT_POLICY=passive)
@@ -31,7 +38,6 @@ for wait in restart passive; do
     echo "ok ($wait, OMP_PROC_BIND=spread): thread 0 on CPU $a, thread 1 on CPU $b"
   fi
   out=$(run "${extra[@]}" OMP_PROC_BIND=false)
-  mine=$(python3 -c 'import os; print(" ".join(map(str, sorted(os.sched_getaffinity(0)))))')
   while IFS= read -r line; do
     got=${line#*: }
     if [ "$got" != "$mine" ]; then
@@ -42,4 +48,14 @@ for wait in restart passive; do
   done <<<"$out"
   [ "$status" -eq 0 ] && echo "ok ($wait, OMP_PROC_BIND=false): every thread on CPUs $mine"
 done
+# Places of one CPU and no OMP_NUM_THREADS: the restarted runtime keeps the thread count of the
+# CPUs the program was started with (one thread a CPU), not one of the places' CPU.
+first=${mine%% *}
+lines=$("${clean[@]}" OMP_PROC_BIND=true "OMP_PLACES={$first}" "$exe" | wc -l)
+if [ "$lines" -ne "$cpus" ]; then
+  echo "FAIL (restart, OMP_PLACES={$first}): $lines thread(s), the test's $cpus CPUs give $cpus" >&2
+  status=1
+else
+  echo "ok (restart, OMP_PLACES={$first}): $lines threads"
+fi
 exit "$status"
