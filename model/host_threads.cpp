@@ -24,7 +24,7 @@ std::size_t host_thread_count() {
 #endif
 }
 
-std::size_t on_host_threads(std::size_t n, const std::function<void(std::size_t)>& worker) {
+void on_host_threads(std::size_t n, const std::function<void(std::size_t)>& worker) {
   n = std::max<std::size_t>(n, 1);
   std::vector<std::exception_ptr> errors(n);
   auto guarded = [&](std::size_t t) {
@@ -34,32 +34,25 @@ std::size_t on_host_threads(std::size_t n, const std::function<void(std::size_t)
       errors[t] = std::current_exception();
     }
   };
-  std::size_t ran = 1;
   if (n == 1) {
     guarded(0);
   } else {
 #if defined(_OPENMP)
     const int team = static_cast<int>(n);
 #pragma omp parallel num_threads(team)
-    {
-      const auto t = static_cast<std::size_t>(omp_get_thread_num());
-      if (t == 0) ran = static_cast<std::size_t>(omp_get_num_threads());
-      guarded(t);
-    }
+    { guarded(static_cast<std::size_t>(omp_get_thread_num())); }
 #else
     std::vector<std::thread> pool;
     try {
       for (std::size_t t = 1; t < n; ++t) pool.emplace_back(guarded, t);
     } catch (...) {  // no more threads: those started and this one share the work
     }
-    ran = pool.size() + 1;
     guarded(0);
     for (auto& th : pool) th.join();
 #endif
   }
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);
-  return ran;
 }
 
 }  // namespace lsi

@@ -16,8 +16,8 @@ std::size_t host_thread_count();
 // Calls worker(t) once on each of up to n threads at the same time (at least the calling
 // thread, whose t is 0). Fewer may join (inside a parallel region, down to the caller alone),
 // so the workers share their work through what they capture (an atomic counter of items), never
-// by waiting for a worker that has not started. Returns how many ran. An exception from a worker
-// is rethrown once every worker has returned (the one of the smallest t).
-std::size_t on_host_threads(std::size_t n, const std::function<void(std::size_t)>& worker);
+// by waiting for a worker that has not started. An exception from a worker is rethrown once
+// every worker has returned (the one of the smallest t).
+void on_host_threads(std::size_t n, const std::function<void(std::size_t)>& worker);
 
 }  // namespace lsi

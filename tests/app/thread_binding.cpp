@@ -4,7 +4,6 @@
 #include <sched.h>
 
 #include <cstdio>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -15,15 +14,13 @@ int main(int, char** argv) {
   if (lsi::set_openmp_wait_defaults()) lsi::restart_program("/proc/self/exe", argv);
   const std::size_t n = lsi::host_thread_count();
   std::vector<std::string> cpus(n);
-  std::mutex m;
   lsi::on_host_threads(n, [&](std::size_t t) {
     cpu_set_t set;
     std::string line;
     if (sched_getaffinity(0, sizeof set, &set) == 0)
       for (int c = 0; c < CPU_SETSIZE; ++c)
         if (CPU_ISSET(c, &set)) line += " " + std::to_string(c);
-    const std::lock_guard<std::mutex> lock(m);
-    cpus[t] = line;
+    cpus[t] = line;  // each thread its own entry
   });
   for (std::size_t t = 0; t < n; ++t) std::printf("%zu:%s\n", t, cpus[t].c_str());
   return 0;
