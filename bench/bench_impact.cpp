@@ -53,8 +53,10 @@
 // 4. campaign/...: a campaign of 8 whole impact runs (the dry fixed variant of 1. at 8 cells
 //    through the thickness, cell 0.125 m: 1024 points; and at 16 cells) one after the other with
 //    every thread (campaign/.../one_after_another) and side by side, one per thread
-//    (campaign/.../side_by_side: model/concurrent_runs.hpp). items_per_second = runs per second
-//    of the whole campaign; their ratio is what running a campaign side by side gains.
+//    (campaign/.../side_by_side: model/concurrent_runs.hpp; on a GPU each host thread's runs on
+//    a CUDA stream of its own). items_per_second = runs per second of the whole campaign; their
+//    ratio is what running a campaign side by side gains. A CUDA build adds campaigns of 32 runs
+//    (campaign/cells:N/runs:32/...).
 //
 // Times: real_time (the rates: items_per_second, solver_pups) and cpu_time = the CPU time of the
 // whole process (all threads; MeasureProcessCPUTime). On a machine shared with other work the
@@ -75,6 +77,7 @@
 #include <cstdlib>
 #include <exception>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "model/concurrent_runs.hpp"
@@ -470,13 +473,13 @@ void register_column(Scatters scatters) {
 // ---------------------------------------------------------------------------------------------
 // 4. A campaign of small runs, one after the other or side by side.
 
-void bm_campaign(benchmark::State& state, double cell, bool side_by_side) {
+void bm_campaign(benchmark::State& state, double cell, bool side_by_side, int runs) {
   ImpactVariant v{"campaign", false, true};
   v.cell_size = cell;
   std::vector<MpmCase> cases;
   try {
     const Scene scene = parse_scene(impact_scene(v));
-    for (int k = 0; k < 8; ++k) cases.push_back(impact_case(scene));
+    for (int k = 0; k < runs; ++k) cases.push_back(impact_case(scene));
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
     return;
@@ -499,15 +502,21 @@ void bm_campaign(benchmark::State& state, double cell, bool side_by_side) {
 }
 
 void register_campaign() {
-  for (double cell : {0.125, 0.0625})
-    for (bool side : {false, true}) {
-      const std::string name = std::string("campaign/cells:") + (cell > 0.1 ? "8" : "16") +
-                               (side ? "/side_by_side" : "/one_after_another");
-      benchmark::RegisterBenchmark(name.c_str(), bm_campaign, cell, side)
-          ->Iterations(1)
-          ->UseRealTime()
-          ->Unit(benchmark::kMillisecond);
-    }
+  // A device build adds campaigns of 32 runs: a GPU host has more threads to drive runs.
+  std::vector<int> sizes{8};
+  if constexpr (!std::is_same_v<Kokkos::DefaultExecutionSpace, Kokkos::DefaultHostExecutionSpace>)
+    sizes.push_back(32);
+  for (const int runs : sizes)
+    for (double cell : {0.125, 0.0625})
+      for (bool side : {false, true}) {
+        const std::string name = std::string("campaign/cells:") + (cell > 0.1 ? "8" : "16") +
+                                 (runs == 8 ? "" : "/runs:" + std::to_string(runs)) +
+                                 (side ? "/side_by_side" : "/one_after_another");
+        benchmark::RegisterBenchmark(name.c_str(), bm_campaign, cell, side, runs)
+            ->Iterations(1)
+            ->UseRealTime()
+            ->Unit(benchmark::kMillisecond);
+      }
 }
 
 }  // namespace

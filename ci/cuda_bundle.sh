@@ -5,6 +5,9 @@
 # and its dependencies, Google Benchmark, the CUDA runtime), and CMake's GoogleTestAddTests.cmake,
 # which ctest reads to list the tests when it runs. docs/guide/cuda.md, "Running a CUDA build elsewhere".
 # usage: ci/cuda_bundle.sh OUT.tar.xz   (environment: LSI_CUDA_BUILD_DIR, default build-cuda/)
+# LSI_CUDA_BUNDLE_ONLY="tests/mpm bench/bench_impact ...": only the programs under these paths of
+# the build (a smaller bundle; without ctest's lists, which need every program: run it with
+# `ci/cuda_bundle_test.sh BUNDLE --programs`).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="$(realpath -m "${1:?usage: ci/cuda_bundle.sh OUT.tar.xz}")"
@@ -15,14 +18,18 @@ trap 'rm -rf "$stage"' EXIT
 mkdir -p "$stage/build" "$stage/lib"
 cd "$build"
 # Executables (not the study programs, the MPI launcher or the fuzz replays: not run there).
-mapfile -t programs < <(find . -type f -executable ! -name '*.so*' ! -path '*/CMakeFiles/*' \
-  ! -name 'lsi-mpi' ! -name '*_study' ! -name 'fuzz_*')
+only=()
+for path in ${LSI_CUDA_BUNDLE_ONLY:-}; do only+=("./${path#./}"); done
+mapfile -t programs < <(find "${only[@]:-.}" -type f -executable ! -name '*.so*' \
+  ! -path '*/CMakeFiles/*' ! -name 'lsi-mpi' ! -name '*_study' ! -name 'fuzz_*')
 for f in "${programs[@]}"; do
   mkdir -p "$stage/build/$(dirname "$f")"
   strip -o "$stage/build/$f" "$f"
 done
-find . \( -name CTestTestfile.cmake -o -name '*_include*.cmake' -o -name '*_tests*.cmake' \) \
-  ! -path '*/CMakeFiles/*' -exec cp --parents {} "$stage/build/" \;
+if [ ${#only[@]} -eq 0 ]; then
+  find . \( -name CTestTestfile.cmake -o -name '*_include*.cmake' -o -name '*_tests*.cmake' \) \
+    ! -path '*/CMakeFiles/*' -exec cp --parents {} "$stage/build/" \;
+fi
 # The libraries the programs load, but the C/C++ runtimes that every Linux has.
 for f in "${programs[@]}"; do ldd "$f"; done | awk '/=>/ {print $3}' | sort -u |
   grep -v -E '/(libc|libm|libdl|libpthread|librt|libresolv|libgcc_s|libstdc\+\+)\.so' |

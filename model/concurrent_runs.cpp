@@ -13,6 +13,7 @@
 #include <omp.h>
 #endif
 
+#include "kernels/common/own_stream.hpp"
 #include "model/progress.hpp"
 
 namespace lsi {
@@ -20,9 +21,10 @@ namespace {
 
 int g_runs_at_once = 0;
 
-// Partitions of the OpenMP backend: Kokkos 3 only (Kokkos 4 removed partition_master).
+// Partitions of the OpenMP backend: Kokkos 3 only (Kokkos 4 removed partition_master). With a
+// device, the host's OpenMP threads drive the runs, each on a stream of its own.
 #if defined(KOKKOS_ENABLE_OPENMP) && KOKKOS_VERSION < 40000
-constexpr bool kPartitions = std::is_same_v<Kokkos::DefaultExecutionSpace, Kokkos::OpenMP>;
+constexpr bool kPartitions = std::is_same_v<Kokkos::DefaultHostExecutionSpace, Kokkos::OpenMP>;
 #else
 constexpr bool kPartitions = false;
 #endif
@@ -34,7 +36,7 @@ int runs_at_once() { return g_runs_at_once; }
 
 int concurrent_runs(std::size_t tasks, int runs) {
   if (!kPartitions || tasks < 2) return 1;
-  const int threads = Kokkos::DefaultExecutionSpace().concurrency();
+  const int threads = Kokkos::DefaultHostExecutionSpace().concurrency();
   int n = runs > 0 ? std::min(runs, threads) : threads;
   if (g_runs_at_once > 0) n = std::min(n, g_runs_at_once);
   return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(std::max(n, 1)), tasks));
@@ -60,6 +62,8 @@ void run_concurrently(std::size_t tasks, const std::function<void(std::size_t)>&
     const QuietProgress quiet;
     Kokkos::OpenMP::partition_master(
         [&](int, int) {
+          // On a device, the partition's runs on a stream of its own (own_stream.hpp).
+          const OwnStream<Kokkos::DefaultExecutionSpace> stream;
           for (std::size_t k = next++; k < tasks; k = next++) guarded(k);
         },
         partitions, 1);

@@ -5,9 +5,13 @@
 //
 // With Kokkos' OpenMP backend (Kokkos 3) the threads are split into partitions of one thread
 // each (Kokkos::OpenMP::partition_master, nested OpenMP); each partition takes the next task
-// until none is left. Elsewhere (Serial, CUDA, Kokkos 4, one thread, one task) the tasks run one
-// after the other with every thread. A run's numbers depend on its thread count by round-off only
-// (the order of its sums), not on which tasks share the machine.
+// until none is left. On a GPU (CUDA, with OpenMP on the host) the host's threads are split the
+// same way and each partition launches its runs' kernels on a CUDA stream of its own
+// (kernels/common/own_stream.hpp): a small scene's step is a dozen short kernels and the waits
+// for its reductions, and the runs fill the device between each other's. Elsewhere (Serial,
+// Kokkos 4, one thread, one task) the tasks run one after the other with every thread. A run's
+// numbers depend on its thread count by round-off only (the order of its sums), not on which
+// tasks share the machine.
 #pragma once
 #include <cstddef>
 #include <functional>
@@ -15,7 +19,7 @@
 namespace lsi {
 
 // How many runs of a campaign of `tasks` would run at once: at most runs_at_once (0: as many as
-// the backend has threads), at most tasks, 1 where partitions are not available.
+// the host backend has threads), at most tasks, 1 where partitions are not available.
 int concurrent_runs(std::size_t tasks, int runs_at_once = 0);
 
 // Calls task(k) for k = 0 .. tasks - 1, concurrent_runs(tasks, runs_at_once) at a time. Every

@@ -8,6 +8,7 @@
 #include "kernels/closed_form/empirical_model.hpp"
 #include "kernels/closed_form/face_resolution.hpp"
 #include "kernels/closed_form/two_body_model.hpp"
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/common/simd_lanes.hpp"
 
 namespace lsi {
@@ -71,9 +72,6 @@ void for_each_block_on_host(const char* name, const ExecSpace& space, int n,
                          }
                        });
 }
-
-template <class ExecSpace>
-constexpr bool runs_on_host = Kokkos::SpaceAccessibility<ExecSpace, Kokkos::HostSpace>::accessible;
 
 // Runs body(i) for every sample i in [0, n), as above.
 template <class ExecSpace, class Body>

@@ -18,6 +18,7 @@
 #pragma once
 #include <Kokkos_Core.hpp>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/common/math.hpp"
 #include "kernels/mpm/barrier_shape.hpp"
 #include "kernels/mpm/height_bands.hpp"
@@ -55,7 +56,7 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
   const NodeItems<ExecSpace> items(region);
   const int bands = band_height > 0.0 ? static_cast<int>(band_force.extent(0)) : 0;
   Kokkos::parallel_reduce(
-      "lsi::mpm::barrier_contact", Kokkos::RangePolicy<ExecSpace>(0, items.count()),
+      "lsi::mpm::barrier_contact", range_policy<ExecSpace>(0, items.count()),
       KOKKOS_LAMBDA(const int item, double& f0, double& f1, double& f2, double& f3, double& f4,
                     double& f5, double& w, double& mo, int& count) {
         int j, i_begin, i_end;

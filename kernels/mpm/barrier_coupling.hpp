@@ -6,6 +6,7 @@
 #include <Kokkos_Core.hpp>
 #include <vector>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/mpm/barrier.hpp"
 #include "kernels/mpm/barrier_contact.hpp"
 
@@ -13,6 +14,8 @@ namespace lsi::mpm {
 
 template <class MemorySpace>
 class BarrierCoupling {
+  using Exec = typename MemorySpace::execution_space;
+
  public:
   void attach(const Barrier& b) {
     barrier_ = b;
@@ -28,7 +31,7 @@ class BarrierCoupling {
   // begin_step() and filled by the step's barrier_contact calls; empty without bands.
   const Kokkos::View<double*, MemorySpace>& band_force() const { return band_force_; }
   void begin_step() {
-    if (!band_impulse_.empty()) Kokkos::deep_copy(band_force_, 0.0);
+    if (!band_impulse_.empty()) fill<Exec>(band_force_, 0.0);
   }
   bool active() const { return active_; }
   const Barrier& barrier() const { return barrier_; }
@@ -43,7 +46,7 @@ class BarrierCoupling {
       for (int d = 0; d < 2; ++d) impulse_[k][d] += contact_.force[k][d] * dt;
     moment_impulse_ += contact_.upstream_moment * dt;
     if (!band_impulse_.empty()) {
-      Kokkos::deep_copy(band_host_, band_force_);
+      copy_and_wait<Exec>(band_host_, band_force_);
       for (std::size_t i = 0; i < band_impulse_.size(); ++i) band_impulse_[i] += band_host_(i) * dt;
     }
     if (!barrier_.fixed) barrier_.motion.advance(contact_.total(0), contact_.total(1), dt);

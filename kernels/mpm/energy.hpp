@@ -4,6 +4,7 @@
 #pragma once
 #include <Kokkos_Core.hpp>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/mpm/constitutive/linear_elastic.hpp"
 #include "kernels/mpm/particles.hpp"
 
@@ -24,7 +25,7 @@ EnergyReport particle_energies(const Particles<MemorySpace>& p,
   EnergyReport e;
   const double gx = gravity[0], gy = gravity[1];
   Kokkos::parallel_reduce(
-      "lsi::mpm::energy", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      "lsi::mpm::energy", range_policy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q, double& k, double& el, double& pot, double& pl) {
         const double m = p.mass(q);
         k += 0.5 * m * (p.velocity(q, 0) * p.velocity(q, 0) + p.velocity(q, 1) * p.velocity(q, 1));

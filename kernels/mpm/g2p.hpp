@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <type_traits>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/common/math.hpp"
 #include "kernels/mpm/grid.hpp"
 #include "kernels/mpm/host_transpose.hpp"
@@ -282,7 +283,7 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
   if constexpr (host) {
     constexpr int B = detail::kG2PBlock;
     Kokkos::parallel_reduce(
-        name, Kokkos::RangePolicy<ExecSpace>(0, (count + B - 1) / B),
+        name, range_policy<ExecSpace>(0, (count + B - 1) / B),
         KOKKOS_LAMBDA(const int block, double& vm, double& jm, int& nonfinite, int& outside) {
           const int q0 = block * B, q1 = q0 + B < count ? q0 + B : count;
           const PointArrays a(p);
@@ -313,7 +314,7 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
         Kokkos::Max<double>(vmax), Kokkos::Max<double>(jmax), bad, out);
   } else {
     Kokkos::parallel_reduce(
-        name, Kokkos::RangePolicy<ExecSpace>(0, count),
+        name, range_policy<ExecSpace>(0, count),
         KOKKOS_LAMBDA(const int q, double& vm, double& jm, int& nonfinite, int& outside) {
           [[maybe_unused]] const auto& mats = materials;
           double L[2][2];

@@ -18,6 +18,7 @@
 #pragma once
 #include <Kokkos_Core.hpp>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/mpm/boundary.hpp"
 #include "kernels/mpm/grid.hpp"
 #include "kernels/mpm/wall_bands.hpp"
@@ -43,7 +44,7 @@ double grid_update(const Grid<MemorySpace>& g, const Boundaries& walls, double d
   const double gx = gravity ? gravity[0] : 0.0, gy = gravity ? gravity[1] : 0.0;
   const bool banded = bands.active();
   Kokkos::parallel_reduce(
-      "lsi::mpm::grid_update", Kokkos::RangePolicy<ExecSpace>(0, items.count()),
+      "lsi::mpm::grid_update", range_policy<ExecSpace>(0, items.count()),
       KOKKOS_LAMBDA(const int t, double& lost, double& rx, double& ry) {
         int j, i_begin, i_end;
         items.nodes(t, j, i_begin, i_end);

@@ -3,6 +3,7 @@
 #pragma once
 #include <Kokkos_Core.hpp>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/mpm/particles.hpp"
 
 namespace lsi::mpm {
@@ -12,7 +13,7 @@ template <class ExecSpace, class Masses, class Velocities>
 void add_momentum(const Masses& mass, const Velocities& velocity, double out[2]) {
   double px = 0.0, py = 0.0;
   Kokkos::parallel_reduce(
-      "lsi::mpm::momentum", Kokkos::RangePolicy<ExecSpace>(0, mass.extent(0)),
+      "lsi::mpm::momentum", range_policy<ExecSpace>(0, mass.extent(0)),
       KOKKOS_LAMBDA(const int q, double& x, double& y) {
         x += mass(q) * velocity(q, 0);
         y += mass(q) * velocity(q, 1);

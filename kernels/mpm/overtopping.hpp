@@ -8,6 +8,7 @@
 #pragma once
 #include <Kokkos_Core.hpp>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/mpm/barrier_shape.hpp"
 #include "kernels/mpm/particles.hpp"
 
@@ -22,7 +23,7 @@ template <class ExecSpace, class MemorySpace>
 OvertoppingReport overtopping(const Particles<MemorySpace>& p, double crest_x) {
   OvertoppingReport r;
   Kokkos::parallel_reduce(
-      "lsi::mpm::overtopping", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      "lsi::mpm::overtopping", range_policy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q, double& over, double& all) {
         const double v = p.volume0(q);
         all += v;
@@ -49,7 +50,7 @@ BarrierInterior barrier_interior(const Particles<MemorySpace>& p, const BarrierS
   const double crest_x = shape.crest_upstream_x() + displacement;
   BarrierInterior r;
   Kokkos::parallel_reduce(
-      "lsi::mpm::barrier_interior_volume", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      "lsi::mpm::barrier_interior_volume", range_policy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q, double& in, double& past) {
         const double x = p.position(q, 0), y = p.position(q, 1);
         int k = 0;

@@ -24,6 +24,7 @@
 #include <cstddef>
 #include <type_traits>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/mpm/grid.hpp"
 #include "kernels/mpm/host_transpose.hpp"
 #include "kernels/mpm/particles.hpp"
@@ -235,7 +236,7 @@ void scatter_tiles(S& scatter, const PositionView& position, const int n_points,
     const int most = probe.team_size_max(body, Kokkos::ParallelForTag());
     team_size = most < per_team ? most : per_team;
   }
-  Policy policy(league, team_size);
+  auto policy = team_policy<ExecSpace>(league, team_size);
   policy.set_scratch_size(0, Kokkos::PerTeam(scratch));
   Kokkos::parallel_for("lsi::mpm::p2g_scatter_tiles", policy, body);
 }
@@ -264,7 +265,7 @@ NodeBox scatter_points(S& scatter, const PositionView& position, const int n_poi
     // hide the latency of its atomics.
     int i0 = INT_MAX, i1 = INT_MIN, j0 = INT_MAX, j1 = INT_MIN;
     Kokkos::parallel_reduce(
-        "lsi::mpm::p2g_box", Kokkos::RangePolicy<ExecSpace>(0, n_points),
+        "lsi::mpm::p2g_box", range_policy<ExecSpace>(0, n_points),
         KOKKOS_LAMBDA(const int q, int& a0, int& a1, int& b0, int& b1) {
           const int bi = quadratic_bspline(position(q, 0) - ox, inv_dx).base;
           const int bj = quadratic_bspline(position(q, 1) - oy, inv_dx).base;
@@ -278,7 +279,7 @@ NodeBox scatter_points(S& scatter, const PositionView& position, const int n_poi
       scatter_tiles(scatter, position, n_points, ox, oy, inv_dx, nx, point_fn);
     } else {
       Kokkos::parallel_for(
-          "lsi::mpm::p2g_scatter", Kokkos::RangePolicy<ExecSpace>(0, n_points),
+          "lsi::mpm::p2g_scatter", range_policy<ExecSpace>(0, n_points),
           KOKKOS_LAMBDA(const int q) {
             int bi, bj;
             point_fn(q, &copies(0, 0), NodeTile{0, 0, nx}, bi, bj);
@@ -288,7 +289,7 @@ NodeBox scatter_points(S& scatter, const PositionView& position, const int n_poi
   } else {
     // One contiguous chunk of points per copy: a copy is never written by two threads at once.
     Kokkos::parallel_for(
-        "lsi::mpm::p2g_scatter", Kokkos::RangePolicy<ExecSpace>(0, nc), KOKKOS_LAMBDA(const int c) {
+        "lsi::mpm::p2g_scatter", range_policy<ExecSpace>(0, nc), KOKKOS_LAMBDA(const int c) {
           const int begin = static_cast<int>(static_cast<long>(n_points) * c / nc);
           const int end = static_cast<int>(static_cast<long>(n_points) * (c + 1) / nc);
           double* buf = &copies(c, 0);
@@ -313,7 +314,7 @@ NodeBox scatter_points(S& scatter, const PositionView& position, const int n_poi
           boxes(c, 2) = b0;
           boxes(c, 3) = b1;
         });
-    Kokkos::fence();
+    execution_instance<ExecSpace>().fence();
     auto host = Kokkos::create_mirror_view(boxes);  // the same memory on host spaces
     Kokkos::deep_copy(host, boxes);
     for (int c = 0; c < nc; ++c) {
@@ -375,7 +376,7 @@ P2GBoxes gather_nodes(S& scatter, NodeBox touched, const NodeBox& whole,
   if (!region.empty()) {
     const NodeItems<ExecSpace> items(region);
     Kokkos::parallel_for(
-        "lsi::mpm::p2g_gather", Kokkos::RangePolicy<ExecSpace>(0, items.count()),
+        "lsi::mpm::p2g_gather", range_policy<ExecSpace>(0, items.count()),
         KOKKOS_LAMBDA(const int t) {
           int j, i_begin, i_end;
           items.nodes(t, j, i_begin, i_end);

@@ -6,6 +6,7 @@
 #pragma once
 #include <Kokkos_Core.hpp>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/common/math.hpp"
 
 namespace lsi::mpm {
@@ -15,7 +16,7 @@ template <class ExecSpace, class VelocityView>
 double largest_speed(const VelocityView& v, int count) {
   double vmax = 0.0;
   Kokkos::parallel_reduce(
-      "lsi::mpm::largest_speed", Kokkos::RangePolicy<ExecSpace>(0, count),
+      "lsi::mpm::largest_speed", range_policy<ExecSpace>(0, count),
       KOKKOS_LAMBDA(const int q, double& vm) {
         const double s = math::sqrt(v(q, 0) * v(q, 0) + v(q, 1) * v(q, 1));
         if (s > vm) vm = s;
@@ -30,7 +31,7 @@ template <class ExecSpace, class PositionView>
 double largest_coordinate(const PositionView& x, int count, int axis) {
   double most = 0.0;
   Kokkos::parallel_reduce(
-      "lsi::mpm::largest_coordinate", Kokkos::RangePolicy<ExecSpace>(0, count),
+      "lsi::mpm::largest_coordinate", range_policy<ExecSpace>(0, count),
       KOKKOS_LAMBDA(const int q, double& m) {
         if (x(q, axis) > m) m = x(q, axis);
       },
@@ -43,7 +44,7 @@ template <class ExecSpace, class VolumeView>
 double largest_expansion(const VolumeView& volume, const VolumeView& volume0, int count) {
   double jmax = 1.0;
   Kokkos::parallel_reduce(
-      "lsi::mpm::largest_expansion", Kokkos::RangePolicy<ExecSpace>(0, count),
+      "lsi::mpm::largest_expansion", range_policy<ExecSpace>(0, count),
       KOKKOS_LAMBDA(const int q, double& jm) {
         const double J = volume(q) / volume0(q);
         if (J > jm) jm = J;
@@ -57,7 +58,7 @@ template <class ExecSpace, class MassView>
 double lightest_mass(const MassView& mass, int count) {
   double mmin = 0.0;
   Kokkos::parallel_reduce(
-      "lsi::mpm::lightest_point", Kokkos::RangePolicy<ExecSpace>(0, count),
+      "lsi::mpm::lightest_point", range_policy<ExecSpace>(0, count),
       KOKKOS_LAMBDA(const int q, double& m) {
         if (mass(q) < m) m = mass(q);
       },

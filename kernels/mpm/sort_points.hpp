@@ -17,6 +17,7 @@
 #include <Kokkos_Core.hpp>
 #include <vector>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/mpm/particles.hpp"
 
 namespace lsi::mpm {
@@ -41,8 +42,7 @@ class PointSorter {
     const double inv_dx = 1.0 / dx;
     const int cells_x = nx - 1, cells = (nx - 1) * (ny - 1);
     Kokkos::parallel_for(
-        "lsi::mpm::point_cells", Kokkos::RangePolicy<ExecSpace>(0, count),
-        KOKKOS_LAMBDA(const int q) {
+        "lsi::mpm::point_cells", range_policy<ExecSpace>(0, count), KOKKOS_LAMBDA(const int q) {
           // Outside the grid (the health check stops such a run): the nearest cell.
           const double fx = (position(q, 0) - ox) * inv_dx, fy = (position(q, 1) - oy) * inv_dx;
           int i = fx > 0.0 ? static_cast<int>(fx) : 0, j = fy > 0.0 ? static_cast<int>(fy) : 0;
@@ -50,7 +50,8 @@ class PointSorter {
           j = j < cells / cells_x - 1 ? j : cells / cells_x - 1;
           key(q) = i + cells_x * j;
         });
-    auto host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), key);
+    auto host = Kokkos::create_mirror_view(Kokkos::HostSpace(), key);
+    copy_and_wait<ExecSpace>(host, key);
     bool sorted = true;
     for (int q = 1; q < count && sorted; ++q) sorted = host(q - 1) <= host(q);
     if (sorted) return false;
@@ -61,7 +62,7 @@ class PointSorter {
     std::vector<int> from(static_cast<size_t>(count));
     for (int q = 0; q < count; ++q) from[first[host(q)]++] = q;
     for (int q = 0; q < count; ++q) host(q) = from[q];
-    Kokkos::deep_copy(from_, host);
+    copy_and_wait<ExecSpace>(from_, host);
     return true;
   }
 
@@ -87,14 +88,14 @@ class PointSorter {
     const auto from = from_;
     const auto scratch = scratch_;
     Kokkos::parallel_for(
-        "lsi::mpm::point_sort_gather", Kokkos::RangePolicy<ExecSpace>(0, count_),
+        "lsi::mpm::point_sort_gather", range_policy<ExecSpace>(0, count_),
         KOKKOS_LAMBDA(const int q) {
           const int r = from(q);
           for (int a = 0; a < c1; ++a)
             for (int b = 0; b < c2; ++b) scratch(q, a * c2 + b) = element(field, r, a, b);
         });
     Kokkos::parallel_for(
-        "lsi::mpm::point_sort_store", Kokkos::RangePolicy<ExecSpace>(0, count_),
+        "lsi::mpm::point_sort_store", range_policy<ExecSpace>(0, count_),
         KOKKOS_LAMBDA(const int q) {
           for (int a = 0; a < c1; ++a)
             for (int b = 0; b < c2; ++b)

@@ -8,6 +8,7 @@
 #include <Kokkos_Core.hpp>
 #include <cstdint>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/mpm/constitutive/inertial_friction.hpp"
 #include "kernels/mpm/constitutive/jaumann.hpp"
 #include "kernels/mpm/constitutive/linear_elastic.hpp"
@@ -169,7 +170,7 @@ void stress_update(const Particles<MemorySpace>& p,
                    const Kokkos::View<const PreparedMaterial*, MemorySpace>& materials, double dt) {
   Kokkos::parallel_for(
       WithPlasticity ? "lsi::mpm::stress_update_plastic" : "lsi::mpm::stress_update_elastic",
-      Kokkos::RangePolicy<ExecSpace>(0, p.count), KOKKOS_LAMBDA(const int q) {
+      range_policy<ExecSpace>(0, p.count), KOKKOS_LAMBDA(const int q) {
         update_point_stress<WithPlasticity>(
             p, q, materials(p.material(q)), p.velocity_gradient(q, 0, 0),
             p.velocity_gradient(q, 0, 1), p.velocity_gradient(q, 1, 0),

@@ -16,6 +16,7 @@
 #pragma once
 #include <Kokkos_Core.hpp>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/mpm/grid.hpp"
 
 namespace lsi::mpm {
@@ -25,7 +26,7 @@ template <class ExecSpace, class Masses, class Velocities>
 double points_kinetic_energy(const Masses& mass, const Velocities& velocity) {
   double k = 0.0;
   Kokkos::parallel_reduce(
-      "lsi::mpm::points_kinetic_energy", Kokkos::RangePolicy<ExecSpace>(0, mass.extent(0)),
+      "lsi::mpm::points_kinetic_energy", range_policy<ExecSpace>(0, mass.extent(0)),
       KOKKOS_LAMBDA(const int q, double& sum) {
         sum += 0.5 * mass(q) * (velocity(q, 0) * velocity(q, 0) + velocity(q, 1) * velocity(q, 1));
       },
@@ -45,7 +46,7 @@ double grid_kinetic_energy(const Grid<MemorySpace>& g, GridState state) {
   const bool from_momentum = state == GridState::AfterP2G;
   double k = 0.0;
   Kokkos::parallel_reduce(
-      "lsi::mpm::grid_kinetic_energy", Kokkos::RangePolicy<ExecSpace>(0, g.size()),
+      "lsi::mpm::grid_kinetic_energy", range_policy<ExecSpace>(0, g.size()),
       KOKKOS_LAMBDA(const int i, double& sum) {
         const double mi = m(i);
         if (!(mi > 0.0)) return;

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <vector>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/mpm/boundary.hpp"
 #include "kernels/mpm/height_bands.hpp"
 
@@ -76,10 +77,12 @@ template <class MemorySpace>
 std::array<std::vector<double>, 4> take_wall_band_impulse(const WallBands<MemorySpace>& b) {
   std::array<std::vector<double>, 4> taken;
   if (!b.active()) return taken;
-  auto host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.impulse);
+  using Exec = typename MemorySpace::execution_space;
+  auto host = Kokkos::create_mirror_view(Kokkos::HostSpace(), b.impulse);
+  copy_and_wait<Exec>(host, b.impulse);
   for (int side = 0; side < 4; ++side)
     for (int k = 0; k < b.count[side]; ++k) taken[side].push_back(host(side, k));
-  Kokkos::deep_copy(b.impulse, 0.0);
+  fill<Exec>(b.impulse, 0.0);
   return taken;
 }
 

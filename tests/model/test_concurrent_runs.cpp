@@ -42,9 +42,10 @@ TEST(ConcurrentRuns, EveryTaskRunsOnceAndTheFirstErrorComesBackAfterAll) {
 TEST(ConcurrentRuns, AsManyAtOnceAsThreadsAndTasksAllow) {
   EXPECT_EQ(lsi::concurrent_runs(1), 1);
   EXPECT_EQ(lsi::concurrent_runs(0), 1);
-  const int threads = Kokkos::DefaultExecutionSpace().concurrency();
+  // The host's threads drive the runs, on a device too (each on a stream of its own).
+  const int threads = Kokkos::DefaultHostExecutionSpace().concurrency();
 #if defined(KOKKOS_ENABLE_OPENMP) && KOKKOS_VERSION < 40000
-  if (std::is_same_v<Kokkos::DefaultExecutionSpace, Kokkos::OpenMP>) {
+  if (std::is_same_v<Kokkos::DefaultHostExecutionSpace, Kokkos::OpenMP>) {
     EXPECT_EQ(lsi::concurrent_runs(100), threads);
     EXPECT_EQ(lsi::concurrent_runs(100, 1), 1);
     EXPECT_EQ(lsi::concurrent_runs(2), std::min(threads, 2));
@@ -58,7 +59,8 @@ TEST(ConcurrentRuns, AsManyAtOnceAsThreadsAndTasksAllow) {
 }
 
 // Four small impacts (the granular-impact scene at two Froude numbers, each twice): side by side
-// and one after the other. A run's sums are taken in another order with one thread than with
+// and one after the other (on a GPU: each side-by-side run on a stream of its own, so a kernel
+// that read another run's data or launch arguments would change its numbers). A run's sums are taken in another order with one thread than with
 // two, so the numbers agree to round-off, which the run's plastic flow may amplify: 1e-9
 // relative, far below any change of the physics (a setting moves the peak by per cents).
 TEST(ConcurrentRuns, MpmRunsSideBySideGiveTheNumbersOfRunsOneAfterTheOther) {

@@ -5,6 +5,7 @@
 #pragma once
 #include <Kokkos_Core.hpp>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/mpm/barrier_shape.hpp"
 #include "kernels/mpm/two_phase/two_phase_particles.hpp"
 
@@ -19,7 +20,7 @@ double face_pore_pressure(const TwoPhaseParticles<MemorySpace>& p,
   const auto x = p.solid.position;
   double pmax = 0.0;
   Kokkos::parallel_reduce(
-      "lsi::mpm::two_phase::face_pore_pressure", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      "lsi::mpm::two_phase::face_pore_pressure", range_policy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q, double& m) {
         const double px = x(q, 0) - displacement, py = x(q, 1);
         if (py < y0 || py > y1) return;

@@ -17,6 +17,7 @@
 #pragma once
 #include <Kokkos_Core.hpp>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/mpm/grid.hpp"
 #include "kernels/mpm/two_phase/two_phase_grid.hpp"
 #include "kernels/mpm/two_phase/two_phase_particles.hpp"
@@ -36,8 +37,7 @@ void mirror_wall_reaction(const TwoPhaseGrid<MemorySpace>& g,
   const int nx = S.nx;
   double fx = 0.0, fy = 0.0;
   Kokkos::parallel_reduce(
-      "lsi::mpm::two_phase::mirror_reaction_nodes",
-      Kokkos::RangePolicy<ExecSpace>(0, items.count()),
+      "lsi::mpm::two_phase::mirror_reaction_nodes", range_policy<ExecSpace>(0, items.count()),
       KOKKOS_LAMBDA(const int t, double& sx, double& sy) {
         int j, i_begin, i_end;
         items.nodes(t, j, i_begin, i_end);
@@ -53,7 +53,7 @@ void mirror_wall_reaction(const TwoPhaseGrid<MemorySpace>& g,
   const double gx = gravity[0], gy = gravity[1];
   double ex = 0.0, ey = 0.0;
   Kokkos::parallel_reduce(
-      "lsi::mpm::two_phase::mirror_reaction_points", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      "lsi::mpm::two_phase::mirror_reaction_points", range_policy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q, double& sx, double& sy) {
         const double m = ms(q) + ml(q);
         sx += m * gx + tr(q, 0);

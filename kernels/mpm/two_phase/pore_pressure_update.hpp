@@ -26,6 +26,7 @@
 #pragma once
 #include <Kokkos_Core.hpp>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/common/math.hpp"
 #include "kernels/mpm/constitutive/material.hpp"
 #include "kernels/mpm/shape_function.hpp"
@@ -53,11 +54,11 @@ template <class ExecSpace, class MemorySpace>
 void nodal_volume(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g) {
   const auto s = p.solid;
   const auto vol = g.smooth_weight;
-  Kokkos::deep_copy(vol, 0.0);
+  fill<ExecSpace>(vol, 0.0);
   const double ox = g.solid.origin[0], oy = g.solid.origin[1], inv_dx = 1.0 / g.solid.dx;
   const int nx = g.solid.nx;
   Kokkos::parallel_for(
-      "lsi::mpm::two_phase::nodal_volume", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      "lsi::mpm::two_phase::nodal_volume", range_policy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q) {
         const Stencil1D sx = quadratic_bspline(s.position(q, 0) - ox, inv_dx),
                         sy = quadratic_bspline(s.position(q, 1) - oy, inv_dx);
@@ -85,12 +86,12 @@ void sum_cell_pore_pressure(const TwoPhaseParticles<MemorySpace>& p,
                             const TwoPhaseGrid<MemorySpace>& g) {
   const auto s = p.solid;
   const auto num = g.smooth_value, den = g.smooth_weight;
-  Kokkos::deep_copy(num, 0.0);
-  Kokkos::deep_copy(den, 0.0);
+  fill<ExecSpace>(num, 0.0);
+  fill<ExecSpace>(den, 0.0);
   const double ox = g.solid.origin[0], oy = g.solid.origin[1], inv_dx = 1.0 / g.solid.dx;
   const int nx = g.solid.nx, ny = g.solid.ny;
   Kokkos::parallel_for(
-      "lsi::mpm::two_phase::cell_pressure_sum", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      "lsi::mpm::two_phase::cell_pressure_sum", range_policy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q) {
         const int c = cell_of_point(s.position(q, 0), s.position(q, 1), ox, oy, inv_dx, nx, ny);
         if (c < 0) return;
@@ -114,7 +115,7 @@ void cell_mean_pore_pressure(const TwoPhaseParticles<MemorySpace>& p,
   const double ox = g.solid.origin[0], oy = g.solid.origin[1], inv_dx = 1.0 / g.solid.dx;
   const int nx = g.solid.nx, ny = g.solid.ny;
   Kokkos::parallel_for(
-      "lsi::mpm::two_phase::cell_pressure_mean", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      "lsi::mpm::two_phase::cell_pressure_mean", range_policy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q) {
         const int c = cell_of_point(s.position(q, 0), s.position(q, 1), ox, oy, inv_dx, nx, ny);
         out(q) = c >= 0 && den(c) > 0.0 ? num(c) / den(c) : p.pore_pressure(q);
@@ -138,7 +139,7 @@ double project_pore_pressure(const TwoPhaseParticles<MemorySpace>& p,
   const double K_L = liquid_bulk_modulus;
   double drop = 0.0;
   Kokkos::parallel_reduce(
-      "lsi::mpm::two_phase::cell_pressure_set", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      "lsi::mpm::two_phase::cell_pressure_set", range_policy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q, double& d) {
         const int c = cell_of_point(s.position(q, 0), s.position(q, 1), ox, oy, inv_dx, nx, ny);
         if (c < 0) return;
@@ -215,7 +216,7 @@ double pore_pressure_update(const TwoPhaseParticles<MemorySpace>& p,
   const double K_L = liquid.bulk_modulus, rho_L = liquid.density;
   const auto D = p.volumetric_rate;
   Kokkos::parallel_for(
-      "lsi::mpm::two_phase::volumetric_rate", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      "lsi::mpm::two_phase::volumetric_rate", range_policy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q) {
         D(q) = mixture_volumetric_rate(p.porosity(q),
                                        s.velocity_gradient(q, 0, 0) + s.velocity_gradient(q, 1, 1),
@@ -235,7 +236,7 @@ double pore_pressure_update(const TwoPhaseParticles<MemorySpace>& p,
   k.cell_size = g.dx();
   double dissipated = 0.0;
   Kokkos::parallel_reduce(
-      "lsi::mpm::two_phase::pore_pressure_update", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      "lsi::mpm::two_phase::pore_pressure_update", range_policy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q, double& diss) {
         diss += update_point_pore_pressure(
             p, q, materials(s.material(q)), k, s.velocity_gradient(q, 0, 0),

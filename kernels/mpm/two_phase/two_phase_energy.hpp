@@ -7,6 +7,7 @@
 #pragma once
 #include <Kokkos_Core.hpp>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/mpm/constitutive/linear_elastic.hpp"
 #include "kernels/mpm/two_phase/two_phase_particles.hpp"
 
@@ -36,7 +37,7 @@ TwoPhaseEnergyReport two_phase_particle_energies(
   const auto s = p.solid;
   const double gx = gravity[0], gy = gravity[1], K_L = liquid_bulk_modulus;
   Kokkos::parallel_reduce(
-      "lsi::mpm::two_phase::energy", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      "lsi::mpm::two_phase::energy", range_policy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q, double& ks, double& kl, double& el, double& li, double& pot,
                     double& pl) {
         const double mS = s.mass(q), mL = p.liquid_mass(q);

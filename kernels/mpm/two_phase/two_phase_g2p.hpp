@@ -29,6 +29,7 @@
 #include <cmath>
 #include <type_traits>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/common/math.hpp"
 #include "kernels/mpm/boundary.hpp"
 #include "kernels/mpm/g2p.hpp"
@@ -505,7 +506,7 @@ TwoPhaseG2PReport two_phase_g2p_impl(
   if constexpr (host) {
     constexpr int B = detail::kTwoPhaseG2PBlock;
     Kokkos::parallel_reduce(
-        name, Kokkos::RangePolicy<ExecSpace>(0, (count + B - 1) / B),
+        name, range_policy<ExecSpace>(0, (count + B - 1) / B),
         KOKKOS_LAMBDA(const int block, double& vm, double& wk, double& visc, double& cm, double& tk,
                       int& nonfinite, int& outside) {
           const int q0 = block * B, q1 = q0 + B < count ? q0 + B : count;
@@ -553,7 +554,7 @@ TwoPhaseG2PReport two_phase_g2p_impl(
         Kokkos::Min<double>(dtk), bad, out);
   } else {
     Kokkos::parallel_reduce(
-        name, Kokkos::RangePolicy<ExecSpace>(0, count),
+        name, range_policy<ExecSpace>(0, count),
         KOKKOS_LAMBDA(const int q, double& vm, double& wk, double& visc, double& cm, double& tk,
                       int& nonfinite, int& outside) {
           // Named here, outside the `if constexpr`s: nvcc rejects a lambda whose first use (and

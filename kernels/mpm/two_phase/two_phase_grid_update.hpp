@@ -26,6 +26,7 @@
 #pragma once
 #include <Kokkos_Core.hpp>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/mpm/boundary.hpp"
 #include "kernels/mpm/two_phase/two_phase_grid.hpp"
 
@@ -143,7 +144,7 @@ GridUpdateReport update_two_phase_nodes(const char* name, const TwoPhaseGrid<Mem
   double fx = 0.0, fy = 0.0;
   const NodeItems<ExecSpace> items(region);
   Kokkos::parallel_reduce(
-      name, Kokkos::RangePolicy<ExecSpace>(0, items.count()),
+      name, range_policy<ExecSpace>(0, items.count()),
       KOKKOS_LAMBDA(const int t, double& wall_lost, double& drag_lost, double& seep, double& rx,
                     double& ry) {
         int j, i_begin, i_end;

@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kernels/common/execution_instance.hpp"
 #include "kernels/common/math.hpp"
 #include "kernels/mpm/constitutive/material.hpp"
 #include "kernels/mpm/two_phase/two_phase_particles.hpp"
@@ -134,7 +135,7 @@ TimeStepLimits two_phase_time_step_limits(
                             viscosity_linear, viscosity_quadratic, cell_size};
   TimeStepLimits lim;
   Kokkos::parallel_reduce(
-      "lsi::mpm::two_phase::time_step_limits", Kokkos::RangePolicy<ExecSpace>(0, p.count),
+      "lsi::mpm::two_phase::time_step_limits", range_policy<ExecSpace>(0, p.count),
       KOKKOS_LAMBDA(const int q, double& c2, double& dtk) {
         point_time_step_limits(p, q, materials(s.material(q)), k, c2, dtk);
       },
