@@ -9,9 +9,10 @@
 // without a stream of its own launches on the default instance.
 //
 // The device policies carry Kokkos' light-weight hint: Kokkos 3 copies a functor of 512 bytes to
-// 32 KiB into one constant-memory buffer that all instances share, guarded per instance only, so
-// two streams could overwrite each other's functor; with the hint a functor travels as a kernel
-// argument (up to 4 KiB) or in the instance's own global memory.
+// 32 KiB into one constant-memory buffer that all instances share, through a staging buffer and
+// an event that all instances share too, in steps that two host threads can interleave, so two
+// streams could run each other's functor; with the hint a functor travels as a kernel argument
+// (up to 4 KiB) or in the instance's own global memory.
 #pragma once
 #include <Kokkos_Core.hpp>
 #include <optional>
@@ -19,10 +20,10 @@
 
 namespace lsi {
 
-// Whether ExecSpace runs on the host (its memory is host-accessible).
+// Whether ExecSpace runs on the host (it can reach host memory).
 template <class ExecSpace>
 inline constexpr bool runs_on_host =
-    Kokkos::SpaceAccessibility<Kokkos::HostSpace, typename ExecSpace::memory_space>::accessible;
+    Kokkos::SpaceAccessibility<ExecSpace, Kokkos::HostSpace>::accessible;
 
 namespace detail {
 // The calling thread's own instance of a device space, where it has one.

@@ -50,7 +50,7 @@ class PointSorter {
           j = j < cells / cells_x - 1 ? j : cells / cells_x - 1;
           key(q) = i + cells_x * j;
         });
-    auto host = Kokkos::create_mirror_view(Kokkos::HostSpace(), key);
+    auto host = Kokkos::create_mirror_view(Kokkos::HostSpace(), key, Kokkos::WithoutInitializing);
     copy_and_wait<ExecSpace>(host, key);
     bool sorted = true;
     for (int q = 1; q < count && sorted; ++q) sorted = host(q - 1) <= host(q);

@@ -78,7 +78,8 @@ std::array<std::vector<double>, 4> take_wall_band_impulse(const WallBands<Memory
   std::array<std::vector<double>, 4> taken;
   if (!b.active()) return taken;
   using Exec = typename MemorySpace::execution_space;
-  auto host = Kokkos::create_mirror_view(Kokkos::HostSpace(), b.impulse);
+  auto host =
+      Kokkos::create_mirror_view(Kokkos::HostSpace(), b.impulse, Kokkos::WithoutInitializing);
   copy_and_wait<Exec>(host, b.impulse);
   for (int side = 0; side < 4; ++side)
     for (int k = 0; k < b.count[side]; ++k) taken[side].push_back(host(side, k));

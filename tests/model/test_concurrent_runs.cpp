@@ -60,9 +60,10 @@ TEST(ConcurrentRuns, AsManyAtOnceAsThreadsAndTasksAllow) {
 
 // Four small impacts (the granular-impact scene at two Froude numbers, each twice): side by side
 // and one after the other (on a GPU: each side-by-side run on a stream of its own, so a kernel
-// that read another run's data or launch arguments would change its numbers). A run's sums are taken in another order with one thread than with
-// two, so the numbers agree to round-off, which the run's plastic flow may amplify: 1e-9
-// relative, far below any change of the physics (a setting moves the peak by per cents).
+// that read another run's data or launch arguments would change its numbers). A run's sums are
+// taken in another order with one thread than with two, so the numbers agree to round-off, which
+// the run's plastic flow may amplify: 1e-9 relative, far below any change of the physics (a
+// setting moves the peak by per cents).
 TEST(ConcurrentRuns, MpmRunsSideBySideGiveTheNumbersOfRunsOneAfterTheOther) {
   std::ifstream in(LSI_SOURCE_DIR "/scenes/verification/granular-impact.json");
   const nlohmann::json base = nlohmann::json::parse(in);
