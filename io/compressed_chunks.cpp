@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "io/deflate_planes.hpp"
 #include "io/hdf5_io.hpp"
 #include "model/host_threads.hpp"
 
@@ -45,45 +46,46 @@ void shuffle(const unsigned char* rows, std::size_t n, std::size_t count, std::s
   }
 }
 
-// How a byte plane of a floating-point column is coded, from the order-0 entropy h of every
-// fourth byte (its histogram): stored (deflate level 0) above 7.5 bits, where Huffman coding
-// would save at most 6 % of its size and costs more time than the rest of the chunk's
-// compression (random bytes read about 7.8 bits on a sample of a thousand); Huffman codes alone
-// above 4 bits, where runs are rare, so that deflate does not look for them byte after byte;
-// run-length coded below (the sign and exponent bytes of a column of numbers, which come in
-// runs).
-enum class PlaneCoding : char { stored, huffman, runs };
-
+// How a byte plane of a floating-point column may be coded (deflate_planes.hpp), from the
+// order-0 entropy h of every fourth byte: stored above 7.5 bits, where a Huffman code would save
+// at most 6 % of its size and cost more time than the rest of the chunk's compression (random
+// bytes read about 7.8 bits on a sample of a thousand); a Huffman code above 4 bits, where runs
+// are rare; runs below (the sign and exponent bytes of a column of numbers). The sampled
+// histogram is the cheap test that spares the random planes a histogram and a code:
+// h = log2(N) - sum(c log2 c) / N over the N sampled bytes and their counts c, c log2 c from a
+// table for the counts of planes up to 32 KiB (a call to log2 per count cost more than the
+// sampling).
 PlaneCoding plane_coding(const unsigned char* bytes, std::size_t n) {
-  constexpr std::size_t stride = 4;
+  constexpr std::size_t stride = 4, tabulated = 8192;
+  static const std::vector<double> c_log2_c = [] {
+    std::vector<double> t(tabulated + 1, 0.0);
+    for (std::size_t c = 1; c <= tabulated; ++c) t[c] = double(c) * std::log2(double(c));
+    return t;
+  }();
   std::uint32_t count[256] = {};
   std::size_t sampled = 0;
   for (std::size_t i = 0; i < n; i += stride, ++sampled) ++count[bytes[i]];
-  double h = 0.0;
-  const double inverse = 1.0 / static_cast<double>(sampled);
+  double sum = 0.0;
   for (std::uint32_t c : count)
-    if (c != 0) {
-      const double p = c * inverse;
-      h -= p * std::log2(p);
-    }
+    sum += c <= tabulated ? c_log2_c[c] : double(c) * std::log2(double(c));
+  const double h = std::log2(double(sampled)) - sum / double(sampled);
   return h > 7.5 ? PlaneCoding::stored : h > 4.0 ? PlaneCoding::huffman : PlaneCoding::runs;
 }
 
-// One thread's compressor: its buffers and zlib streams (one per strategy), kept from chunk to
-// chunk.
+// One thread's compressor: its buffers, its zlib stream (integer chunks) and its plane deflater
+// (floating-point chunks), kept from chunk to chunk.
 class ChunkCompressor {
  public:
   explicit ChunkCompressor(int level) : level_(level) {}
   ChunkCompressor(const ChunkCompressor&) = delete;
   ChunkCompressor& operator=(const ChunkCompressor&) = delete;
   ~ChunkCompressor() {
-    for (auto& s : streams_)
-      if (s.started) deflateEnd(&s.z);
+    if (stream_.started) deflateEnd(&stream_.z);
   }
 
   // One chunk as HDF5's pipeline makes it, into `out` (its storage reused): the rows copied (the
   // last chunk padded with zeros, the fill value, to the full chunk), the bytes shuffled, then
-  // deflated (zlib format, as H5Z's deflate filter) with the strategy of the chunk's numbers
+  // deflated (zlib format, as H5Z's deflate filter) as the chunk's numbers call for
   // (compressed_chunks.hpp). Deflated into this thread's buffer, sized for the worst case, then
   // copied: `out` holds only the compressed bytes.
   void compress(const ChunkRows& k, std::vector<unsigned char>& out) {
@@ -93,50 +95,34 @@ class ChunkCompressor {
     for (std::size_t j = 0; j < k.element_size; ++j)  // the padding
       std::fill(plain_.begin() + j * count + n, plain_.begin() + (j + 1) * count, 0);
     shuffle(static_cast<const unsigned char*>(k.rows), n, count, k.element_size, plain_.data());
-    Stream& s = streams_[k.floating ? 1 : 0];
+    if (k.floating) {
+      // Byte plane by byte plane (plane_coding), in blocks lsi writes itself (deflate_planes.hpp).
+      const std::size_t planes = k.element_size;
+      coding_.resize(planes);
+      for (std::size_t j = 0; j < planes; ++j)
+        coding_[j] = plane_coding(plain_.data() + j * count, count);
+      deflated_.resize(PlaneDeflater::bound(count, planes));
+      const std::size_t size =
+          planes_.deflate(plain_.data(), count, planes, coding_.data(), deflated_.data());
+      out.assign(deflated_.begin(), deflated_.begin() + static_cast<std::ptrdiff_t>(size));
+      return;
+    }
+    Stream& s = stream_;
     if (!s.started) {
-      if (deflateInit2(&s.z, level_, Z_DEFLATED, 15, 8, k.floating ? Z_RLE : Z_DEFAULT_STRATEGY) !=
-          Z_OK)
+      if (deflateInit2(&s.z, level_, Z_DEFLATED, 15, 8, Z_DEFAULT_STRATEGY) != Z_OK)
         throw std::runtime_error("zlib could not start compressing a chunk");
       s.started = true;
     } else if (deflateReset(&s.z) != Z_OK) {
       throw std::runtime_error("zlib could not start compressing a chunk");
     }
-    // Room for the worst case: every byte in stored blocks (5 bytes a block of at most 64 KiB),
-    // or deflate's own bound, and the zlib header and trailer.
-    deflated_.resize(std::max<std::size_t>(deflateBound(&s.z, static_cast<uLong>(k.chunk_bytes)),
-                                           k.chunk_bytes + 5 * (k.chunk_bytes / 16384 + 2) + 64));
+    // Room for deflate's bound.
+    deflated_.resize(deflateBound(&s.z, static_cast<uLong>(k.chunk_bytes)));
     s.z.next_out = deflated_.data();
     s.z.avail_out = static_cast<uInt>(deflated_.size());
-    if (!k.floating) {
-      s.z.next_in = plain_.data();
-      s.z.avail_in = static_cast<uInt>(k.chunk_bytes);
-      if (deflate(&s.z, Z_FINISH) != Z_STREAM_END)
-        throw std::runtime_error("zlib could not compress a chunk");
-    } else {
-      // Byte planes in runs of the same coding (plane_coding): stored (level 0), Huffman codes
-      // alone, or run-length coded, at the dataset's level; one deflate stream.
-      const std::size_t planes = k.element_size;
-      coding_.resize(planes);
-      for (std::size_t j = 0; j < planes; ++j)
-        coding_[j] = plane_coding(plain_.data() + j * count, count);
-      std::size_t j = 0;
-      while (j < planes) {
-        const PlaneCoding coding = coding_[j];
-        std::size_t end = j + 1;
-        while (end < planes && coding_[end] == coding) ++end;
-        const int strategy = coding == PlaneCoding::huffman ? Z_HUFFMAN_ONLY : Z_RLE;
-        if (deflateParams(&s.z, coding == PlaneCoding::stored ? 0 : level_, strategy) != Z_OK)
-          throw std::runtime_error("zlib could not set a chunk's compression");
-        s.z.next_in = plain_.data() + j * count;
-        s.z.avail_in = static_cast<uInt>((end - j) * count);
-        const bool last = end == planes;
-        const int r = deflate(&s.z, last ? Z_FINISH : Z_BLOCK);
-        if (r != (last ? Z_STREAM_END : Z_OK) || s.z.avail_in != 0)
-          throw std::runtime_error("zlib could not compress a chunk");
-        j = end;
-      }
-    }
+    s.z.next_in = plain_.data();
+    s.z.avail_in = static_cast<uInt>(k.chunk_bytes);
+    if (deflate(&s.z, Z_FINISH) != Z_STREAM_END)
+      throw std::runtime_error("zlib could not compress a chunk");
     out.assign(deflated_.begin(), deflated_.begin() + static_cast<std::ptrdiff_t>(s.z.total_out));
   }
 
@@ -146,7 +132,8 @@ class ChunkCompressor {
     bool started = false;
   };
   int level_;
-  Stream streams_[2];
+  Stream stream_;         // integer chunks
+  PlaneDeflater planes_;  // floating-point chunks
   std::vector<unsigned char> plain_, deflated_;
   std::vector<PlaneCoding> coding_;  // how each byte plane of the chunk is coded
 };

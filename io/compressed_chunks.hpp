@@ -24,13 +24,14 @@ struct ChunkRows {
 };
 
 // Compresses chunks as HDF5's shuffle + deflate pipeline stores them, on the host's threads
-// (model/host_threads.hpp). Integer chunks are deflated at `level`.
-// Floating-point ones are deflated byte plane by byte plane, in one deflate stream: after the
-// shuffle their sign and exponent bytes come in long runs, which zlib's run-length strategy
-// (Z_RLE, at `level`) finds; the planes between, of few values but no runs, take Huffman codes
-// alone (Z_HUFFMAN_ONLY), and the low mantissa bytes, which look random, are stored (deflate
-// level 0): Huffman coding would take most of the time of writing a large table and save
-// nothing. The format leaves these choices to the writer: any HDF5 reader inflates the stream.
+// (model/host_threads.hpp). Integer chunks are deflated by zlib at `level`.
+// Floating-point ones are deflated byte plane by byte plane, in one deflate stream of blocks lsi
+// writes itself (deflate_planes.hpp): after the shuffle their sign and exponent bytes come in
+// long runs (a block of literals and repeats of the previous byte), the planes between, of few
+// values but no runs, take a Huffman code of their own (a block of literals alone), and the low
+// mantissa bytes, which look random, are stored: Huffman coding them would take most of the
+// time of writing a large table and save nothing. The format leaves these choices to the
+// writer: any HDF5 reader inflates the stream.
 // The threads' zlib streams and buffers and the compressed bytes are kept from call to call: a
 // table of millions of rows is thousands of chunks, and memory allocated anew for each costs a
 // page fault per 4 KiB.

@@ -1,7 +1,7 @@
 // The compressed chunks of a sweep table (io/compressed_chunks.hpp): HDF5 reads back, bit for bit,
 // what lsi compressed itself, for columns of numbers whose byte planes are part random, part of
-// few values, part runs (stored, Huffman-coded and run-length coded in one deflate stream), and a
-// compressor reused from call to call gives the bytes of a new one.
+// few values, part runs (stored, Huffman-coded and run-length coded blocks in one deflate stream,
+// io/deflate_planes.hpp), and a compressor reused from call to call gives the bytes of a new one.
 #include "io/compressed_chunks.hpp"
 
 #include <gtest/gtest.h>
