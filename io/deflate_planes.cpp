@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstring>
 
 namespace lsi::hdf5 {
@@ -12,9 +13,9 @@ namespace {
 
 constexpr int kLiteralLengthSymbols = 286;  // 0-255 literals, 256 end of block, 257-285 lengths
 constexpr int kEndOfBlock = 256;
-constexpr int kMaxCodeLength = 15;        // literal/length and distance codes (3.2.7)
-constexpr int kMaxCodeLengthLength = 7;   // the code of the code lengths
-constexpr std::size_t kMaxStored = 65535; // bytes of a stored block (3.2.4)
+constexpr int kMaxCodeLength = 15;         // literal/length and distance codes (3.2.7)
+constexpr int kMaxCodeLengthLength = 7;    // the code of the code lengths
+constexpr std::size_t kMaxStored = 65535;  // bytes of a stored block (3.2.4)
 constexpr int kMinMatch = 3, kMaxMatch = 258;
 
 // Bits written least significant first (3.1.1). Each put() stores eight bytes and advances by the
@@ -162,7 +163,8 @@ void code_lengths(const std::uint32_t* freq, const int n, const int limit, Code<
     const int len = code.length[s];
     if (len == 0) continue;
     const unsigned c = unsigned(next_code[len]++);
-    code.bits[s] = std::uint16_t((kReversedByte[c & 0xff] << 8 | kReversedByte[c >> 8]) >> (16 - len));
+    code.bits[s] =
+        std::uint16_t((kReversedByte[c & 0xff] << 8 | kReversedByte[c >> 8]) >> (16 - len));
   }
 }
 
@@ -231,8 +233,8 @@ class DynamicHeader {
     while (length_count_ > 4 && lengths_code_.length[kOrder[length_count_ - 1]] == 0)
       --length_count_;
     bits_ = 3 + 5 + 5 + 4 + 3 * length_count_;
-    for (int k = 0; k < items_count_; ++k) bits_ += lengths_code_.length[items_[k].symbol] +
-                                                    extra_bits(items_[k].symbol);
+    for (int k = 0; k < items_count_; ++k)
+      bits_ += lengths_code_.length[items_[k].symbol] + extra_bits(items_[k].symbol);
   }
   // The header's bits, the block's first three included.
   std::uint64_t bits() const { return bits_; }
@@ -250,8 +252,11 @@ class DynamicHeader {
   }
 
  private:
-  static constexpr int kOrder[19] = {16, 17, 18, 0, 8, 7, 9, 6, 10, 5, 11, 4, 12, 3, 13, 2, 14, 1, 15};
-  static int extra_bits(int symbol) { return symbol == 16 ? 2 : symbol == 17 ? 3 : symbol == 18 ? 7 : 0; }
+  static constexpr int kOrder[19] = {16, 17, 18, 0, 8,  7, 9,  6, 10, 5,
+                                     11, 4,  12, 3, 13, 2, 14, 1, 15};
+  static int extra_bits(int symbol) {
+    return symbol == 16 ? 2 : symbol == 17 ? 3 : symbol == 18 ? 7 : 0;
+  }
   struct Item {
     std::uint8_t symbol, extra;
   };
@@ -332,6 +337,23 @@ void write_literals(BitWriter& w, const unsigned char* p, const std::size_t n,
   w.put(b.code.bits[kEndOfBlock], b.code.length[kEndOfBlock]);
 }
 
+// How many of the first `most` bytes at p equal v: eight bytes at a time (the first byte that
+// differs is the lowest nonzero byte of their difference, on a little-endian host).
+std::size_t run_length(const unsigned char* p, const std::size_t most, const unsigned char v) {
+  std::size_t r = 0;
+  if constexpr (std::endian::native == std::endian::little) {
+    const std::uint64_t pattern = 0x0101010101010101ull * v;
+    for (; r + 8 <= most; r += 8) {
+      std::uint64_t w;
+      std::memcpy(&w, p + r, 8);
+      if (const std::uint64_t d = w ^ pattern; d != 0)
+        return r + static_cast<std::size_t>(std::countr_zero(d) >> 3);
+    }
+  }
+  while (r < most && p[r] == v) ++r;
+  return r;
+}
+
 // A runs block: the plane as literals and matches at distance one (the greedy parse of zlib's
 // run-length strategy: a repeat of the previous byte three times or more is a match), symbols
 // below 256 literals, above them the match's length + 256; its code and size.
@@ -351,8 +373,7 @@ void plan_runs(const unsigned char* p, const std::size_t n, std::vector<std::uin
     if (i > 0) {
       const unsigned char prev = p[i - 1];
       const std::size_t most = std::min<std::size_t>(kMaxMatch, n - i);
-      std::size_t r = 0;
-      while (r < most && p[i + r] == prev) ++r;
+      const std::size_t r = run_length(p + i, most, prev);
       if (r >= kMinMatch) {
         symbols[k++] = std::uint16_t(256 + r);
         const LengthSymbol& ls = kLengthSymbols[r];
