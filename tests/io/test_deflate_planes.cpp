@@ -84,7 +84,8 @@ TEST(DeflatePlanes, EveryCodingOfEveryKindOfPlaneInflatesBack) {
   // Runs of every length from 1 to 600 (matches of 3 to 258 bytes, longer runs cut at 258),
   // of alternating values.
   Bytes runs;
-  for (int r = 1; runs.size() < 60000; r = r % 600 + 1) runs.insert(runs.end(), r, r % 2 ? 0 : 0xc0);
+  for (int r = 1; runs.size() < 60000; r = r % 600 + 1)
+    runs.insert(runs.end(), r, r % 2 ? 0 : 0xc0);
   runs.resize(60000);
   planes.push_back({"runs", runs});
   planes.push_back({"one byte", Bytes{0x7}});
@@ -107,8 +108,9 @@ TEST(DeflatePlanes, PlanesOfMixedCodingsInOneStreamInflateBack) {
     if (j == 3)
       for (auto& x : p) x = static_cast<unsigned char>(g() % 16);
     bytes.insert(bytes.end(), p.begin(), p.end());
-    codings.push_back(j == 3 ? PlaneCoding::huffman
-                             : j < 5 ? PlaneCoding::stored : PlaneCoding::runs);
+    codings.push_back(j == 3  ? PlaneCoding::huffman
+                      : j < 5 ? PlaneCoding::stored
+                              : PlaneCoding::runs);
   }
   Bytes out(PlaneDeflater::bound(n, 8));
   PlaneDeflater d;
