@@ -50,6 +50,7 @@ SweepTableStream::SweepTableStream(const std::string& path, std::vector<std::str
   if (rows == 0 || chunk_rows == 0 || input_paths_.empty())
     throw std::invalid_argument("SweepTableStream: no rows, no chunk rows or no inputs");
   file_ = sweep_layout::create_file(path);
+  addresses_ = std::make_unique<hdf5::WrittenChunkAddress>(path);
   Handle lcpl(H5Pcreate(H5P_LINK_CREATE), H5Pclose, "cannot create a link-creation property list");
   check(H5Pset_create_intermediate_group(lcpl, 1), "cannot set intermediate group creation");
   for (const auto& d : layout_) {
@@ -103,15 +104,11 @@ std::vector<StoredChunk> SweepTableStream::write_chunks(const SweepTable& t, std
 void SweepTableStream::write_chunk(StoredChunk& k, const void* bytes, const std::size_t size) {
   const hsize_t offset[2] = {k.chunk * chunk_rows_, 0};
   const hid_t ds = datasets_[k.dataset];
+  addresses_->before_write(file_);
   check(H5Dwrite_chunk(ds, H5P_DEFAULT, 0, offset, size, bytes),
         path_ + ": cannot write a chunk of '" + layout_[k.dataset].name + "'");
-  unsigned mask = 0;
-  haddr_t address = 0;
-  hsize_t stored_size = 0;
-  check(H5Dget_chunk_info_by_coord(ds, offset, &mask, &address, &stored_size),
-        path_ + ": cannot locate a chunk of '" + layout_[k.dataset].name + "'");
-  k.address = address;
-  k.size = stored_size;
+  k.address = addresses_->after_write(ds, offset, bytes, size);
+  k.size = size;
 }
 
 std::vector<StoredChunk> SweepTableStream::append(const SweepTable& rows) {

@@ -17,6 +17,7 @@
 #include "io/hdf5_io.hpp"
 #include "io/sweep_file.hpp"
 #include "io/sweep_file_layout.hpp"
+#include "io/written_chunk_address.hpp"
 #include "model/sweep_table.hpp"
 
 namespace lsi {
@@ -76,6 +77,7 @@ class SweepTableStream {
   std::unique_ptr<hdf5::ChunkCompression> compression_;  // every dataset has the same filters
   SweepTable pending_;
   std::vector<double> row_major_inputs_;  // write_chunks' buffer, kept from chunk to chunk
+  std::unique_ptr<hdf5::WrittenChunkAddress> addresses_;  // where each chunk went
 };
 
 }  // namespace lsi
