@@ -27,8 +27,8 @@ bool WrittenChunkAddress::holds(std::uint64_t address, const void* bytes, std::s
   read_.resize(size);
   std::size_t done = 0;
   while (done < size) {
-    const ssize_t r = ::pread(fd_, read_.data() + done, size - done,
-                              static_cast<off_t>(address + done));
+    const ssize_t r =
+        ::pread(fd_, read_.data() + done, size - done, static_cast<off_t>(address + done));
     if (r <= 0) return false;
     done += static_cast<std::size_t>(r);
   }
