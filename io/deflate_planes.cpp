@@ -29,7 +29,9 @@ class BitWriter {
     count_ += n;
   }
   void flush() {
-    std::memcpy(out_, &buffer_, 8);
+    std::uint64_t bytes = buffer_;  // least significant byte first
+    if constexpr (std::endian::native == std::endian::big) bytes = __builtin_bswap64(bytes);
+    std::memcpy(out_, &bytes, 8);
     out_ += count_ >> 3;
     buffer_ = count_ >= 64 ? 0 : buffer_ >> (count_ & ~7);
     count_ &= 7;
@@ -48,7 +50,7 @@ class BitWriter {
     count_ = 0;
   }
   void raw(const unsigned char* bytes, std::size_t n) {
-    std::memcpy(out_, bytes, n);
+    if (n != 0) std::memcpy(out_, bytes, n);
     out_ += n;
   }
   unsigned char* end() const { return out_; }
@@ -266,8 +268,8 @@ class DynamicHeader {
   std::uint64_t bits_ = 0;
 };
 
-// The bits of `n` bytes in stored blocks: each block's 3 header bits, up to 7 of padding and
-// its 4 length bytes.
+// The bits of `n` bytes in stored blocks, at most: each block's 3 header bits and 4 length bytes,
+// the first block up to 7 bits of padding more (the blocks after it start on a byte boundary).
 std::uint64_t stored_bits(std::size_t n) {
   const std::size_t blocks = std::max<std::size_t>(1, (n + kMaxStored - 1) / kMaxStored);
   return 8 * (std::uint64_t(n) + 5 * blocks) + 7;

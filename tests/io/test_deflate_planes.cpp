@@ -135,8 +135,8 @@ TEST(DeflatePlanes, LargerThanAStoredBlockInflatesBack) {
 TEST(DeflatePlanes, CodesLongerThanFifteenBitsAreLimited) {
   // Byte k appears Fibonacci(k + 1) times (1, 1, 2, 3, 5, ...) for k < 24: a minimum-redundancy
   // code gives the rarest bytes 23 bits, which deflate cannot send; the stream must still inflate,
-  // and its size stay that of an optimal code within the limit (zlib's, which limits the same
-  // way: within 1 %, for the blocks' headers).
+  // and its size stay that of a near-optimal code within the limit (zlib's, which limits its
+  // codes similarly: within 1 %, for the blocks' headers).
   Bytes b;
   std::uint64_t f0 = 1, f1 = 1;
   for (int k = 0; k < 24; ++k) {
