@@ -16,6 +16,7 @@ void write_journal_entry(const std::string& path, SweepHeader header, const Swee
     failures.push_back({e.failure_index[i], e.failure_reason[i]});
   header.complete = true;  // the chunk itself
   header.journal = {{"table_file", e.table_file},
+                    {"chunk_rows", e.chunk_rows},
                     {"stored_rows", e.stored_rows},
                     {"chunks", chunks},
                     {"failures", failures}};
@@ -33,6 +34,9 @@ SweepJournalEntry read_journal_entry(const std::string& path, const std::string&
   SweepJournalEntry e;
   try {
     e.table_file = j.at("table_file").get<std::string>();
+    // Entries without it were written with the chunks of 256 KiB, whatever the chunk_samples
+    // (SweepTableStream::chunk_rows_for with rows_at_once = 1).
+    e.chunk_rows = j.value("chunk_rows", std::uint64_t(0));
     e.stored_rows = j.at("stored_rows").get<std::uint64_t>();
     for (const auto& k : j.at("chunks"))
       e.chunks.push_back({k.at(0).get<std::uint64_t>(), k.at(1).get<std::uint64_t>(),

@@ -16,6 +16,7 @@ namespace lsi {
 struct SweepJournalEntry {
   std::string table_file;                    // the table file's name in the parts directory
   std::vector<StoredChunk> chunks;           // the compressed chunks the chunk completed there
+  std::uint64_t chunk_rows = 0;              // the table's rows per compressed chunk
   std::uint64_t stored_rows = 0;             // rows in whole compressed chunks after the chunk
   SweepTable pending;                        // the rows after those (not compressed yet)
   std::vector<std::uint64_t> failure_index;  // the chunk's failed samples ...

@@ -492,7 +492,21 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     }
   }
   const std::string table_name = "table-" + std::to_string(generation) + ".h5";
-  const std::uint64_t chunk_rows = SweepTableStream::chunk_rows_for(paths.size(), my_samples);
+  // A resumed run goes on with the chunk rows its predecessors journalled (entries that do not
+  // say were written with the rule's chunks for rows arriving one at a time).
+  std::uint64_t chunk_rows =
+      SweepTableStream::chunk_rows_for(paths.size(), my_samples, study.chunk_samples);
+  if (!earlier.empty()) {
+    const std::uint64_t recorded = earlier.front().chunk_rows;
+    chunk_rows =
+        recorded != 0 ? recorded : SweepTableStream::chunk_rows_for(paths.size(), my_samples, 1);
+    for (std::size_t m = 0; m < earlier.size(); ++m)
+      if (earlier[m].chunk_rows != recorded)
+        throw InputError(chunk_file(parts, mine[m]) + ": journals chunks of " +
+                         std::to_string(earlier[m].chunk_rows) + " rows, " +
+                         chunk_file(parts, mine[0]) + " of " + std::to_string(recorded) +
+                         "; delete the parts directory to start the sweep again");
+  }
   SweepTableStream table((parts / table_name).string(), paths, study.output_columns(), my_samples,
                          chunk_rows);
   const SweepHeader chunk_header = header_of(study, opt.shard, opt.shard_count);
@@ -512,6 +526,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     for (auto& e : earlier) {
       e.chunks = table.adopt((parts / e.table_file).string(), e.chunks);
       e.table_file = table_name;
+      e.chunk_rows = chunk_rows;
       stored.insert(stored.end(), e.chunks.begin(), e.chunks.end());
       all.failure_index.insert(all.failure_index.end(), e.failure_index.begin(),
                                e.failure_index.end());
@@ -548,6 +563,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     ts = Clock::now();
     SweepJournalEntry entry;
     entry.table_file = table_name;
+    entry.chunk_rows = chunk_rows;
     entry.chunks = table.append(t);
     entry.stored_rows = table.stored_rows();
     entry.pending = table.pending();

@@ -330,7 +330,8 @@ void BM_table_stream(benchmark::State& state) {
   const SweepTable t = chunk_table();
   const SweepHeader h = chunk_header();
   const std::string path = chunk_path();
-  const std::uint64_t chunk_rows = SweepTableStream::chunk_rows_for(t.inputs.size(), kBatch);
+  const std::uint64_t chunk_rows =
+      SweepTableStream::chunk_rows_for(t.inputs.size(), kBatch, kBatch);
   for (auto _ : state) {
     SweepTableStream stream(path, t.input_paths, t.output_columns, kBatch, chunk_rows);
     stream.append(t);

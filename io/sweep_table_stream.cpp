@@ -29,11 +29,14 @@ SweepTable rows_of(const SweepTable& t, std::uint64_t from, std::uint64_t to) {
 
 }  // namespace
 
-std::uint64_t SweepTableStream::chunk_rows_for(std::size_t inputs, std::uint64_t rows) {
-  constexpr std::uint64_t kChunkBytes = std::uint64_t(1) << 18;
+std::uint64_t SweepTableStream::chunk_rows_for(std::size_t inputs, std::uint64_t rows,
+                                               std::uint64_t rows_at_once) {
+  constexpr std::uint64_t kChunkBytes = std::uint64_t(1) << 18,
+                          kLargestChunkBytes = kChunkBytes << 2;
   const std::uint64_t widest = 8 * std::max<std::uint64_t>(inputs, 1);
   std::uint64_t r = 1;
   while (2 * r * widest <= kChunkBytes) r *= 2;
+  while (2 * r * widest <= kLargestChunkBytes && r < rows_at_once) r *= 2;
   return std::max<std::uint64_t>(1, std::min(r, rows));
 }
 

@@ -30,9 +30,15 @@ struct StoredChunk {
 
 class SweepTableStream {
  public:
-  // Chunk rows for a table of these columns and `rows` rows: the largest power of two whose
-  // widest row (the inputs) fits 256 KiB, at most `rows`.
-  static std::uint64_t chunk_rows_for(std::size_t inputs, std::uint64_t rows);
+  // Chunk rows for a table of these columns and `rows` rows whose rows arrive `rows_at_once` at
+  // a time (a sweep's chunk_samples): the largest power of two whose widest row (the inputs)
+  // fits 256 KiB, doubled while it is below `rows_at_once` and the chunk fits 1 MiB; at most
+  // `rows`. Larger chunks cost less to compress and index (each byte plane's code and block
+  // header is made once per chunk); the cap keeps a chunk within HDF5's default chunk cache, and
+  // `rows_at_once` bounds the rows that wait in memory for a chunk to fill (a sweep's journal
+  // writes them again with every entry).
+  static std::uint64_t chunk_rows_for(std::size_t inputs, std::uint64_t rows,
+                                      std::uint64_t rows_at_once);
 
   // Creates `path` (truncating it) with the /samples datasets of a table of `rows` rows (at
   // most; finish() may end it shorter), in chunks of `chunk_rows` rows.

@@ -26,7 +26,9 @@
 #include "support/temp_files.hpp"
 #include "io/scene_parser.hpp"
 #include "io/study_parser.hpp"
+#include "io/hdf5_io.hpp"
 #include "io/sweep_file.hpp"
+#include "io/sweep_table_stream.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -416,6 +418,117 @@ TEST(SweepCli, IntervalRuleStopsEarlyAndWallTimeStopsResumably) {
   const lsi::SweepFile f = lsi::read_sweep_file(t.string());
   EXPECT_TRUE(f.header.complete);
   EXPECT_EQ(f.table.rows(), 10000u);
+}
+
+// The rows of a chunk of /samples/inputs in a result file.
+hsize_t input_chunk_rows(const fs::path& file) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t d = H5Dopen2(f, "/samples/inputs", H5P_DEFAULT);
+  const hid_t plist = H5Dget_create_plist(d);
+  hsize_t dims[2] = {0, 0};
+  const int rank = H5Pget_chunk(plist, 2, dims);
+  H5Pclose(plist);
+  H5Dclose(d);
+  H5Fclose(f);
+  return rank == 2 ? dims[0] : 0;
+}
+
+// Edits the journal of each entry in `parts` (the attribute `journal` of chunk-*.h5).
+template <class Edit>
+void edit_journals(const fs::path& parts, const Edit& edit) {
+  for (const auto& e : fs::directory_iterator(parts)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("chunk-", 0) != 0) continue;
+    const hid_t f = H5Fopen(e.path().c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(f, 0) << name;
+    json j = json::parse(lsi::hdf5::read_string_attribute(f, "journal"));
+    edit(name, j);
+    H5Adelete(f, "journal");
+    lsi::hdf5::write_string_attribute(f, "journal", j.dump());
+    H5Fclose(f);
+  }
+}
+
+// The sampled rows of two result files: the same samples, inputs and outputs.
+void expect_same_rows(const lsi::SweepTable& a, const lsi::SweepTable& b) {
+  ASSERT_EQ(a.rows(), b.rows());
+  EXPECT_EQ(a.index, b.index);
+  EXPECT_EQ(a.status, b.status);
+  EXPECT_EQ(a.inputs, b.inputs);
+  ASSERT_EQ(a.outputs.size(), b.outputs.size());
+  for (std::size_t c = 0; c < a.outputs.size(); ++c)
+    for (std::size_t i = 0; i < a.rows(); ++i)
+      if (!(std::isnan(a.outputs[c][i]) && std::isnan(b.outputs[c][i]))) {
+        ASSERT_EQ(a.outputs[c][i], b.outputs[c][i]) << a.output_columns[c] << " row " << i;
+      }
+}
+
+TEST(SweepCli, TableChunksFollowChunkSamplesAndAResumeKeepsTheJournalledOnes) {
+  using lsi::SweepTableStream;
+  // The rule: 5 inputs are 40 bytes a row; 4096 rows (160 KiB) are the most within 256 KiB,
+  // doubled while fewer than the rows arriving at once and within 1 MiB.
+  EXPECT_EQ(SweepTableStream::chunk_rows_for(5, 10000000, 1), 4096u);
+  EXPECT_EQ(SweepTableStream::chunk_rows_for(5, 10000000, 5000), 8192u);
+  EXPECT_EQ(SweepTableStream::chunk_rows_for(5, 10000000, 1 << 20), 16384u);  // 640 KiB
+  EXPECT_EQ(SweepTableStream::chunk_rows_for(4, 10000000, 1 << 20), 32768u);  // 1 MiB
+  EXPECT_EQ(SweepTableStream::chunk_rows_for(5, 1000, 1 << 20), 1000u);
+
+  // The study's 4 inputs in chunks of 16384 rows, as its chunk_samples; a run stopped after its
+  // first chunk journals them, and its resumption writes the same table.
+  const json big = {{"samples", 40000}, {"chunk_samples", 16384}};
+  const fs::path whole = temp_dir() / "chunkrows-whole.h5";
+  ASSERT_EQ(
+      run("sweep " + write_study("chunkrows", big).string() + " --out " + whole.string()).code, 0);
+  EXPECT_EQ(input_chunk_rows(whole), 16384u);
+  json timed_big = big;
+  timed_big["stop"] = {{"wall_time_s", 1e-6}};
+  const fs::path timed = write_study("chunkrows-timed", timed_big);
+  const fs::path t = temp_dir() / "chunkrows-timed.h5";
+  ASSERT_EQ(run("sweep " + timed.string() + " --out " + t.string()).code, 0);
+  int entries = 0;
+  edit_journals(t.string() + ".parts", [&](const std::string& name, json& j) {
+    EXPECT_EQ(j.value("chunk_rows", 0), 16384) << name;
+    ++entries;
+  });
+  EXPECT_EQ(entries, 1);
+  for (int k = 0; k < 2; ++k)
+    ASSERT_EQ(run("sweep " + timed.string() + " --out " + t.string() + " --resume").code, 0);
+  EXPECT_EQ(input_chunk_rows(t), 16384u);
+  expect_same_rows(lsi::read_sweep_file(t.string()).table,
+                   lsi::read_sweep_file(whole.string()).table);
+
+  // Journal entries that do not name their chunk rows were written with the 256 KiB chunks
+  // (8192 rows of 4 inputs), whatever the chunk_samples: a resumption goes on with those.
+  const json small = {{"samples", 10000}};
+  const fs::path small_whole = temp_dir() / "oldjournal-whole.h5";
+  ASSERT_EQ(
+      run("sweep " + write_study("oldjournal", small).string() + " --out " + small_whole.string())
+          .code,
+      0);
+  json timed_small = small;
+  timed_small["stop"] = {{"wall_time_s", 1e-6}};
+  const fs::path old_study = write_study("oldjournal-timed", timed_small);
+  const fs::path o = temp_dir() / "oldjournal-timed.h5";
+  ASSERT_EQ(run("sweep " + old_study.string() + " --out " + o.string()).code, 0);
+  ASSERT_EQ(run("sweep " + old_study.string() + " --out " + o.string() + " --resume").code, 0);
+  edit_journals(o.string() + ".parts", [](const std::string&, json& j) { j.erase("chunk_rows"); });
+  ASSERT_EQ(run("sweep " + old_study.string() + " --out " + o.string() + " --resume").code, 0);
+  EXPECT_EQ(input_chunk_rows(o), 8192u);
+  expect_same_rows(lsi::read_sweep_file(o.string()).table,
+                   lsi::read_sweep_file(small_whole.string()).table);
+
+  // Entries that disagree are refused, naming the file and both chunk sizes.
+  const fs::path m = temp_dir() / "mixed-timed.h5";
+  ASSERT_EQ(run("sweep " + old_study.string() + " --out " + m.string()).code, 0);
+  ASSERT_EQ(run("sweep " + old_study.string() + " --out " + m.string() + " --resume").code, 0);
+  edit_journals(m.string() + ".parts", [](const std::string& name, json& j) {
+    if (name == "chunk-000000000001.h5") j["chunk_rows"] = 4096;
+  });
+  const Outcome mixed = run("sweep " + old_study.string() + " --out " + m.string() + " --resume");
+  EXPECT_EQ(mixed.code, 2) << mixed.out;
+  EXPECT_NE(mixed.out.find("chunk-000000000001.h5: journals chunks of 4096 rows"),
+            std::string::npos)
+      << mixed.out;
 }
 
 TEST(SweepCli, GridDesignRunsTheFullFactorialFirstInputFastest) {
