@@ -1,7 +1,7 @@
 // Deflate blocks of byte planes; see deflate_planes.hpp. Section numbers are RFC 1951's.
 #include "io/deflate_planes.hpp"
 
-#include <zlib.h>
+#include "io/adler32.hpp"
 
 #include <algorithm>
 #include <array>
@@ -464,7 +464,7 @@ std::size_t PlaneDeflater::deflate(const unsigned char* bytes, const std::size_t
   }
   w.align();
   unsigned char* end = w.end();
-  const uLong adler = adler32_z(adler32_z(0, nullptr, 0), bytes, plane_bytes * planes);
+  const std::uint32_t adler = adler32(1, bytes, plane_bytes * planes);
   for (int k = 0; k < 4; ++k) end[k] = static_cast<unsigned char>(adler >> (24 - 8 * k));
   return static_cast<std::size_t>(end + 4 - out);
 }
