@@ -16,8 +16,8 @@ std::uint32_t zlib_adler(std::uint32_t start, const std::vector<unsigned char>& 
 
 // Lengths around the 64-byte rows and the blocks of 1024 rows (65536 bytes), and zlib's own
 // block of 5552 bytes.
-const std::size_t kLengths[] = {0,    1,     2,     63,    64,    65,     127,    128,    5551,
-                                5552, 5553,  65535, 65536, 65537, 131072, 131135, 200003, 1 << 20};
+const std::size_t kLengths[] = {0,    1,    2,     63,    64,    65,     127,    128,    5551,
+                                5552, 5553, 65535, 65536, 65537, 131072, 131135, 200003, 1 << 20};
 
 TEST(Adler32, RandomBytesGiveZlibsChecksum) {
   std::mt19937 g(7);
@@ -46,9 +46,9 @@ TEST(Adler32, ContinuesFromAnyChecksum) {
             << n << " bytes from " << start;
       }
   const std::size_t cut = 70001;
-  EXPECT_EQ(lsi::hdf5::adler32(lsi::hdf5::adler32(1, b.data(), cut), b.data() + cut,
-                               b.size() - cut),
-            zlib_adler(1, b, b.size()));
+  EXPECT_EQ(
+      lsi::hdf5::adler32(lsi::hdf5::adler32(1, b.data(), cut), b.data() + cut, b.size() - cut),
+      zlib_adler(1, b, b.size()));
 }
 
 }  // namespace
