@@ -610,11 +610,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   for (auto s : all.status) outcome.samples_ok += s == static_cast<std::int8_t>(SampleStatus::ok);
   gather_s += seconds_since(ts);
   ts = Clock::now();
-  // The MPM at the quantiles reads the table's rows after the statistics; otherwise only its
-  // statuses and failures are read again, and the statistics may sort its outputs in place.
-  if (opt.shard_count == 1)
-    outcome.statistics = study.mpm_at_quantiles ? sweep_statistics(study, all)
-                                                : sweep_statistics_sorting(study, all);
+  if (opt.shard_count == 1) outcome.statistics = sweep_statistics(study, all);
   const double statistics_s = seconds_since(ts);
   ts = Clock::now();
   if (opt.shard_count == 1 && complete && study.mpm_at_quantiles)

@@ -55,9 +55,7 @@ json json_number(double v) {
 
 namespace {
 
-// sweep_statistics of `table`; `sortable`, when given, is the same table, whose output columns
-// may be sorted in place (sweep_statistics_sorting).
-json statistics_of(const Study& study, const SweepTable& table, SweepTable* const sortable) {
+json statistics_of(const Study& study, const SweepTable& table) {
   json j;
   const std::size_t n = table.rows();
   const auto is_ok = [&](std::size_t i) {
@@ -88,26 +86,23 @@ json statistics_of(const Study& study, const SweepTable& table, SweepTable* cons
     j["note"] =
         "confidence intervals assume independent samples; for Latin-hypercube, Sobol "
         "and grid designs and for given points they are indicative only";
-  // Each column is described on its own (a sort of its ok values, then the sums in sorted
-  // order), so the columns run in parallel and the results do not depend on the thread count.
+  // Each column is described on its own (its ok values in sample order), so the columns run in
+  // parallel and the results do not depend on the thread count.
   const std::size_t columns = table.output_columns.size();
   std::vector<json> column_stats(columns);
   std::vector<json> column_exceed(columns, json::array());
   std::vector<std::exception_ptr> column_error(columns);
-  // copy and scratch: a thread's buffers, kept from column to column.
+  // copy (the ok values, where some failed) and scratch: a thread's buffers, kept from column to
+  // column.
   auto describe_column = [&](std::size_t c, std::vector<double>& copy,
-                             std::vector<std::uint64_t>& scratch) {
+                             sweeps::OrderScratch& scratch) {
     const std::string& column = table.output_columns[c];
-    std::vector<double>& v = all_ok && sortable ? sortable->outputs[c] : copy;
-    if (&v == &copy) {
+    if (!all_ok) {
       copy.clear();
       sweeps::reserve_on_huge_pages(copy, ok_count);
-      if (all_ok) {
-        copy.assign(table.outputs[c].begin(), table.outputs[c].end());
-      } else {
-        for (std::size_t i : ok) copy.push_back(table.outputs[c][i]);
-      }
+      for (std::size_t i : ok) copy.push_back(table.outputs[c][i]);
     }
+    const std::vector<double>& v = all_ok ? table.outputs[c] : copy;
     json& o = column_stats[c];
     o["count"] = v.size();
     std::size_t nan_count = 0;
@@ -129,7 +124,7 @@ json statistics_of(const Study& study, const SweepTable& table, SweepTable* cons
                                   {"probability", json_number(e.probability)},
                                   {"ci", interval(e.ci)}});
     }
-    const sweeps::OutputStatistics s = sweeps::describe_in_place(v, scratch, study.confidence);
+    const sweeps::OutputStatistics s = sweeps::describe(v, scratch, study.confidence);
     o["infinite_count"] = s.infinite_count;
     o["mean"] = json_number(s.mean);
     o["mean_ci"] = interval(s.mean_ci);
@@ -146,7 +141,7 @@ json statistics_of(const Study& study, const SweepTable& table, SweepTable* cons
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
     std::vector<double> v;
-    std::vector<std::uint64_t> scratch;
+    sweeps::OrderScratch scratch;
     for (std::size_t c; (c = next.fetch_add(1)) < columns;) {
       try {
         describe_column(c, v, scratch);
@@ -171,11 +166,7 @@ json statistics_of(const Study& study, const SweepTable& table, SweepTable* cons
 }  // namespace
 
 json sweep_statistics(const Study& study, const SweepTable& table) {
-  return statistics_of(study, table, nullptr);
-}
-
-json sweep_statistics_sorting(const Study& study, SweepTable& table) {
-  return statistics_of(study, table, &table);
+  return statistics_of(study, table);
 }
 
 std::string sweep_statistics_table(const json& s) {

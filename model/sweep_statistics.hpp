@@ -17,13 +17,6 @@ namespace lsi {
 
 nlohmann::json sweep_statistics(const Study& study, const SweepTable& table);
 
-// The same statistics from a table the caller no longer needs in sample order: where every
-// sample is ok, each output column is sorted in place (left so) instead of being copied first,
-// which saves a copy of every column and the memory it would take. With failed samples the
-// table is left as it is. Only the outputs' order changes; the statuses, indices and failures
-// stay.
-nlohmann::json sweep_statistics_sorting(const Study& study, SweepTable& table);
-
 // A double as JSON: finite values as numbers, the others as "inf", "-inf" or "nan".
 nlohmann::json json_number(double v);
 

@@ -28,19 +28,17 @@
 // seeds) and the spread of their means.
 #pragma once
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "sweeps/distribution.hpp"
-#include "sweeps/huge_pages.hpp"
 #include "sweeps/normal_distribution.hpp"
+#include "sweeps/order_statistics.hpp"
 
 namespace lsi::sweeps {
 
@@ -216,111 +214,81 @@ inline void check_values(const std::vector<double>& values, const char* who) {
           "] = " + detail::format_number(values[i]) +
           ": must be a number or +inf (exclude failed samples before the statistics)");
 }
-// Sorts values (no NaN) ascending: the same sequence as std::sort with operator< (the only
-// freedom std::sort has is the relative order of -0 and +0, which compare equal; here -0 comes
-// first), so every statistic computed from it is bitwise the same. An LSD radix sort, one byte a
-// pass, on the order-preserving bit pattern of the doubles (sign bit set for >= +0, all bits
-// flipped for negatives), kept in the values' own storage and in `scratch` in turn; a pass whose
-// byte is the same for all values (e.g. the sign and the top exponent bits of outputs of one
-// magnitude) is skipped. ~5x faster than std::sort at 1e7 values (docs/notes/performance.md,
-// "Sweeps"); small inputs go to std::sort. `scratch` is resized to the values' size at least:
-// a caller that sorts many columns keeps it, so that its memory is not new each time.
-inline void sort_values(std::vector<double>& values, std::vector<std::uint64_t>& scratch) {
-  const std::size_t n = values.size();
-  if (n < 4096) {
-    std::sort(values.begin(), values.end());
-    return;
-  }
-  if (scratch.size() < n) {
-    scratch.clear();
-    reserve_on_huge_pages(scratch, n);
-    scratch.resize(n);
-  }
-  constexpr std::uint64_t sign = std::uint64_t{1} << 63;
-  // The keys are 8-byte patterns in either buffer, read and written with memcpy.
-  auto load = [](const unsigned char* p, std::size_t i) {
-    std::uint64_t u;
-    std::memcpy(&u, p + 8 * i, sizeof u);
-    return u;
-  };
-  auto store = [](unsigned char* p, std::size_t i, std::uint64_t u) {
-    std::memcpy(p + 8 * i, &u, sizeof u);
-  };
-  unsigned char* const own = reinterpret_cast<unsigned char*>(values.data());
-  unsigned char* const other = reinterpret_cast<unsigned char*>(scratch.data());
-  std::array<std::array<std::size_t, 256>, 8> count{};
-  for (std::size_t i = 0; i < n; ++i) {
-    std::uint64_t u = load(own, i);
-    u = (u & sign) ? ~u : (u | sign);
-    store(own, i, u);
-    for (int byte = 0; byte < 8; ++byte) ++count[byte][(u >> (8 * byte)) & 0xFF];
-  }
-  unsigned char* from = own;
-  unsigned char* to = other;
-  for (int byte = 0; byte < 8; ++byte) {
-    auto& c = count[byte];
-    if (c[(load(from, 0) >> (8 * byte)) & 0xFF] == n) continue;  // all values share this byte
-    std::size_t offset[256], running = 0;
-    for (int k = 0; k < 256; ++k) {
-      offset[k] = running;
-      running += c[k];
-    }
-    const int shift = 8 * byte;
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint64_t u = load(from, i);
-      store(to, offset[(u >> shift) & 0xFF]++, u);
-    }
-    std::swap(from, to);
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    std::uint64_t u = load(from, i);
-    u = (u & sign) ? (u & ~sign) : ~u;
-    store(own, i, u);
-  }
-}
-
-inline void sort_values(std::vector<double>& values) {
-  std::vector<std::uint64_t> scratch;
-  sort_values(values, scratch);
-}
-
-inline Interval quantile_interval(const std::vector<double>& sorted, double q, double confidence) {
-  const auto r = order_statistic_ranks(sorted.size(), q, confidence);
-  const double low = r.lower <= 0 ? -inf : sorted[static_cast<std::size_t>(r.lower - 1)];
-  const double high = r.upper > static_cast<long long>(sorted.size())
-                          ? inf
-                          : sorted[static_cast<std::size_t>(r.upper - 1)];
-  return {low, high};
-}
 }  // namespace stats
 
-// describe() of `values`, sorted in place (they are left sorted) with `scratch` as the sort's
-// buffer (stats::sort_values): a caller that describes many columns keeps both.
-inline OutputStatistics describe_in_place(std::vector<double>& values,
-                                          std::vector<std::uint64_t>& scratch,
-                                          double confidence = 0.95) {
+// describe() of `values`, left as they are, with `scratch` as the buffers of the order
+// statistics (order_statistics.hpp): a caller that describes many columns keeps them. The
+// quantiles and their intervals read a dozen order statistics, selected rather than sorted for;
+// the mean and the sums of the standard deviation run over the values in their order, in eight
+// interleaved compensated sums (a fixed order: the same results on any thread count).
+inline OutputStatistics describe(const std::vector<double>& values, OrderScratch& scratch,
+                                 double confidence = 0.95) {
   stats::check_values(values, "describe");
   stats::check_confidence(confidence);
-  stats::sort_values(values, scratch);
-  OutputStatistics s;
   const std::size_t n = values.size();
+  const double* const v = values.data();
+  // The ranks read: the extremes, and per quantile the two of type 7 and its interval's bounds.
+  constexpr double q[3] = {0.05, 0.50, 0.95};
+  std::size_t k[3];
+  double frac[3];
+  OrderStatisticRanks bounds[3];
+  std::size_t ranks[14];
+  std::size_t count = 0;
+  ranks[count++] = 0;
+  ranks[count++] = n - 1;
+  for (int j = 0; j < 3; ++j) {
+    const double h = (static_cast<double>(n) - 1.0) * q[j];
+    k[j] = static_cast<std::size_t>(std::floor(h));
+    frac[j] = h - static_cast<double>(k[j]);
+    ranks[count++] = std::min(k[j], n - 1);
+    ranks[count++] = std::min(k[j] + 1, n - 1);
+    bounds[j] = order_statistic_ranks(n, q[j], confidence);
+    if (bounds[j].lower >= 1) ranks[count++] = static_cast<std::size_t>(bounds[j].lower - 1);
+    if (bounds[j].upper <= static_cast<long long>(n))
+      ranks[count++] = static_cast<std::size_t>(bounds[j].upper - 1);
+  }
+  for (std::size_t i = 1; i < count; ++i)  // ascending (an insertion sort of at most 14)
+    for (std::size_t j = i; j > 0 && ranks[j - 1] > ranks[j]; --j)
+      std::swap(ranks[j - 1], ranks[j]);
+  count = static_cast<std::size_t>(std::unique(ranks, ranks + count) - ranks);
+  double at_rank[14];
+  order_statistics(v, n, ranks, count, at_rank, scratch);
+  const auto at = [&](const std::size_t r) {
+    return at_rank[std::lower_bound(ranks, ranks + count, r) - ranks];
+  };
+  OutputStatistics s;
   s.count = n;
-  s.infinite_count = static_cast<std::size_t>(std::count(values.begin(), values.end(), stats::inf));
-  s.min = values.front();
-  s.max = values.back();
+  s.min = at(0);
+  s.max = at(n - 1);
+  std::size_t infinite = 0;
+  for (std::size_t i = 0; i < n; ++i) infinite += v[i] == stats::inf;
+  s.infinite_count = infinite;
+  // Compensated (Kahan) sums in eight lanes, term i in lane i % 8, each lane's compensation
+  // taken back before the lanes are added pairwise: the error does not grow with the number of
+  // values as a plain sum's does.
+  const auto lane_sum = [n](const auto& term) {
+    double sum[8] = {0, 0, 0, 0, 0, 0, 0, 0}, lost[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    const auto add = [&](const int l, const double x) {
+      const double y = x - lost[l], t = sum[l] + y;
+      lost[l] = (t - sum[l]) - y;
+      sum[l] = t;
+    };
+    std::size_t i = 0;
+    for (; i + 8 <= n; i += 8)
+      for (int l = 0; l < 8; ++l) add(l, term(i + l));
+    for (; i < n; ++i) add(static_cast<int>(i % 8), term(i));
+    for (int l = 0; l < 8; ++l) sum[l] -= lost[l];
+    return ((sum[0] + sum[1]) + (sum[2] + sum[3])) + ((sum[4] + sum[5]) + (sum[6] + sum[7]));
+  };
   if (s.infinite_count > 0) {
     s.mean = s.standard_deviation = stats::inf;
     s.mean_ci = {stats::inf, stats::inf};
   } else {
-    double sum = 0;
-    for (double v : values) sum += v;
-    s.mean = sum / static_cast<double>(n);
-    double ss = 0,
-           c = 0;  // two-pass, with the compensation term of the corrected two-pass algorithm
-    for (double v : values) {
-      ss += (v - s.mean) * (v - s.mean);
-      c += v - s.mean;
-    }
+    s.mean = lane_sum([v](std::size_t i) { return v[i]; }) / static_cast<double>(n);
+    const double mean = s.mean;
+    // Two-pass, with the compensation term of the corrected two-pass algorithm.
+    const double ss = lane_sum([v, mean](std::size_t i) { return (v[i] - mean) * (v[i] - mean); });
+    const double c = lane_sum([v, mean](std::size_t i) { return v[i] - mean; });
     if (n >= 2) {
       const double var = (ss - c * c / static_cast<double>(n)) / static_cast<double>(n - 1);
       s.standard_deviation = std::sqrt(std::max(0.0, var));
@@ -333,20 +301,36 @@ inline OutputStatistics describe_in_place(std::vector<double>& values,
       s.mean_ci = {-stats::inf, stats::inf};
     }
   }
-  s.q05 = quantile_type7(values, 0.05);
-  s.q50 = quantile_type7(values, 0.50);
-  s.q95 = quantile_type7(values, 0.95);
-  s.q05_ci = stats::quantile_interval(values, 0.05, confidence);
-  s.q50_ci = stats::quantile_interval(values, 0.50, confidence);
-  s.q95_ci = stats::quantile_interval(values, 0.95, confidence);
+  // Type 7 (as quantile_type7 on the sorted values) and the intervals of order statistics.
+  double quantile[3];
+  Interval interval[3];
+  for (int j = 0; j < 3; ++j) {
+    if (k[j] + 1 >= n || frac[j] == 0.0) {
+      quantile[j] = at(std::min(k[j], n - 1));
+    } else {
+      const double a = at(k[j]), b = at(k[j] + 1);
+      quantile[j] = std::isinf(b) ? b : a + frac[j] * (b - a);
+    }
+    interval[j].low =
+        bounds[j].lower <= 0 ? -stats::inf : at(static_cast<std::size_t>(bounds[j].lower - 1));
+    interval[j].high = bounds[j].upper > static_cast<long long>(n)
+                           ? stats::inf
+                           : at(static_cast<std::size_t>(bounds[j].upper - 1));
+  }
+  s.q05 = quantile[0];
+  s.q50 = quantile[1];
+  s.q95 = quantile[2];
+  s.q05_ci = interval[0];
+  s.q50_ci = interval[1];
+  s.q95_ci = interval[2];
   return s;
 }
 
 // Throws std::invalid_argument on NaN or -inf or empty input (the caller excludes failed samples), and
 // for a confidence outside (0,1).
-inline OutputStatistics describe(std::vector<double> values, double confidence = 0.95) {
-  std::vector<std::uint64_t> scratch;
-  return describe_in_place(values, scratch, confidence);
+inline OutputStatistics describe(const std::vector<double>& values, double confidence = 0.95) {
+  OrderScratch scratch;
+  return describe(values, scratch, confidence);
 }
 
 // P(value > threshold), Wilson score interval at `confidence`. Same input rules as describe().

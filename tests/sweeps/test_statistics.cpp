@@ -109,15 +109,23 @@ TEST(StatisticsFunctions, OrderStatisticRanks) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The radix sort of describe(): std::sort's sequence, bit for bit
+// The order statistics of describe(): the sorted column's values at the ranks, bit for bit
 
-TEST(SortValues, GivesStdSortsSequenceWithItsBufferKeptFromColumnToColumn) {
+// The values sorted in the order of their keys (as std::sort, with -0 before +0).
+std::vector<double> key_sorted(std::vector<double> v) {
+  std::sort(v.begin(), v.end(), [](double a, double b) {
+    return lsi::sweeps::detail::order_key(a) < lsi::sweeps::detail::order_key(b);
+  });
+  return v;
+}
+
+TEST(OrderStatistics, GiveTheSortedColumnsValuesWithTheBuffersKeptFromColumnToColumn) {
   std::mt19937_64 g(11);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  // Wide-ranging values of both signs with zeros, infinities and subnormals (every byte
-  // differs: eight passes, the keys end in the values' storage); values in [1, 2) (the top byte
-  // the same for all: seven passes, they end in the buffer); a few repeated integers (most
-  // passes skipped).
+  // Wide-ranging values of both signs with zeros, infinities and subnormals (the ranks in many
+  // buckets); values in [1, 2) (a sixteenth of them per bucket); a few repeated integers (ties);
+  // one value (one bucket holds the column); values within 1e-12 of each other (one bucket, the
+  // selection among all).
   auto wide = [&](std::size_t n) {
     std::vector<double> v(n);
     for (auto& x : v) x = (u(g) - 0.5) * std::exp(60.0 * (u(g) - 0.5));
@@ -139,24 +147,32 @@ TEST(SortValues, GivesStdSortsSequenceWithItsBufferKeptFromColumnToColumn) {
     for (auto& x : v) x = std::floor(8.0 * u(g));
     return v;
   };
-  std::vector<std::uint64_t> scratch;  // kept, as sweep_statistics keeps it
-  for (const std::size_t n : {std::size_t{70000}, std::size_t{5000}, std::size_t{131073}})
-    for (const auto& make : {std::function<std::vector<double>(std::size_t)>(wide),
-                             std::function<std::vector<double>(std::size_t)>(one_two),
-                             std::function<std::vector<double>(std::size_t)>(few)}) {
-      std::vector<double> v = make(n), expected = v;
-      std::sort(expected.begin(), expected.end());
-      stats::sort_values(v, scratch);
-      ASSERT_EQ(v.size(), expected.size());
-      for (std::size_t i = 0; i < n; ++i) {
-        // -0 and +0 compare equal and std::sort may put them in either order; the sort puts -0
-        // first. Every other value must match bit for bit.
-        if (v[i] == 0.0 && expected[i] == 0.0) continue;
-        ASSERT_EQ(std::memcmp(&v[i], &expected[i], sizeof(double)), 0)
-            << "n = " << n << ", position " << i << ": " << v[i] << " against " << expected[i];
+  auto constant = [&](std::size_t n) { return std::vector<double>(n, 2.5); };
+  auto narrow = [&](std::size_t n) {
+    std::vector<double> v(n);
+    for (auto& x : v) x = 3.0 + 1e-12 * u(g);
+    return v;
+  };
+  OrderScratch scratch;  // kept, as sweep_statistics keeps it
+  using Make = std::function<std::vector<double>(std::size_t)>;
+  for (const std::size_t n :
+       {std::size_t{70000}, std::size_t{4096}, std::size_t{5000}, std::size_t{131073}})
+    for (const Make& make : {Make(wide), Make(one_two), Make(few), Make(constant), Make(narrow)})
+      for (const std::size_t rank_count : {std::size_t{14}, std::size_t{200}, std::size_t{300}}) {
+        const std::vector<double> v = make(n);
+        const std::vector<double> expected = key_sorted(v);
+        // The extremes, neighbours and repeats, and random ranks (300: more than the 255 of the
+        // selection by buckets, so the selection among all values).
+        std::vector<std::size_t> ranks = {0, n - 1, n / 2, n / 2, n / 2 + 1, 1};
+        while (ranks.size() < rank_count) ranks.push_back(g() % n);
+        std::sort(ranks.begin(), ranks.end());
+        std::vector<double> got(ranks.size());
+        order_statistics(v.data(), n, ranks.data(), ranks.size(), got.data(), scratch);
+        for (std::size_t j = 0; j < ranks.size(); ++j)
+          ASSERT_EQ(std::memcmp(&got[j], &expected[ranks[j]], sizeof(double)), 0)
+              << "n = " << n << ", rank " << ranks[j] << ": " << got[j] << " against "
+              << expected[ranks[j]];
       }
-      EXPECT_GE(scratch.size(), n);
-    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -186,6 +202,21 @@ TEST(Describe, ExactSmallCase) {
   EXPECT_EQ(s.q05_ci.high, 2.0);
   EXPECT_EQ(s.q95_ci.low, 4.0);
   EXPECT_EQ(s.q95_ci.high, kInf);
+}
+
+TEST(Describe, MeansOfManyValuesAreCompensated) {
+  // A million copies of 0.1 sum to 100000 once rounded (the double 0.1 exceeds 1/10 by 5.6e-18,
+  // a million of those 5.6e-12, below half an ulp of 1e5): the mean is 0.1 exactly. Half 0.1 and
+  // half 0.3 give 0.2 the same way, and the standard deviation 0.1 sqrt(n / (n - 1)) to 1e-15
+  // (its sums compensated too). A plain running sum of the million is off by about 1e-11
+  // relative.
+  const std::size_t n = 1000000;
+  EXPECT_EQ(describe(std::vector<double>(n, 0.1)).mean, 0.1);
+  std::vector<double> two(n);
+  for (std::size_t i = 0; i < n; ++i) two[i] = i < n / 2 ? 0.1 : 0.3;
+  const OutputStatistics s = describe(two);
+  EXPECT_EQ(s.mean, 0.2);
+  EXPECT_NEAR(s.standard_deviation, 0.1 * std::sqrt(double(n) / double(n - 1)), 1e-15);
 }
 
 TEST(Describe, MedianIntervalOfTwentyValues) {
