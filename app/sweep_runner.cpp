@@ -497,9 +497,11 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   std::uint64_t chunk_rows =
       SweepTableStream::chunk_rows_for(paths.size(), my_samples, study.chunk_samples);
   if (!earlier.empty()) {
+    for (auto& e : earlier)
+      if (e.chunk_rows == 0)
+        e.chunk_rows = SweepTableStream::chunk_rows_for(paths.size(), my_samples, 1);
     const std::uint64_t recorded = earlier.front().chunk_rows;
-    chunk_rows =
-        recorded != 0 ? recorded : SweepTableStream::chunk_rows_for(paths.size(), my_samples, 1);
+    chunk_rows = recorded;
     for (std::size_t m = 0; m < earlier.size(); ++m)
       if (earlier[m].chunk_rows != recorded)
         throw InputError(chunk_file(parts, mine[m]) + ": journals chunks of " +

@@ -24,9 +24,9 @@ namespace lsi::sweeps {
 
 // The buffers of order_statistics, kept by a caller that selects from many columns.
 struct OrderScratch {
-  std::vector<std::uint64_t> keys;    // the wanted buckets' keys, plus one slot for the others
-  std::vector<std::uint64_t> count;   // per bucket: values, then the first rank of the bucket
-  std::vector<std::uint8_t> region;   // per bucket: 0, or 1 + the region of a wanted bucket
+  std::vector<std::uint64_t> keys;   // the wanted buckets' keys, plus one slot for the others
+  std::vector<std::uint64_t> count;  // per bucket: values, then the first rank of the bucket
+  std::vector<std::uint8_t> region;  // per bucket: 0, or 1 + the region of a wanted bucket
 };
 
 namespace detail {

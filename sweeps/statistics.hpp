@@ -278,7 +278,13 @@ inline OutputStatistics describe(const std::vector<double>& values, OrderScratch
       for (int l = 0; l < 8; ++l) add(l, term(i + l));
     for (; i < n; ++i) add(static_cast<int>(i % 8), term(i));
     for (int l = 0; l < 8; ++l) sum[l] -= lost[l];
-    return ((sum[0] + sum[1]) + (sum[2] + sum[3])) + ((sum[4] + sum[5]) + (sum[6] + sum[7]));
+    const double s =
+        ((sum[0] + sum[1]) + (sum[2] + sum[3])) + ((sum[4] + sum[5]) + (sum[6] + sum[7]));
+    if (std::isfinite(s)) return s;
+    // A lane overflowed (its compensation then turns the lane into NaN): the plain sum, infinite.
+    double plain = 0.0;
+    for (std::size_t k = 0; k < n; ++k) plain += term(k);
+    return plain;
   };
   if (s.infinite_count > 0) {
     s.mean = s.standard_deviation = stats::inf;

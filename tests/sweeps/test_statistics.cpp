@@ -246,6 +246,8 @@ TEST(Describe, InfiniteValues) {
   EXPECT_NEAR(s.q05, 1.1, kFewOpsAbs);
   EXPECT_EQ(s.q50, 2.0);
   EXPECT_EQ(s.q95, kInf);
+  // Finite values whose sum overflows: an infinite mean (not the NaN of a compensation).
+  EXPECT_EQ(describe(std::vector<double>(9, 1e308)).mean, kInf);
   const OutputStatistics all_inf = describe({kInf, kInf});
   EXPECT_EQ(all_inf.q50, kInf);
   EXPECT_EQ(all_inf.min, kInf);
