@@ -1,12 +1,12 @@
 // Order statistics of a column of values without sorting it: the values that would stand at a
 // few given ranks of the column sorted ascending. A sweep's statistics need a dozen of them per
 // output (the minimum and maximum, two values for each quantile and the bounds of its interval:
-// sweeps/statistics.hpp); a sort of millions of values to read a dozen costs eight passes of a
-// radix sort over the whole column, this two passes and a selection among few values.
+// sweeps/statistics.hpp); sorting millions of values to read a dozen takes a radix sort's eight
+// passes over the whole column, selecting them two passes and a selection among few values.
 //
 // The values become 64-bit keys that compare as the values do (x >= +0: its bits with the sign
-// bit set; x <= -0: its bits inverted), so -0 comes before +0, as in the sort these replace, and
-// every other value compares as with operator<. The column's values are counted by the top 16
+// bit set; x <= -0: its bits inverted), so -0 comes before +0 (std::sort leaves their order
+// open) and every other value compares as with operator<. The column's values are counted by the top 16
 // bits of their keys (a histogram of 65536 buckets: the sign, the exponent and 4 bits of the
 // mantissa, a sixteenth of an octave each); the buckets that hold a wanted rank are found from
 // the counts; a second pass copies the keys of those buckets, each bucket into a region of its
