@@ -6,8 +6,8 @@
 //
 // The values become 64-bit keys that compare as the values do (x >= +0: its bits with the sign
 // bit set; x <= -0: its bits inverted), so -0 comes before +0 (std::sort leaves their order
-// open) and every other value compares as with operator<. The column's values are counted by the top 16
-// bits of their keys (a histogram of 65536 buckets: the sign, the exponent and 4 bits of the
+// open) and every other value compares as with operator<. The column's values are counted by the
+// top 16 bits of their keys (a histogram of 65536 buckets: the sign, the exponent and 4 bits of the
 // mantissa, a sixteenth of an octave each); the buckets that hold a wanted rank are found from
 // the counts; a second pass copies the keys of those buckets, each bucket into a region of its
 // own; std::nth_element finds each rank in its region. The values returned are bit for bit those
@@ -45,10 +45,6 @@ inline double order_value(const std::uint64_t key) {
   std::memcpy(&x, &u, sizeof x);
   return x;
 }
-
-}  // namespace detail
-
-namespace detail {
 
 // order_statistics by selection among all the values (few values, or many ranks).
 inline void order_statistics_of_all(const double* const values, const std::size_t n,

@@ -192,15 +192,29 @@ inline OrderStatisticRanks order_statistic_ranks(std::size_t count, double q, do
 }
 
 // Hyndman & Fan type 7 quantile of sorted values (may end with +inf).
+// Where type 7 reads n sorted values: h = (n - 1) q, between ranks k = floor(h) and k + 1.
+struct Type7Position {
+  std::size_t k;
+  double frac;
+};
+inline Type7Position type7_position(std::size_t n, double q) {
+  const double h = (static_cast<double>(n) - 1.0) * q;
+  const auto k = static_cast<std::size_t>(std::floor(h));
+  return {k, h - static_cast<double>(k)};
+}
+// The quantile from the sorted values' accessor at(rank) (ranks k and k + 1 of type7_position, or
+// only min(k, n - 1)).
+template <class At>
+double quantile_type7(std::size_t n, double q, const At& at) {
+  const Type7Position p = type7_position(n, q);
+  if (p.k + 1 >= n || p.frac == 0.0) return at(std::min(p.k, n - 1));
+  const double a = at(p.k), b = at(p.k + 1);
+  if (std::isinf(b)) return b;
+  return a + p.frac * (b - a);
+}
 inline double quantile_type7(const std::vector<double>& sorted, double q) {
   if (sorted.empty()) throw std::invalid_argument("quantile of no values");
-  const double h = (static_cast<double>(sorted.size()) - 1.0) * q;
-  const auto k = static_cast<std::size_t>(std::floor(h));
-  const double frac = h - static_cast<double>(k);
-  if (k + 1 >= sorted.size() || frac == 0.0) return sorted[std::min(k, sorted.size() - 1)];
-  const double a = sorted[k], b = sorted[k + 1];
-  if (std::isinf(b)) return b;
-  return a + frac * (b - a);
+  return quantile_type7(sorted.size(), q, [&](std::size_t r) { return sorted[r]; });
 }
 
 namespace stats {
@@ -229,19 +243,15 @@ inline OutputStatistics describe(const std::vector<double>& values, OrderScratch
   const double* const v = values.data();
   // The ranks read: the extremes, and per quantile the two of type 7 and its interval's bounds.
   constexpr double q[3] = {0.05, 0.50, 0.95};
-  std::size_t k[3];
-  double frac[3];
   OrderStatisticRanks bounds[3];
   std::size_t ranks[14];
   std::size_t count = 0;
   ranks[count++] = 0;
   ranks[count++] = n - 1;
   for (int j = 0; j < 3; ++j) {
-    const double h = (static_cast<double>(n) - 1.0) * q[j];
-    k[j] = static_cast<std::size_t>(std::floor(h));
-    frac[j] = h - static_cast<double>(k[j]);
-    ranks[count++] = std::min(k[j], n - 1);
-    ranks[count++] = std::min(k[j] + 1, n - 1);
+    const std::size_t k = type7_position(n, q[j]).k;
+    ranks[count++] = std::min(k, n - 1);
+    ranks[count++] = std::min(k + 1, n - 1);
     bounds[j] = order_statistic_ranks(n, q[j], confidence);
     if (bounds[j].lower >= 1) ranks[count++] = static_cast<std::size_t>(bounds[j].lower - 1);
     if (bounds[j].upper <= static_cast<long long>(n))
@@ -307,16 +317,10 @@ inline OutputStatistics describe(const std::vector<double>& values, OrderScratch
       s.mean_ci = {-stats::inf, stats::inf};
     }
   }
-  // Type 7 (as quantile_type7 on the sorted values) and the intervals of order statistics.
   double quantile[3];
   Interval interval[3];
   for (int j = 0; j < 3; ++j) {
-    if (k[j] + 1 >= n || frac[j] == 0.0) {
-      quantile[j] = at(std::min(k[j], n - 1));
-    } else {
-      const double a = at(k[j]), b = at(k[j] + 1);
-      quantile[j] = std::isinf(b) ? b : a + frac[j] * (b - a);
-    }
+    quantile[j] = quantile_type7(n, q[j], at);
     interval[j].low =
         bounds[j].lower <= 0 ? -stats::inf : at(static_cast<std::size_t>(bounds[j].lower - 1));
     interval[j].high = bounds[j].upper > static_cast<long long>(n)
