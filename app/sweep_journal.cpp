@@ -2,7 +2,9 @@
 #include "app/sweep_journal.hpp"
 
 #include <nlohmann/json.hpp>
+#include <utility>
 
+#include "io/hdf5_io.hpp"
 #include "model/input_error.hpp"
 
 namespace lsi {
@@ -53,6 +55,30 @@ SweepJournalEntry read_journal_entry(const std::string& path, const std::string&
                      "\" is not a file name");
   e.pending = std::move(f.table);
   return e;
+}
+
+SweepJournal::SweepJournal(std::string table_path, SweepHeader header)
+    : table_path_(std::move(table_path)), header_(std::move(header)) {}
+
+SweepJournal::~SweepJournal() {
+  try {
+    flush();
+  } catch (...) {  // the chunk held runs again on --resume
+  }
+}
+
+void SweepJournal::add(std::string entry_path, SweepJournalEntry entry) {
+  flush();
+  held_.emplace(std::move(entry_path), std::move(entry));
+  synced_ = std::async(std::launch::async, [path = table_path_] { hdf5::fsync_file(path); });
+}
+
+void SweepJournal::flush() {
+  if (!held_) return;
+  auto held = std::move(*held_);
+  held_.reset();
+  synced_.get();  // the chunks on disk before the entry names them
+  write_journal_entry(held.first, header_, held.second);
 }
 
 }  // namespace lsi

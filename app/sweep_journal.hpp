@@ -5,6 +5,8 @@
 // are copied into a new table file and the run goes on (app/sweep_runner.cpp).
 #pragma once
 #include <cstdint>
+#include <future>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,5 +31,30 @@ void write_journal_entry(const std::string& path, SweepHeader header,
 // Reads an entry; throws InputError naming the file when it belongs to another study or is not a
 // journal entry (a parts directory of an earlier version of lsi).
 SweepJournalEntry read_journal_entry(const std::string& path, const std::string& fingerprint);
+
+// Journals a run's chunks: the table file's fsync after a chunk runs on a thread of its own
+// while the caller goes on (gathers the chunk's rows for the statistics), and the chunk's entry
+// is written, on the caller's thread (HDF5), at `flush` (or the next `add`), once that fsync has
+// returned. The entries stay in chunk order and each names bytes already on disk.
+class SweepJournal {
+ public:
+  SweepJournal(std::string table_path, SweepHeader header);
+  SweepJournal(const SweepJournal&) = delete;
+  SweepJournal& operator=(const SweepJournal&) = delete;
+  // Writes what it holds where it can (an error leaves the chunk to run again on --resume).
+  ~SweepJournal();
+
+  // The chunk whose rows the table file has just taken: its entry, for `entry_path`. Writes an
+  // entry still held first, then starts this one's fsync.
+  void add(std::string entry_path, SweepJournalEntry entry);
+  // Writes the entry held, if any, after its fsync (whose failure is thrown here).
+  void flush();
+
+ private:
+  std::string table_path_;
+  SweepHeader header_;
+  std::optional<std::pair<std::string, SweepJournalEntry>> held_;
+  std::future<void> synced_;
+};
 
 }  // namespace lsi

@@ -557,6 +557,9 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   bool rule_met = false;
   std::uint64_t run_here = 0;
   double evaluate_s = 0.0, write_s = 0.0, gather_s = 0.0;
+  // Each chunk's entry is written once the table file's fsync, which runs while the chunk's rows
+  // are gathered, has returned.
+  SweepJournal journal(table.path(), chunk_header);
   for (std::size_t m = 0; m < mine.size() && !rule_met && stopped_by.empty(); ++m) {
     if (done[m]) continue;
     auto ts = Clock::now();
@@ -571,9 +574,8 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     entry.pending = table.pending();
     entry.failure_index = t.failure_index;
     entry.failure_reason = t.failure_reason;
-    hdf5::fsync_file(table.path());  // the chunks on disk before the journal names them
-    write_journal_entry(chunk_file(parts, mine[m]), chunk_header, entry);
     stored.insert(stored.end(), entry.chunks.begin(), entry.chunks.end());
+    journal.add(chunk_file(parts, mine[m]), std::move(entry));
     write_s += seconds_since(ts);
     done[m] = true;
     done_samples += t.rows();
@@ -583,6 +585,9 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     ts = Clock::now();
     gather(t);
     gather_s += seconds_since(ts);
+    ts = Clock::now();
+    journal.flush();
+    write_s += seconds_since(ts);
     std::string why;
     if (interval_rule_met(study, rule_values, why)) {
       rule_met = true;
