@@ -10,9 +10,10 @@
 // top 16 bits of their keys (a histogram of 65536 buckets: the sign, the exponent and 4 bits of the
 // mantissa, a sixteenth of an octave each); the buckets that hold a wanted rank are found from
 // the counts; a second pass copies the keys of those buckets, each bucket into a region of its
-// own; std::nth_element finds each rank in its region. The values returned are bit for bit those
-// of the sorted column, whatever the distribution: ties, infinities and a column of one value
-// included (one bucket then holds the whole column and the selection runs on all of it).
+// own; std::nth_element finds each rank in its region. A wanted bucket that holds one value only
+// (a point mass of the distribution) is found by its least and greatest keys and gives that
+// value without a copy. The values returned are bit for bit those of the sorted column, whatever
+// the distribution: ties, infinities, point masses and a column of one value included.
 #pragma once
 #include <algorithm>
 #include <cstddef>
@@ -85,20 +86,46 @@ inline void order_statistics(const double* const values, const std::size_t n,
   }
   // The wanted buckets (in ascending order, as the ranks), each a region of the keys.
   s.region.assign(buckets, 0);
-  std::size_t wanted_bucket[most], region_start[most + 1], bucket_of_rank[most], regions = 0;
+  std::size_t wanted_bucket[most], region_start[most + 1], region_of_rank[most], regions = 0;
+  bool large = false;  // a wanted bucket of more than a sixteenth of the values
   for (std::size_t j = 0; j < count; ++j) {
     // The last bucket whose first rank is at most the rank (it holds the rank: not empty).
     const auto after = std::upper_bound(s.count.begin(), s.count.begin() + std::ptrdiff_t(buckets),
                                         std::uint64_t(ranks[j]));
     const std::size_t b = std::size_t(after - s.count.begin()) - 1;
-    bucket_of_rank[j] = b;
-    if (regions == 0 || wanted_bucket[regions - 1] != b) wanted_bucket[regions++] = b;
+    if (regions == 0 || wanted_bucket[regions - 1] != b) {
+      wanted_bucket[regions++] = b;
+      large = large || std::size_t(s.count[b + 1] - s.count[b]) > n / 16;
+    }
+    region_of_rank[j] = regions - 1;
+  }
+  for (std::size_t r = 0; r < regions; ++r) s.region[wanted_bucket[r]] = std::uint8_t(r + 1);
+  // A wanted bucket of a single value (a point mass, such as the zero final displacement of the
+  // barriers that never slide) gives that value at each of its ranks without a copy of its keys.
+  // Where a wanted bucket is large, a pass finds each one's least and greatest key (index 1 + the
+  // region; 0 takes the other buckets' keys).
+  std::uint64_t least[most + 1], greatest[most + 1];
+  bool single[most] = {};
+  if (large) {
+    std::fill(least, least + regions + 1, ~std::uint64_t{0});
+    std::fill(greatest, greatest + regions + 1, std::uint64_t{0});
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint64_t k = detail::order_key(values[i]);
+      const std::size_t r = s.region[k >> shift];
+      least[r] = std::min(least[r], k);
+      greatest[r] = std::max(greatest[r], k);
+    }
+    for (std::size_t r = 0; r < regions; ++r)
+      if (least[r + 1] == greatest[r + 1]) {
+        single[r] = true;
+        s.region[wanted_bucket[r]] = 0;  // its keys go with the others'
+      }
   }
   region_start[0] = 0;
   for (std::size_t r = 0; r < regions; ++r) {
     const std::size_t b = wanted_bucket[r];
-    s.region[b] = std::uint8_t(r + 1);
-    region_start[r + 1] = region_start[r] + std::size_t(s.count[b + 1] - s.count[b]);
+    region_start[r + 1] =
+        region_start[r] + (single[r] ? 0 : std::size_t(s.count[b + 1] - s.count[b]));
   }
   // Pass 2: each wanted bucket's keys into its region; the others all onto one slot past the
   // regions (a store either way, no branch).
@@ -117,8 +144,12 @@ inline void order_statistics(const double* const values, const std::size_t n,
   // Each rank within its region: nth_element from the previous rank of the same region on.
   std::size_t from = 0, previous_region = regions;
   for (std::size_t j = 0; j < count; ++j) {
-    const std::size_t b = bucket_of_rank[j], r = s.region[b] - 1u;
-    const std::size_t at = region_start[r] + (ranks[j] - std::size_t(s.count[b]));
+    const std::size_t r = region_of_rank[j];
+    if (single[r]) {
+      out[j] = detail::order_value(least[r + 1]);
+      continue;
+    }
+    const std::size_t at = region_start[r] + (ranks[j] - std::size_t(s.count[wanted_bucket[r]]));
     if (r != previous_region) from = region_start[r];
     std::nth_element(keys + from, keys + at, keys + region_start[r + 1]);
     out[j] = detail::order_value(keys[at]);

@@ -153,11 +153,26 @@ TEST(OrderStatistics, GiveTheSortedColumnsValuesWithTheBuffersKeptFromColumnToCo
     for (auto& x : v) x = 3.0 + 1e-12 * u(g);
     return v;
   };
+  // Point masses: most values +0 (the final displacement of barriers that never slide), some -0,
+  // a fifth 1 and a tenth the double after it (a large bucket of two values), the rest spread.
+  auto point_masses = [&](std::size_t n) {
+    std::vector<double> v(n);
+    for (auto& x : v) {
+      const double p = u(g);
+      x = p < 0.55  ? 0.0
+          : p < 0.6 ? -0.0
+          : p < 0.8 ? 1.0
+          : p < 0.9 ? std::nextafter(1.0, 2.0)
+                    : std::exp(10.0 * u(g));
+    }
+    return v;
+  };
   OrderScratch scratch;  // kept, as sweep_statistics keeps it
   using Make = std::function<std::vector<double>(std::size_t)>;
   for (const std::size_t n :
        {std::size_t{70000}, std::size_t{4096}, std::size_t{5000}, std::size_t{131073}})
-    for (const Make& make : {Make(wide), Make(one_two), Make(few), Make(constant), Make(narrow)})
+    for (const Make& make :
+         {Make(wide), Make(one_two), Make(few), Make(constant), Make(narrow), Make(point_masses)})
       for (const std::size_t rank_count : {std::size_t{14}, std::size_t{200}, std::size_t{300}}) {
         const std::vector<double> v = make(n);
         const std::vector<double> expected = key_sorted(v);
