@@ -72,6 +72,12 @@ PlaneCoding plane_coding(const unsigned char* bytes, std::size_t n) {
   return h > 7.5 ? PlaneCoding::stored : h > 4.0 ? PlaneCoding::huffman : PlaneCoding::runs;
 }
 
+// A compressed chunk: its bytes the first `size` of `bytes` (a buffer kept from chunk to chunk).
+struct CompressedChunk {
+  std::vector<unsigned char> bytes;
+  std::size_t size = 0;
+};
+
 // One thread's compressor: its buffers, its zlib stream (integer chunks) and its plane deflater
 // (floating-point chunks), kept from chunk to chunk.
 class ChunkCompressor {
@@ -83,12 +89,11 @@ class ChunkCompressor {
     if (stream_.started) deflateEnd(&stream_.z);
   }
 
-  // One chunk as HDF5's pipeline makes it, into `out` (its storage reused): the rows copied (the
-  // last chunk padded with zeros, the fill value, to the full chunk), the bytes shuffled, then
-  // deflated (zlib format, as H5Z's deflate filter) as the chunk's numbers call for
-  // (compressed_chunks.hpp). Deflated into this thread's buffer, sized for the worst case, then
-  // copied: `out` holds only the compressed bytes.
-  void compress(const ChunkRows& k, std::vector<unsigned char>& out) {
+  // One chunk as HDF5's pipeline makes it, into out.bytes (grown to the worst case where it is
+  // smaller, never shrunk; out.size its compressed bytes): the rows copied (the last chunk padded
+  // with zeros, the fill value, to the full chunk), the bytes shuffled, then deflated (zlib
+  // format, as H5Z's deflate filter) as the chunk's numbers call for (compressed_chunks.hpp).
+  void compress(const ChunkRows& k, CompressedChunk& out) {
     const std::size_t count = k.chunk_bytes / k.element_size;
     const std::size_t n = k.bytes / k.element_size;
     plain_.resize(k.chunk_bytes);
@@ -101,10 +106,9 @@ class ChunkCompressor {
       coding_.resize(planes);
       for (std::size_t j = 0; j < planes; ++j)
         coding_[j] = plane_coding(plain_.data() + j * count, count);
-      deflated_.resize(PlaneDeflater::bound(count, planes));
-      const std::size_t size =
-          planes_.deflate(plain_.data(), count, planes, coding_.data(), deflated_.data());
-      out.assign(deflated_.begin(), deflated_.begin() + static_cast<std::ptrdiff_t>(size));
+      const std::size_t bound = PlaneDeflater::bound(count, planes);
+      if (out.bytes.size() < bound) out.bytes.resize(bound);
+      out.size = planes_.deflate(plain_.data(), count, planes, coding_.data(), out.bytes.data());
       return;
     }
     Stream& s = stream_;
@@ -116,14 +120,15 @@ class ChunkCompressor {
       throw std::runtime_error("zlib could not start compressing a chunk");
     }
     // Room for deflate's bound.
-    deflated_.resize(deflateBound(&s.z, static_cast<uLong>(k.chunk_bytes)));
-    s.z.next_out = deflated_.data();
-    s.z.avail_out = static_cast<uInt>(deflated_.size());
+    const std::size_t bound = deflateBound(&s.z, static_cast<uLong>(k.chunk_bytes));
+    if (out.bytes.size() < bound) out.bytes.resize(bound);
+    s.z.next_out = out.bytes.data();
+    s.z.avail_out = static_cast<uInt>(bound);
     s.z.next_in = plain_.data();
     s.z.avail_in = static_cast<uInt>(k.chunk_bytes);
     if (deflate(&s.z, Z_FINISH) != Z_STREAM_END)
       throw std::runtime_error("zlib could not compress a chunk");
-    out.assign(deflated_.begin(), deflated_.begin() + static_cast<std::ptrdiff_t>(s.z.total_out));
+    out.size = s.z.total_out;
   }
 
  private:
@@ -134,7 +139,7 @@ class ChunkCompressor {
   int level_;
   Stream stream_;         // integer chunks
   PlaneDeflater planes_;  // floating-point chunks
-  std::vector<unsigned char> plain_, deflated_;
+  std::vector<unsigned char> plain_;
   std::vector<PlaneCoding> coding_;  // how each byte plane of the chunk is coded
 };
 
@@ -142,6 +147,7 @@ class ChunkCompressor {
 
 struct ChunkCompression::Threads {
   std::vector<std::unique_ptr<ChunkCompressor>> compressors;
+  std::vector<CompressedChunk> ring;  // the compressed chunks in flight
 };
 
 ChunkCompression::ChunkCompression(int level) : level_(level), threads_(new Threads) {}
@@ -162,49 +168,59 @@ bool floating_type(hid_t type) { return H5Tget_class(type) == H5T_FLOAT; }
 
 const std::vector<std::vector<unsigned char>>& ChunkCompression::compress(
     const std::vector<ChunkRows>& chunks) {
-  compress_each(chunks, [](std::size_t, const std::vector<unsigned char>&) {});
+  out_.resize(chunks.size());
+  compress_each(chunks, [&](std::size_t c, const unsigned char* bytes, std::size_t size) {
+    out_[c].assign(bytes, bytes + size);
+  });
   return out_;
 }
 
 void ChunkCompression::compress_each(
     const std::vector<ChunkRows>& chunks,
-    const std::function<void(std::size_t, const std::vector<unsigned char>&)>& ready) {
+    const std::function<void(std::size_t, const unsigned char*, std::size_t)>& ready) {
   const std::size_t n = chunks.size();
-  if (out_.size() < n) out_.resize(n);
-  for (std::size_t c = n; c < out_.size(); ++c) out_[c].clear();
   if (n == 0) return;
   const std::size_t threads = std::min(host_thread_count(), n);
   auto& compressors = threads_->compressors;
   while (compressors.size() < threads)
     compressors.push_back(std::make_unique<ChunkCompressor>(level_));
+  // Chunk c is compressed into slot c % slots of a ring, once chunk c - slots has been handed
+  // over: a few chunks a thread in flight, their buffers kept from call to call.
+  const std::size_t slots = 4 * threads;
+  auto& ring = threads_->ring;
+  if (ring.size() < slots) ring.resize(slots);
   // Each chunk's state: 0 not compressed yet, 1 compressed, 2 failed. The chunks are taken in
   // order, so that the ones before a failed one are all taken, and finish.
   const std::unique_ptr<std::atomic<int>[]> state(new std::atomic<int>[n]);
   for (std::size_t c = 0; c < n; ++c) state[c].store(0, std::memory_order_relaxed);
-  std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> next{0}, handed{0};
   std::atomic<bool> stop{false};
   std::vector<std::exception_ptr> errors(threads);
-  // Thread t compresses the next chunk; false when none is left (or a thread failed).
-  auto compress_one = [&](std::size_t t) {
-    if (stop.load(std::memory_order_relaxed)) return false;
-    const std::size_t c = next.fetch_add(1);
-    if (c >= n) return false;
+  auto compress = [&](std::size_t t, std::size_t c) {
     try {
-      compressors[t]->compress(chunks[c], out_[c]);
+      compressors[t]->compress(chunks[c], ring[c % slots]);
       state[c].store(1, std::memory_order_release);
     } catch (...) {  // marked failed first: the thread handing the chunks over stops there
       state[c].store(2, std::memory_order_release);
       stop = true;
       errors[t] = std::current_exception();
     }
-    return true;
   };
   // The calling thread (t = 0) hands over each chunk as soon as it and those before it are
-  // compressed, and compresses when none is ready; the others compress.
+  // compressed, and compresses the next chunk when none is ready and its slot is free (it never
+  // waits for a slot: only it frees them); the others take the next chunk and wait for its slot.
   std::exception_ptr failure;
   on_host_threads(threads, [&](std::size_t t) {
     if (t != 0) {
-      while (compress_one(t)) {
+      while (!stop.load(std::memory_order_relaxed)) {
+        const std::size_t c = next.fetch_add(1);
+        if (c >= n) return;
+        while (c >= handed.load(std::memory_order_acquire) + slots)
+          if (stop.load(std::memory_order_relaxed))
+            return;
+          else
+            std::this_thread::yield();
+        compress(t, c);
       }
       return;
     }
@@ -212,13 +228,17 @@ void ChunkCompression::compress_each(
       for (std::size_t written = 0; written < n;) {
         const int s = state[written].load(std::memory_order_acquire);
         if (s == 1) {
-          ready(written, out_[written]);
-          ++written;
-        } else if (s == 2) {
-          break;
-        } else if (!compress_one(0)) {
-          std::this_thread::yield();  // the chunk is another thread's, still being compressed
+          const CompressedChunk& k = ring[written % slots];
+          ready(written, k.bytes.data(), k.size);
+          handed.store(++written, std::memory_order_release);
+          continue;
         }
+        if (s == 2) break;
+        std::size_t c = next.load(std::memory_order_relaxed);
+        if (c < n && c < written + slots && next.compare_exchange_strong(c, c + 1))
+          compress(0, c);
+        else
+          std::this_thread::yield();  // the chunk is another thread's, still being compressed
       }
     } catch (...) {
       failure = std::current_exception();
@@ -244,24 +264,19 @@ bool write_compressed_chunks(hid_t dataset, hid_t dcpl, const void* data, std::s
   const auto* bytes = static_cast<const unsigned char*>(data);
   const Handle type(H5Dget_type(dataset), H5Tclose, "cannot get the type of a dataset");
   const bool floating = floating_type(type);
-  // Batches of a few chunks per thread: compressed in parallel, then written in order, so that
-  // only a batch of compressed chunks is held at a time.
-  const std::size_t batch = 8 * host_thread_count();
-  ChunkCompression compression(level);
-  for (std::size_t first = 0; first < chunks; first += batch) {
-    const std::size_t last = std::min(chunks, first + batch);
-    std::vector<ChunkRows> rows_of;
-    for (std::size_t c = first; c < last; ++c) {
-      const std::size_t begin = c * chunk_rows, end = std::min(rows, begin + chunk_rows);
-      rows_of.push_back({bytes + begin * row_bytes, (end - begin) * row_bytes, chunk_bytes,
-                         element_size, floating});
-    }
-    compression.compress_each(rows_of, [&](std::size_t k, const std::vector<unsigned char>& out) {
-      const hsize_t offset[2] = {static_cast<hsize_t>((first + k) * chunk_rows), 0};
-      check(H5Dwrite_chunk(dataset, H5P_DEFAULT, 0, offset, out.size(), out.data()),
-            "cannot write a compressed chunk");
-    });
+  std::vector<ChunkRows> rows_of;
+  for (std::size_t c = 0; c < chunks; ++c) {
+    const std::size_t begin = c * chunk_rows, end = std::min(rows, begin + chunk_rows);
+    rows_of.push_back({bytes + begin * row_bytes, (end - begin) * row_bytes, chunk_bytes,
+                       element_size, floating});
   }
+  ChunkCompression compression(level);
+  compression.compress_each(rows_of,
+                            [&](std::size_t c, const unsigned char* out, std::size_t size) {
+                              const hsize_t offset[2] = {static_cast<hsize_t>(c * chunk_rows), 0};
+                              check(H5Dwrite_chunk(dataset, H5P_DEFAULT, 0, offset, size, out),
+                                    "cannot write a compressed chunk");
+                            });
   return true;
 }
 

@@ -44,13 +44,15 @@ class ChunkCompression {
 
   // The chunks compressed, in the order given; valid until the next call.
   const std::vector<std::vector<unsigned char>>& compress(const std::vector<ChunkRows>& chunks);
-  // The same, each compressed chunk handed to ready(index, bytes) on the calling thread, in the
-  // order given, as soon as it and those before it are compressed: the caller writes a chunk
-  // while the other threads compress the next ones (HDF5 calls stay on one thread). An
-  // exception from `ready` or a compression ends the call (after the threads) and propagates.
+  // The same, each compressed chunk handed to ready(index, bytes, size) on the calling thread,
+  // in the order given, as soon as it and those before it are compressed: the caller writes a
+  // chunk while the other threads compress the next ones (HDF5 calls stay on one thread). The
+  // bytes are valid during the call to `ready` only (a few chunks a thread are in flight, in
+  // buffers kept from call to call). An exception from `ready` or a compression ends the call
+  // (after the threads) and propagates.
   void compress_each(
       const std::vector<ChunkRows>& chunks,
-      const std::function<void(std::size_t, const std::vector<unsigned char>&)>& ready);
+      const std::function<void(std::size_t, const unsigned char*, std::size_t)>& ready);
 
  private:
   struct Threads;

@@ -98,9 +98,10 @@ std::vector<StoredChunk> SweepTableStream::write_chunks(const SweepTable& t, std
       stored.push_back({s, (stored_rows_ + begin) / chunk_rows_, 0, 0});
     }
   }
-  compression_->compress_each(chunks, [&](std::size_t c, const std::vector<unsigned char>& bytes) {
-    write_chunk(stored[c], bytes.data(), bytes.size());
-  });
+  compression_->compress_each(chunks,
+                              [&](std::size_t c, const unsigned char* bytes, std::size_t size) {
+                                write_chunk(stored[c], bytes, size);
+                              });
   return stored;
 }
 

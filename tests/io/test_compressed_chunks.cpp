@@ -170,9 +170,9 @@ TEST(ChunkCompression, EachChunkHandedOverInOrderAndAFailureStopsTheCall) {
   ChunkCompression compression(1);
   const auto expected = compression.compress(chunks);
   std::vector<std::size_t> order;
-  compression.compress_each(chunks, [&](std::size_t c, const std::vector<unsigned char>& b) {
+  compression.compress_each(chunks, [&](std::size_t c, const unsigned char* b, std::size_t size) {
     order.push_back(c);
-    EXPECT_EQ(b, expected[c]) << "chunk " << c;
+    EXPECT_EQ(std::vector<unsigned char>(b, b + size), expected[c]) << "chunk " << c;
   });
   ASSERT_EQ(order.size(), chunks.size());
   for (std::size_t c = 0; c < order.size(); ++c) EXPECT_EQ(order[c], c);
@@ -180,7 +180,7 @@ TEST(ChunkCompression, EachChunkHandedOverInOrderAndAFailureStopsTheCall) {
   // and the object compresses again afterwards.
   std::size_t handed = 0;
   EXPECT_THROW(compression.compress_each(chunks,
-                                         [&](std::size_t c, const std::vector<unsigned char>&) {
+                                         [&](std::size_t c, const unsigned char*, std::size_t) {
                                            ++handed;
                                            if (c == 5) throw std::runtime_error("disk full");
                                          }),
