@@ -113,6 +113,7 @@ class ChunkEvaluator {
 
     // Columns kept from chunk to chunk: resized, not allocated anew, and every row overwritten.
     SweepTable& t = table_;
+    t.reserve(count);  // on huge pages, before the first chunk's columns are written
     t.failure_index.clear();
     t.failure_reason.clear();
     t.index.resize(count);
