@@ -69,8 +69,9 @@ SweepJournal::~SweepJournal() {
 
 void SweepJournal::add(std::string entry_path, SweepJournalEntry entry) {
   flush();
-  held_.emplace(std::move(entry_path), std::move(entry));
+  // The fsync started first: where no thread can be started nothing is held.
   synced_ = std::async(std::launch::async, [path = table_path_] { hdf5::fsync_file(path); });
+  held_.emplace(std::move(entry_path), std::move(entry));
 }
 
 void SweepJournal::flush() {

@@ -215,11 +215,15 @@ void ChunkCompression::compress_each(
       while (!stop.load(std::memory_order_relaxed)) {
         const std::size_t c = next.fetch_add(1);
         if (c >= n) return;
-        while (c >= handed.load(std::memory_order_acquire) + slots)
-          if (stop.load(std::memory_order_relaxed))
+        while (c >= handed.load(std::memory_order_acquire) + slots) {
+          if (stop.load(std::memory_order_relaxed)) {
+            // Left uncompressed: marked failed, so that the thread handing the chunks over
+            // stops there instead of waiting for it.
+            state[c].store(2, std::memory_order_release);
             return;
-          else
-            std::this_thread::yield();
+          }
+          std::this_thread::yield();
+        }
         compress(t, c);
       }
       return;

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -186,6 +187,31 @@ TEST(ChunkCompression, EachChunkHandedOverInOrderAndAFailureStopsTheCall) {
                                          }),
                std::runtime_error);
   EXPECT_EQ(handed, 6u);
+  EXPECT_EQ(compression.compress(chunks)[39], expected[39]);
+}
+
+TEST(ChunkCompression, AFailedCompressionEndsTheCallWithItsError) {
+  // Chunk 20 cannot be compressed (a chunk larger than any buffer can be: its buffer's resize
+  // throws std::length_error). The call ends with that error, having handed over at most the
+  // chunks before it, in order, whatever the threads were doing (some waiting for a slot of the
+  // ring); repeated, since where a thread stands when the error comes is a matter of timing.
+  const std::size_t count = 4096, bytes = count * 8;
+  std::vector<std::vector<double>> columns;
+  for (unsigned k = 0; k < 40; ++k) columns.push_back(random_in_one_two(count, 200 + k));
+  std::vector<ChunkRows> chunks;
+  for (const auto& c : columns) chunks.push_back({c.data(), bytes, bytes, 8, true});
+  std::vector<ChunkRows> failing = chunks;
+  failing[20].chunk_bytes = std::numeric_limits<std::size_t>::max() - 7;
+  ChunkCompression compression(1);
+  const auto expected = compression.compress(chunks);
+  for (int round = 0; round < 50; ++round) {
+    std::vector<std::size_t> order;
+    EXPECT_THROW(compression.compress_each(failing, [&](std::size_t c, const unsigned char*,
+                                                        std::size_t) { order.push_back(c); }),
+                 std::length_error);
+    ASSERT_LE(order.size(), 20u);
+    for (std::size_t c = 0; c < order.size(); ++c) ASSERT_EQ(order[c], c);
+  }
   EXPECT_EQ(compression.compress(chunks)[39], expected[39]);
 }
 
