@@ -36,6 +36,7 @@ SweepTable SweepTable::with_columns(std::vector<std::string> input_paths,
 
 void SweepTable::append(const SweepTable& o) {
   append_results(o);
+  index.insert(index.end(), o.index.begin(), o.index.end());
   wall_time.insert(wall_time.end(), o.wall_time.begin(), o.wall_time.end());
   for (std::size_t k = 0; k < inputs.size(); ++k)
     inputs[k].insert(inputs[k].end(), o.inputs[k].begin(), o.inputs[k].end());
@@ -44,7 +45,6 @@ void SweepTable::append(const SweepTable& o) {
 void SweepTable::append_results(const SweepTable& o) {
   if (o.input_paths != input_paths || o.output_columns != output_columns)
     throw std::invalid_argument("sweep tables with different columns cannot be joined");
-  index.insert(index.end(), o.index.begin(), o.index.end());
   status.insert(status.end(), o.status.begin(), o.status.end());
   for (std::size_t c = 0; c < outputs.size(); ++c)
     outputs[c].insert(outputs[c].end(), o.outputs[c].begin(), o.outputs[c].end());
@@ -61,7 +61,7 @@ void SweepTable::reserve(std::size_t n) {
 }
 
 void SweepTable::sort_by_index() {
-  const std::size_t n = rows();
+  const std::size_t n = index.size();  // 0 where the index was left out
   if (!std::is_sorted(index.begin(), index.end())) {
     std::vector<std::size_t> order(n);
     std::iota(order.begin(), order.end(), 0);

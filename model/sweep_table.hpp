@@ -30,18 +30,21 @@ struct SweepTable {
   std::vector<std::uint64_t> failure_index;
   std::vector<std::string> failure_reason;
 
-  std::size_t rows() const { return index.size(); }
+  // Every table has a status per row; the index, wall times and inputs may be left out
+  // (append_results).
+  std::size_t rows() const { return status.size(); }
   // An empty table with these columns.
   static SweepTable with_columns(std::vector<std::string> input_paths,
                                  std::vector<std::string> output_columns);
   // Appends `other`'s rows (same columns, else std::invalid_argument).
   void append(const SweepTable& other);
-  // The same without the inputs and wall times, which stay empty columns: a sweep's table for
-  // its statistics (they read the statuses and outputs), a third of the memory of the whole.
+  // The statuses and outputs alone, the index, inputs and wall times left empty: a sweep's
+  // table for its statistics (they read the statuses and outputs), the rows in the order
+  // appended.
   void append_results(const SweepTable& other);
   void reserve(std::size_t rows);
-  // Sorts the rows (and failures) by sample index (empty columns stay empty); throws
-  // std::runtime_error on a duplicate.
+  // Sorts the rows (and failures) by sample index (empty columns stay empty; a table without
+  // its index keeps its rows' order); throws std::runtime_error on a duplicate.
   void sort_by_index();
 };
 
