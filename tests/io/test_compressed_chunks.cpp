@@ -160,14 +160,24 @@ TEST(ChunkCompression, ReusedGivesTheBytesOfANewOne) {
   EXPECT_EQ(expected[0], expected[3]);  // the same rows, the same bytes
 }
 
+// 40 chunks of 4096 values in [1, 2), column k drawn with seed `seed` + k.
+struct ManyChunks {
+  std::vector<std::vector<double>> columns;
+  std::vector<ChunkRows> chunks;  // into `columns`
+};
+ManyChunks forty_chunks(unsigned seed) {
+  const std::size_t count = 4096, bytes = count * 8;
+  ManyChunks m;
+  for (unsigned k = 0; k < 40; ++k) m.columns.push_back(random_in_one_two(count, seed + k));
+  for (const auto& c : m.columns) m.chunks.push_back({c.data(), bytes, bytes, 8, true});
+  return m;
+}
+
 TEST(ChunkCompression, EachChunkHandedOverInOrderAndAFailureStopsTheCall) {
   // 40 chunks on the threads (OMP_NUM_THREADS or the hardware's): handed over in order, with the
   // bytes compress() gives.
-  const std::size_t count = 4096, bytes = count * 8;
-  std::vector<std::vector<double>> columns;
-  for (unsigned k = 0; k < 40; ++k) columns.push_back(random_in_one_two(count, 100 + k));
-  std::vector<ChunkRows> chunks;
-  for (const auto& c : columns) chunks.push_back({c.data(), bytes, bytes, 8, true});
+  const ManyChunks many = forty_chunks(100);
+  const std::vector<ChunkRows>& chunks = many.chunks;
   ChunkCompression compression(1);
   const auto expected = compression.compress(chunks);
   std::vector<std::size_t> order;
@@ -195,11 +205,8 @@ TEST(ChunkCompression, AFailedCompressionEndsTheCallWithItsError) {
   // throws std::length_error). The call ends with that error, having handed over at most the
   // chunks before it, in order, whatever the threads were doing (some waiting for a slot of the
   // ring); repeated, since where a thread stands when the error comes is a matter of timing.
-  const std::size_t count = 4096, bytes = count * 8;
-  std::vector<std::vector<double>> columns;
-  for (unsigned k = 0; k < 40; ++k) columns.push_back(random_in_one_two(count, 200 + k));
-  std::vector<ChunkRows> chunks;
-  for (const auto& c : columns) chunks.push_back({c.data(), bytes, bytes, 8, true});
+  const ManyChunks many = forty_chunks(200);
+  const std::vector<ChunkRows>& chunks = many.chunks;
   std::vector<ChunkRows> failing = chunks;
   failing[20].chunk_bytes = std::numeric_limits<std::size_t>::max() - 7;
   ChunkCompression compression(1);
