@@ -254,7 +254,7 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_health(const Points& p, const int
 }
 
 // Asks the caches for the point data that two_phase_g2p_block reads or writes for the points
-// [q0, q1) (prefetch_points.hpp): up to 29 streams, more than the hardware follows. The block
+// [q0, q1) (prefetch_points.hpp): up to 34 streams, more than the hardware follows. The block
 // calls it for the next block before its first loop.
 template <bool WithStress, bool Plastic, bool Pore>
 KOKKOS_FORCEINLINE_FUNCTION void prefetch_block_points(const TwoPhasePointArrays& a, const int q0,
@@ -274,10 +274,15 @@ KOKKOS_FORCEINLINE_FUNCTION void prefetch_block_points(const TwoPhasePointArrays
                                                     point_stream(s.velocity_gradient.c[0][1]),
                                                     point_stream(s.velocity_gradient.c[1][0]),
                                                     point_stream(s.velocity_gradient.c[1][1]),
-                                                    point_stream<double, 2>(a.liquid_velocity.c),
-                                                    point_stream<double, 4>(a.liquid_affine.c),
+                                                    point_stream(a.liquid_velocity.c[0]),
+                                                    point_stream(a.liquid_velocity.c[1]),
+                                                    point_stream(a.liquid_affine.c[0][0]),
+                                                    point_stream(a.liquid_affine.c[0][1]),
+                                                    point_stream(a.liquid_affine.c[1][0]),
+                                                    point_stream(a.liquid_affine.c[1][1]),
                                                     point_stream(a.liquid_divergence.c),
-                                                    point_stream<double, 2>(a.traction.c),
+                                                    point_stream(a.traction.c[0]),
+                                                    point_stream(a.traction.c[1]),
                                                     point_stream(a.pore_pressure.c)};
   prefetch_streams<2>(transfer, q0, q1);
   if constexpr (WithStress) {

@@ -329,9 +329,14 @@ inline void two_phase_p2g_block(const TwoPhasePointArrays p, const int q0, const
                                                    point_stream(p.pore_pressure.c),
                                                    point_stream(p.viscous_pressure.c),
                                                    point_stream(p.conductivity.c),
-                                                   point_stream<double, 2>(p.liquid_velocity.c),
-                                                   point_stream<double, 2>(p.traction.c),
-                                                   point_stream<double, 4>(p.liquid_affine.c)};
+                                                   point_stream(p.liquid_velocity.c[0]),
+                                                   point_stream(p.liquid_velocity.c[1]),
+                                                   point_stream(p.traction.c[0]),
+                                                   point_stream(p.traction.c[1]),
+                                                   point_stream(p.liquid_affine.c[0][0]),
+                                                   point_stream(p.liquid_affine.c[0][1]),
+                                                   point_stream(p.liquid_affine.c[1][0]),
+                                                   point_stream(p.liquid_affine.c[1][1])};
   lsi::mpm::detail::prefetch_streams(streams, q1, q1 + (q1 - q0));
   for (int k = 0; k < q1 - q0; ++k) {
     const Oct A = {f[kMassS][k],  f[kMomSx][k], f[kMomSy][k], f[kForceX][k],

@@ -8,7 +8,6 @@
 // Sign convention: pore pressure p is COMPRESSION POSITIVE; total stress sigma = sigma' - p I.
 #pragma once
 #include <Kokkos_Core.hpp>
-#include <type_traits>
 
 #include "kernels/mpm/particles.hpp"
 
@@ -18,16 +17,17 @@ namespace lsi::mpm::two_phase {
 template <class MemorySpace>
 struct TwoPhaseParticles {
   int count = 0;
-  Particles<MemorySpace> solid;                             // skeleton (see above)
-  Kokkos::View<double* [2], MemorySpace> liquid_velocity;   // m/s
-  Kokkos::View<double* [2][2], MemorySpace> liquid_affine;  // APIC C of the liquid, 1/s
-  Kokkos::View<double*, MemorySpace> liquid_divergence;     // div v_L of the last step, 1/s
-  Kokkos::View<double*, MemorySpace> liquid_mass;           // kg/m, m_L = n0 rho_L V0 (constant)
-  Kokkos::View<double*, MemorySpace> porosity;              // n, current
-  Kokkos::View<double*, MemorySpace> pore_pressure;         // Pa, compression positive
-  Kokkos::View<double*, MemorySpace> conductivity;          // hydraulic conductivity k, m/s
-  Kokkos::View<double* [2], MemorySpace> traction;          // N/m, surface load on the point
-                                                            // (applied to the mixture)
+  Particles<MemorySpace> solid;                                         // skeleton (see above)
+  Kokkos::View<double* [2], PointLayout, MemorySpace> liquid_velocity;  // m/s
+  Kokkos::View<double* [2][2], PointLayout, MemorySpace>
+      liquid_affine;                                     // APIC C of the liquid, 1/s
+  Kokkos::View<double*, MemorySpace> liquid_divergence;  // div v_L of the last step, 1/s
+  Kokkos::View<double*, MemorySpace> liquid_mass;        // kg/m, m_L = n0 rho_L V0 (constant)
+  Kokkos::View<double*, MemorySpace> porosity;           // n, current
+  Kokkos::View<double*, MemorySpace> pore_pressure;      // Pa, compression positive
+  Kokkos::View<double*, MemorySpace> conductivity;       // hydraulic conductivity k, m/s
+  Kokkos::View<double* [2], PointLayout, MemorySpace> traction;  // N/m, surface load on the point
+                                                                 // (applied to the mixture)
   // Artificial bulk viscosity (pore_pressure_update.hpp): the mixture's volumetric strain rate
   // D = (1 - n) tr(L_S) + n div(v_L) of the last step, 1/s, and
   // the viscous pressure q(D) >= 0 (Pa, compression positive) it gives. q acts in P2G beside p
@@ -50,36 +50,19 @@ struct TwoPhaseParticles {
   }
 };
 
-// The fields of host TwoPhaseParticles as raw arrays with the same element access, for loops
-// over points that the compiler is to vectorise (as PointArrays, particles.hpp, of which `solid`
-// is one). The liquid's two- and four-component fields are point-interleaved (the Views' layout
-// above): p.liquid_velocity(q, r) is element 2 q + r.
-template <int N>
-struct PointRecords {
-  double* c;
-  KOKKOS_FORCEINLINE_FUNCTION double& operator()(const int q, const int k) const {
-    return c[N * q + k];
-  }
-};
-struct PointRecordMatrices {
-  double* c;
-  KOKKOS_FORCEINLINE_FUNCTION double& operator()(const int q, const int r, const int k) const {
-    return c[4 * q + 2 * r + k];
-  }
-};
+// The fields of host TwoPhaseParticles as raw component arrays with the same element access,
+// for loops over points that the compiler is to vectorise (as PointArrays, particles.hpp, of
+// which `solid` is one).
 struct TwoPhasePointArrays {
   PointArrays solid;
-  PointRecords<2> liquid_velocity, traction;
-  PointRecordMatrices liquid_affine;
+  PointColumns<2> liquid_velocity, traction;
+  PointMatrices liquid_affine;
   PointColumn<double> liquid_divergence, liquid_mass, porosity, pore_pressure, conductivity,
       volumetric_rate, viscous_pressure;
 
   template <class MemorySpace>
   KOKKOS_FORCEINLINE_FUNCTION explicit TwoPhasePointArrays(const TwoPhaseParticles<MemorySpace>& p)
       : solid(p.solid),
-        liquid_velocity{p.liquid_velocity.data()},
-        traction{p.traction.data()},
-        liquid_affine{p.liquid_affine.data()},
         liquid_divergence{p.liquid_divergence.data()},
         liquid_mass{p.liquid_mass.data()},
         porosity{p.porosity.data()},
@@ -87,10 +70,11 @@ struct TwoPhasePointArrays {
         conductivity{p.conductivity.data()},
         volumetric_rate{p.volumetric_rate.data()},
         viscous_pressure{p.viscous_pressure.data()} {
-    static_assert(std::is_same_v<typename decltype(p.liquid_velocity)::array_layout,
-                                 Kokkos::LayoutRight>);  // point-interleaved on the host
-    static_assert(
-        std::is_same_v<typename decltype(p.liquid_affine)::array_layout, Kokkos::LayoutRight>);
+    // Written out, as in PointArrays: each pointer a value of its own.
+    liquid_velocity = {{&p.liquid_velocity(0, 0), &p.liquid_velocity(0, 1)}};
+    traction = {{&p.traction(0, 0), &p.traction(0, 1)}};
+    liquid_affine = {{{&p.liquid_affine(0, 0, 0), &p.liquid_affine(0, 0, 1)},
+                      {&p.liquid_affine(0, 1, 0), &p.liquid_affine(0, 1, 1)}}};
   }
 };
 
