@@ -228,7 +228,7 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_p2g_point(
 //     d/dx respectively: their lanes do not overlap, so one product serves both.
 //     Then the point's mirror images (the order of two_phase_p2g_point).
 // Between the two, the next block's point data is prefetched (prefetch_points.hpp): loop 1 reads
-// 21 streams with little arithmetic between the loads and, on its own, waits for memory;
+// 26 streams with little arithmetic between the loads and, on its own, waits for memory;
 // prefetched, the loads overlap loop 2's arithmetic (the dry P2G's first loop, 13 streams,
 // measured no gain from it). The sums of two_phase_point_contributions up to round-off. Widens i0..i1 x j0..j1 by the stencils.
 inline void two_phase_p2g_block(const TwoPhasePointArrays p, const int q0, const int q1,
