@@ -2,6 +2,7 @@
 #include "app/sweep_journal.hpp"
 
 #include <nlohmann/json.hpp>
+#include <string>
 #include <utility>
 
 #include "io/hdf5_io.hpp"
@@ -17,11 +18,9 @@ void write_journal_entry(const std::string& path, SweepHeader header, const Swee
   for (std::size_t i = 0; i < e.failure_index.size(); ++i)
     failures.push_back({e.failure_index[i], e.failure_reason[i]});
   header.complete = true;  // the chunk itself
-  header.journal = {{"table_file", e.table_file},
-                    {"chunk_rows", e.chunk_rows},
-                    {"stored_rows", e.stored_rows},
-                    {"chunks", chunks},
-                    {"failures", failures}};
+  header.journal = {{"format", kJournalFormat},   {"table_file", e.table_file},
+                    {"chunk_rows", e.chunk_rows}, {"stored_rows", e.stored_rows},
+                    {"chunks", chunks},           {"failures", failures}};
   write_sweep_file(path, header, e.pending, nullptr, SweepStorage::Plain);
 }
 
@@ -33,6 +32,13 @@ SweepJournalEntry read_journal_entry(const std::string& path, const std::string&
     throw InputError(path +
                      ": not a journal entry (left by an earlier version of lsi?); delete the "
                      "parts directory to start the sweep again");
+  const json format = j.value("format", json(1));
+  if (!format.is_number_integer() || format.get<long long>() < 1 ||
+      format.get<long long>() > kJournalFormat)
+    throw InputError(path + ": journal format " + format.dump() + ": this lsi reads formats 1 to " +
+                     std::to_string(kJournalFormat) +
+                     " (written by a later version of lsi?); resume with that version, or delete "
+                     "the parts directory to start the sweep again");
   SweepJournalEntry e;
   try {
     e.table_file = j.at("table_file").get<std::string>();

@@ -25,11 +25,18 @@ struct SweepJournalEntry {
   std::vector<std::string> failure_reason;   // ... and why
 };
 
+// The layout of an entry's `journal` attribute, written as its "format". Format 1 (entries
+// without the key) may lack chunk_rows; format 2 always has it. A reader refuses a format newer
+// than its own: a newer lsi may record what this one would not know to follow (the table's
+// chunk rows were such a record), and resuming would then write a wrong table.
+constexpr int kJournalFormat = 2;
+
 // Writes the entry atomically, with the sweep's header (its fingerprint identifies the study).
 void write_journal_entry(const std::string& path, SweepHeader header,
                          const SweepJournalEntry& entry);
-// Reads an entry; throws InputError naming the file when it belongs to another study or is not a
-// journal entry (a parts directory of an earlier version of lsi).
+// Reads an entry; throws InputError naming the file when it belongs to another study, is not a
+// journal entry (a parts directory of an earlier version of lsi) or has a format other than 1 to
+// kJournalFormat (a later version's).
 SweepJournalEntry read_journal_entry(const std::string& path, const std::string& fingerprint);
 
 // Journals a run's chunks: the table file's fsync after a chunk runs on a thread of its own

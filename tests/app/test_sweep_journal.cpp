@@ -1,5 +1,6 @@
 // The sweep's journal (app/sweep_journal.hpp): each entry held while the table file's fsync runs,
-// written in chunk order only after that fsync returned, and none lost at the end of a run.
+// written in chunk order only after that fsync returned, and none lost at the end of a run; each
+// entry written with its format, and an entry of a format the reader does not know refused.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -7,7 +8,11 @@
 #include <stdexcept>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "app/sweep_journal.hpp"
+#include "io/sweep_file.hpp"
+#include "model/input_error.hpp"
 
 namespace fs = std::filesystem;
 
@@ -96,4 +101,51 @@ TEST(SweepJournal, AFailedFsyncIsThrownAndItsEntryNeverWritten) {
     EXPECT_NE(std::string(e.what()).find("fsync"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(fs::exists(first)) << "an entry must never name bytes not known to be on disk";
+}
+
+// An entry's journal attribute as a given format would write it (`format` null: left out, as
+// entries of format 1 were written).
+static void write_entry_of_format(const fs::path& path, const nlohmann::json& format) {
+  lsi::SweepHeader h = header();
+  h.complete = true;
+  h.journal = {{"table_file", "table-0.h5"},
+               {"stored_rows", 1000},
+               {"chunks", nlohmann::json::array()},
+               {"failures", nlohmann::json::array()}};
+  if (!format.is_null()) h.journal["format"] = format;
+  lsi::write_sweep_file(path.string(), h, entry(0).pending, nullptr, lsi::SweepStorage::Plain);
+}
+
+TEST(SweepJournal, WritesItsFormatAndRefusesAFormatItDoesNotKnow) {
+  const fs::path dir = fresh_dir("format");
+  const fs::path written = dir / "chunk-0.h5";
+  {
+    lsi::SweepJournal journal(table_file(dir).string(), header());
+    journal.add(written.string(), entry(0));
+  }
+  EXPECT_EQ(lsi::read_sweep_file(written.string()).header.journal.at("format"),
+            lsi::kJournalFormat);
+  // Format 1 (no key): read, its chunk rows left to the caller's rule for such entries.
+  const fs::path older = dir / "chunk-1.h5";
+  write_entry_of_format(older, nullptr);
+  const lsi::SweepJournalEntry e = lsi::read_journal_entry(older.string(), "journal-test");
+  EXPECT_EQ(e.stored_rows, 1000u);
+  EXPECT_EQ(e.chunk_rows, 0u);
+  // A later format, or one that is no format at all: refused, naming the file and the value.
+  for (const nlohmann::json& bad :
+       {nlohmann::json(lsi::kJournalFormat + 1), nlohmann::json(0), nlohmann::json("2")}) {
+    const fs::path later = dir / "chunk-2.h5";
+    write_entry_of_format(later, bad);
+    try {
+      lsi::read_journal_entry(later.string(), "journal-test");
+      FAIL() << "format " << bad.dump() << " read";
+    } catch (const lsi::InputError& x) {
+      const std::string what = x.what();
+      EXPECT_NE(what.find(later.string()), std::string::npos) << what;
+      EXPECT_NE(what.find("journal format " + bad.dump()), std::string::npos) << what;
+      EXPECT_NE(what.find("reads formats 1 to " + std::to_string(lsi::kJournalFormat)),
+                std::string::npos)
+          << what;
+    }
+  }
 }
