@@ -549,7 +549,10 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     earlier.clear();
   }
   for (const auto& t : old_tables) fs::remove(t);
-  all.reserve(my_samples);
+  if (keep_inputs)
+    all.reserve(my_samples);
+  else
+    all.reserve_results(my_samples);
 
   ensure_kokkos();
   ChunkEvaluator evaluator(study);

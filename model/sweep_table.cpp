@@ -53,10 +53,14 @@ void SweepTable::append_results(const SweepTable& o) {
 }
 
 void SweepTable::reserve(std::size_t n) {
+  reserve_results(n);
   sweeps::reserve_on_huge_pages(index, n);
-  sweeps::reserve_on_huge_pages(status, n);
   sweeps::reserve_on_huge_pages(wall_time, n);
   for (auto& c : inputs) sweeps::reserve_on_huge_pages(c, n);
+}
+
+void SweepTable::reserve_results(std::size_t n) {
+  sweeps::reserve_on_huge_pages(status, n);
   for (auto& c : outputs) sweeps::reserve_on_huge_pages(c, n);
 }
 

@@ -43,6 +43,8 @@ struct SweepTable {
   // appended.
   void append_results(const SweepTable& other);
   void reserve(std::size_t rows);
+  // The same for the columns append_results fills (the statuses and outputs) alone.
+  void reserve_results(std::size_t rows);
   // Sorts the rows (and failures) by sample index (empty columns stay empty; a table without
   // its index keeps its rows' order); throws std::runtime_error on a duplicate.
   void sort_by_index();

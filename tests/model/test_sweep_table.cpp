@@ -64,3 +64,18 @@ TEST(SweepTable, ResultsAloneKeepStatusesOutputsAndFailuresInTheOrderAppended) {
   ASSERT_EQ(t.failure_index.size(), 1u);
   EXPECT_EQ(t.failure_index[0], 2u);
 }
+
+TEST(SweepTable, ResultsAloneReserveOnlyTheColumnsTheyFill) {
+  lsi::SweepTable t =
+      lsi::SweepTable::with_columns({"/landslide/thickness_m"}, {"analytical/peak_force"});
+  t.reserve_results(1000);
+  EXPECT_GE(t.status.capacity(), 1000u);
+  EXPECT_GE(t.outputs[0].capacity(), 1000u);
+  EXPECT_EQ(t.index.capacity(), 0u) << "the index stays empty";
+  EXPECT_EQ(t.wall_time.capacity(), 0u);
+  EXPECT_EQ(t.inputs[0].capacity(), 0u);
+  t.reserve(1000);  // whole rows: every column
+  EXPECT_GE(t.index.capacity(), 1000u);
+  EXPECT_GE(t.wall_time.capacity(), 1000u);
+  EXPECT_GE(t.inputs[0].capacity(), 1000u);
+}
