@@ -17,6 +17,7 @@
 // lies above): the face load's distribution, whose bands add up to the face's normal force.
 #pragma once
 #include <Kokkos_Core.hpp>
+#include <cmath>
 
 #include "kernels/common/execution_instance.hpp"
 #include "kernels/common/math.hpp"
@@ -50,10 +51,25 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
   double f[6] = {0, 0, 0, 0, 0, 0}, work = 0.0, moment = 0.0;
   int nodes = 0;
   const double x_downstream_toe = b.toe[0] + b.base_width;
-  // Only the nodes that may hold mass (Grid::mass_box, set by P2G).
-  const NodeBox region = g.mass_box();
+  // Only the nodes that may hold mass (Grid::mass_box and its row spans, set by P2G), and of
+  // those the columns the barrier covers, one cell wider on each side (a node beyond them is
+  // outside the barrier by more than the tolerance). The rows stay those of the mass rectangle:
+  // on the host (a work item per row) the same work items, so the same sums, as over the whole
+  // rectangle.
+  NodeBox region = g.mass_box();
   if (region.empty()) return r;
-  const NodeItems<ExecSpace> items(region);
+  double x_lo = b.toe[0], x_hi = b.toe[0];
+  for (const auto& face : b.face) {
+    x_lo = face.point[0] < x_lo ? face.point[0] : x_lo;
+    x_hi = face.point[0] > x_hi ? face.point[0] : x_hi;
+  }
+  x_hi = x_hi > b.toe[0] + b.base_width ? x_hi : b.toe[0] + b.base_width;
+  const double first = std::floor((x_lo + displacement - ox) / dx) - 1.0;
+  const double last = std::ceil((x_hi + displacement - ox) / dx) + 1.0;
+  if (first > region.i1 || last < region.i0) return r;  // no node in contact
+  if (first > region.i0) region.i0 = static_cast<int>(first);
+  if (last < region.i1) region.i1 = static_cast<int>(last);
+  const NodeItems<ExecSpace> items(region, g.mass_rows());
   const int bands = band_height > 0.0 ? static_cast<int>(band_force.extent(0)) : 0;
   Kokkos::parallel_reduce(
       "lsi::mpm::barrier_contact", range_policy<ExecSpace>(0, items.count()),

@@ -31,11 +31,12 @@ double grid_update(const Grid<MemorySpace>& g, const Boundaries& walls, double d
                    const WallBands<MemorySpace>& bands = {}) {
   const double ox = g.origin[0], oy = g.origin[1], dx = g.dx, tol = 1e-9 * g.dx;
   const int nx = g.nx;
-  // Only the nodes whose fields may be nonzero (Grid::active): outside them nothing moves.
+  // Only the nodes whose fields may be nonzero (Grid::active, Grid::row_spans): outside them
+  // nothing moves.
   const NodeBox region = g.dirty_box();
   double dissipated = 0.0, fx = 0.0, fy = 0.0;
   if (region.empty()) return 0.0;
-  const NodeItems<ExecSpace> items(region);
+  const NodeItems<ExecSpace> items(region, g.dirty_rows());
   const auto mass = g.mass;
   const auto momentum = g.momentum;
   const auto force = g.force;
@@ -77,8 +78,8 @@ double grid_update(const Grid<MemorySpace>& g, const Boundaries& walls, double d
         }
       },
       dissipated, fx, fy);
-  // Every node outside the mass rectangle is now zero.
-  g.set_dirty_box(g.mass_box());
+  // Every node outside the mass rectangle (and its row spans) is now zero.
+  g.set_dirty_to_mass();
   wall_force[0] += fx;
   wall_force[1] += fy;
   return dissipated;

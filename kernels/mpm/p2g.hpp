@@ -6,14 +6,15 @@
 //     (mass, momentum x, y, force x, y: 40 contiguous bytes per node instead of three arrays).
 //     Duplicated (the default on host spaces): one buffer per thread; the points are cut into as
 //     many contiguous chunks as there are copies, and each chunk records the rectangle of nodes it
-//     touched. Atomic: one buffer and atomic additions (the choice on devices; `Atomic` asks for
+//     touched and, row by row, a span that holds them (TouchedNodes). Atomic: one buffer and atomic additions (the choice on devices; `Atomic` asks for
 //     it on the host too), optionally tiled: a team of threads takes `tile_points` consecutive
 //     points, adds them into a tile of nodes in its fast (shared) memory and then adds the tile
 //     into the buffer, one atomic addition per node and field instead of one per point
 //     (detail::scatter_tiles; the default on a device). Serial: one buffer, plain additions.
 //  2. gather: for the nodes in the touched rectangle (and those touched the step before, which
-//     must become zero), the buffers are summed into the grid's fields and zeroed on the way, so
-//     the next step needs no reset. The grid records the rectangles (Grid::active) so that the
+//     must become zero), within each row's span where the scatter recorded them, the buffers are
+//     summed into the grid's fields and zeroed on the way, so the next step needs no reset. The
+//     grid records the rectangles (Grid::active) and their spans (Grid::row_spans) so that the
 //     grid update skips the empty nodes.
 // The two passes are generic in the number of fields per node (detail::scatter_points,
 // detail::gather_nodes): the two-phase P2G (two_phase/two_phase_p2g.hpp) runs them with 11.
@@ -86,6 +87,12 @@ struct P2GScatter {
   int copies_count = 0;
   Kokkos::View<double**, Kokkos::LayoutRight, Mem> copies;  // [copy][node * kFields + field]
   Kokkos::View<int* [4], Kokkos::LayoutRight, Mem> boxes;   // nodes each copy touched, i0 i1 j0 j1
+  // Host buffers (plain additions) only: the span of each row j that holds the nodes each copy
+  // touched, [copy][2 j] .. [copy][2 j + 1] (TouchedNodes); after scatter_points, rows(0, .) the
+  // spans over every copy and rows(1, .) those of gather_region (the spans of Grid::row_spans).
+  Kokkos::View<int**, Kokkos::LayoutRight, Mem> copy_rows;
+  Kokkos::View<int**, Kokkos::LayoutRight, Kokkos::HostSpace> rows;
+  int grid_rows = 0;
   // The atomic scatter's tiles (detail::scatter_tiles): points per team (0: no tiles, every
   // point adds into the buffer) and the most nodes a tile holds; a team whose points touch more
   // adds them into the buffer directly. On a device 128 by default (an H100: the dry and the
@@ -112,26 +119,80 @@ struct P2GScatter {
     copies_count = duplicated ? ExecSpace().concurrency() : 1;
     copies = decltype(copies)("p2g_copies", copies_count, static_cast<size_t>(kFields) * g.size());
     boxes = decltype(boxes)("p2g_boxes", copies_count);
+    if constexpr (!atomic) {
+      grid_rows = g.ny;
+      copy_rows = decltype(copy_rows)("p2g_copy_rows", copies_count, 2 * static_cast<size_t>(g.ny));
+      rows = decltype(rows)("p2g_rows", 2, 2 * static_cast<size_t>(g.ny));
+    }
   }
 };
 
 // The rectangles a P2G leaves on its grid(s): the nodes that may hold mass (Grid::mass_box) and
-// those whose fields may be nonzero (Grid::dirty_box).
+// those whose fields may be nonzero (Grid::dirty_box), with their row spans (Grid::row_spans;
+// nullptr where the scatter has none: the atomic one).
 struct P2GBoxes {
   NodeBox mass, dirty;
+  const int* mass_rows = nullptr;
+  const int* dirty_rows = nullptr;
 };
 
 namespace detail {
 
-// Widens the rectangle of nodes i0..i1 x j0..j1 by the 3 x 3 stencil whose first node is
-// (bi, bj).
-KOKKOS_FORCEINLINE_FUNCTION void widen_by_stencil(const int bi, const int bj, int& i0, int& i1,
-                                                  int& j0, int& j1) {
-  i0 = bi < i0 ? bi : i0;
-  i1 = bi + 2 > i1 ? bi + 2 : i1;
-  j0 = bj < j0 ? bj : j0;
-  j1 = bj + 2 > j1 ? bj + 2 : j1;
-}
+// The nodes a host scatter touched: their rectangle i0..i1 x j0..j1 and, where `rows` is given,
+// a span of each row j that holds its touched nodes, rows[2 j] .. rows[2 j + 1] (rows
+// 0..ny - 1; the caller empties them first).
+struct TouchedNodes {
+  int i0 = INT_MAX, i1 = INT_MIN, j0 = INT_MAX, j1 = INT_MIN;
+  int* rows = nullptr;
+  int ny = 0;
+  // Widens them by the 3 x 3 stencil whose first node is (bi, bj).
+  KOKKOS_FORCEINLINE_FUNCTION void widen(const int bi, const int bj) {
+    i0 = bi < i0 ? bi : i0;
+    i1 = bi + 2 > i1 ? bi + 2 : i1;
+    j0 = bj < j0 ? bj : j0;
+    j1 = bj + 2 > j1 ? bj + 2 : j1;
+    if (rows != nullptr) widen_rows(bi, bi, bj, bj);
+  }
+  // Widens them by the stencils whose first nodes are (bi[k], bj[k]), k < count: the blocked
+  // scatters' points. Points sorted by cell have stencils that start on a few neighbouring rows
+  // and columns, so a block widens each of its rows by all of its columns at once (spans that may
+  // hold a few nodes more than those touched, never fewer); points further apart row by row.
+  KOKKOS_FORCEINLINE_FUNCTION void widen_block(const int* bi, const int* bj, const int count) {
+    int a0 = INT_MAX, a1 = INT_MIN, b0 = INT_MAX, b1 = INT_MIN;
+    for (int k = 0; k < count; ++k) {
+      a0 = bi[k] < a0 ? bi[k] : a0;
+      a1 = bi[k] > a1 ? bi[k] : a1;
+      b0 = bj[k] < b0 ? bj[k] : b0;
+      b1 = bj[k] > b1 ? bj[k] : b1;
+    }
+    if (count == 0) return;
+    i0 = a0 < i0 ? a0 : i0;
+    i1 = a1 + 2 > i1 ? a1 + 2 : i1;
+    j0 = b0 < j0 ? b0 : j0;
+    j1 = b1 + 2 > j1 ? b1 + 2 : j1;
+    if (rows == nullptr) return;
+    if (b1 - b0 <= kBlockRows) {
+      widen_rows(a0, a1, b0, b1);
+    } else {
+      for (int k = 0; k < count; ++k) widen_rows(bi[k], bi[k], bj[k], bj[k]);
+    }
+  }
+
+ private:
+  // The most rows apart the stencils of a block may start and still widen its rows at once.
+  static constexpr int kBlockRows = 3;
+  // Rows first_row..last_row + 2 by the nodes first..last + 2.
+  KOKKOS_FORCEINLINE_FUNCTION void widen_rows(const int first, const int last, const int first_row,
+                                              const int last_row) {
+    int* const r = rows;  // locals: the stores below cannot change them
+    const int lo = first_row > 0 ? first_row : 0;
+    const int hi = last_row + 2 < ny - 1 ? last_row + 2 : ny - 1;  // beyond: the health check's
+    for (int j = lo; j <= hi; ++j) {
+      r[2 * j] = first < r[2 * j] ? first : r[2 * j];
+      r[2 * j + 1] = last + 2 > r[2 * j + 1] ? last + 2 : r[2 * j + 1];
+    }
+  }
+};
 
 template <bool Atomic>
 KOKKOS_FORCEINLINE_FUNCTION void scatter_add(double* a, double v) {
@@ -246,9 +307,11 @@ void scatter_tiles(S& scatter, const PositionView& position, const int n_points,
 // tile.offset(i, j)) and returns the first node (bi, bj) of its 3 x 3 stencil; every node it
 // writes must lie in the stencil. `position`: the points' positions (the stencil of the atomic
 // path's rectangle). Returns the rectangle of touched nodes, not clipped to the grid.
-// block_fn(q0, q1, buf, i0, i1, j0, j1), where given (the host's plain additions only): adds
-// points [q0, q1) into `buf` (node (i, j) at kFields (i + nx j)) and widens the rectangle
-// i0..i1 x j0..j1 by their stencils; point_fn one point after the other otherwise.
+// block_fn(q0, q1, buf, touched), where given (the host's plain additions only): adds
+// points [q0, q1) into `buf` (node (i, j) at kFields (i + nx j)) and widens `touched`
+// (TouchedNodes) by their stencils; point_fn one point after the other otherwise. With plain
+// additions, the touched nodes' row spans are left in scatter.rows(0, .) (rows of the returned
+// rectangle within the grid).
 template <class S, class PositionView, class PointFn, class BlockFn>
 NodeBox scatter_points(S& scatter, const PositionView& position, const int n_points,
                        const double ox, const double oy, const double inv_dx, const int nx,
@@ -288,12 +351,20 @@ NodeBox scatter_points(S& scatter, const PositionView& position, const int n_poi
     if (n_points > 0) touched = {i0, i1, j0, j1};
   } else {
     // One contiguous chunk of points per copy: a copy is never written by two threads at once.
+    const auto copy_rows = scatter.copy_rows;
+    const int ny = scatter.grid_rows;
     Kokkos::parallel_for(
         "lsi::mpm::p2g_scatter", range_policy<ExecSpace>(0, nc), KOKKOS_LAMBDA(const int c) {
           const int begin = static_cast<int>(static_cast<long>(n_points) * c / nc);
           const int end = static_cast<int>(static_cast<long>(n_points) * (c + 1) / nc);
           double* buf = &copies(c, 0);
-          int a0 = INT_MAX, a1 = INT_MIN, b0 = INT_MAX, b1 = INT_MIN;
+          TouchedNodes touched_here;
+          touched_here.rows = &copy_rows(c, 0);
+          touched_here.ny = ny;
+          for (int j = 0; j < ny; ++j) {
+            touched_here.rows[2 * j] = INT_MAX;
+            touched_here.rows[2 * j + 1] = INT_MIN;
+          }
           // Named here, outside the `if constexpr`: nvcc rejects a lambda whose first use (and so
           // capture) of a variable is inside one.
           [[maybe_unused]] const auto& block = block_fn;
@@ -301,18 +372,18 @@ NodeBox scatter_points(S& scatter, const PositionView& position, const int n_poi
           [[maybe_unused]] const int row_nodes = nx;
           if constexpr (!std::is_same_v<BlockFn, std::nullptr_t>) {
             for (int q = begin; q < end; q += kP2GBlock)
-              block(q, q + kP2GBlock < end ? q + kP2GBlock : end, buf, a0, a1, b0, b1);
+              block(q, q + kP2GBlock < end ? q + kP2GBlock : end, buf, touched_here);
           } else {
             for (int q = begin; q < end; ++q) {
               int bi, bj;
               point(q, buf, NodeTile{0, 0, row_nodes}, bi, bj);
-              widen_by_stencil(bi, bj, a0, a1, b0, b1);
+              touched_here.widen(bi, bj);
             }
           }
-          boxes(c, 0) = a0;
-          boxes(c, 1) = a1;
-          boxes(c, 2) = b0;
-          boxes(c, 3) = b1;
+          boxes(c, 0) = touched_here.i0;
+          boxes(c, 1) = touched_here.i1;
+          boxes(c, 2) = touched_here.j0;
+          boxes(c, 3) = touched_here.j1;
         });
     execution_instance<ExecSpace>().fence();
     auto host = Kokkos::create_mirror_view(boxes);  // the same memory on host spaces
@@ -320,6 +391,21 @@ NodeBox scatter_points(S& scatter, const PositionView& position, const int n_poi
     for (int c = 0; c < nc; ++c) {
       const NodeBox b{host(c, 0), host(c, 1), host(c, 2), host(c, 3)};
       if (!b.empty()) touched = touched.merged(b);
+    }
+    // The touched nodes' row spans over every copy (host memory: no atomic scatter here).
+    if (!touched.empty()) {
+      int* const spans = &scatter.rows(0, 0);
+      const int first = touched.j0 > 0 ? touched.j0 : 0,
+                last = touched.j1 < ny ? touched.j1 : ny - 1;
+      for (int j = first; j <= last; ++j) {
+        int lo = INT_MAX, hi = INT_MIN;
+        for (int c = 0; c < nc; ++c) {
+          lo = copy_rows(c, 2 * j) < lo ? copy_rows(c, 2 * j) : lo;
+          hi = copy_rows(c, 2 * j + 1) > hi ? copy_rows(c, 2 * j + 1) : hi;
+        }
+        spans[2 * j] = lo;
+        spans[2 * j + 1] = hi;
+      }
     }
   }
   return touched;
@@ -344,6 +430,38 @@ inline NodeBox gather_region(NodeBox& touched, const NodeBox& whole,
   return touched.merged(previous_dirty);
 }
 
+// The row spans of gather_region's `region` (into scatter.rows(1, .); nullptr where the scatter
+// has no row spans): per row, from the first to the last node touched now (scatter.rows(0, .),
+// in `touched`) or that may be nonzero from before (`previous_rows`, or where nullptr the whole
+// row of `previous_dirty`).
+template <class S>
+const int* region_rows(const S& scatter, const NodeBox& touched, const NodeBox& region,
+                       const NodeBox& previous_dirty, const int* previous_rows) {
+  if constexpr (S::atomic) {
+    return nullptr;
+  } else {
+    if (region.empty()) return nullptr;
+    const int* now = &scatter.rows(0, 0);
+    int* out = &scatter.rows(1, 0);
+    for (int j = region.j0; j <= region.j1; ++j) {
+      int lo = INT_MAX, hi = INT_MIN;
+      if (!touched.empty() && j >= touched.j0 && j <= touched.j1) {
+        lo = now[2 * j];
+        hi = now[2 * j + 1];
+      }
+      if (!previous_dirty.empty() && j >= previous_dirty.j0 && j <= previous_dirty.j1) {
+        const int plo = previous_rows ? previous_rows[2 * j] : previous_dirty.i0;
+        const int phi = previous_rows ? previous_rows[2 * j + 1] : previous_dirty.i1;
+        lo = plo < lo ? plo : lo;
+        hi = phi > hi ? phi : hi;
+      }
+      out[2 * j] = lo;
+      out[2 * j + 1] = hi;
+    }
+    return out;
+  }
+}
+
 // The sums of node n = i + nx j over a scatter's buffers (F fields) into acc; the buffers are
 // zeroed on the way, so the next step needs no reset.
 template <int F, class Copies, class Boxes>
@@ -362,19 +480,22 @@ KOKKOS_FORCEINLINE_FUNCTION void take_node_sums(const Copies& copies, const Boxe
   }
 }
 
-// Pass 2 of a P2G: for the nodes of gather_region, sums the buffers, zeroes them and calls
-// store(n, acc) with the kFields sums of node n. Returns the new rectangles.
+// Pass 2 of a P2G: for the nodes of gather_region (and its row spans: region_rows), sums the
+// buffers, zeroes them and calls store(n, acc) with the kFields sums of node n. Returns the new
+// rectangles. previous_rows: the row spans of previous_dirty (nullptr: whole rows).
 template <class S, class StoreFn>
 P2GBoxes gather_nodes(S& scatter, NodeBox touched, const NodeBox& whole,
-                      const NodeBox& previous_dirty, const int nx, const StoreFn& store) {
+                      const NodeBox& previous_dirty, const int* previous_rows, const int nx,
+                      const StoreFn& store) {
   using ExecSpace = typename S::Exec;
   constexpr int F = S::kFields;
   const int nc = scatter.copies_count;
   const auto copies = scatter.copies;
   const auto boxes = scatter.boxes;
   const NodeBox region = gather_region(touched, whole, previous_dirty);
+  const int* const spans = region_rows(scatter, touched, region, previous_dirty, previous_rows);
   if (!region.empty()) {
-    const NodeItems<ExecSpace> items(region);
+    const NodeItems<ExecSpace> items(region, spans);
     Kokkos::parallel_for(
         "lsi::mpm::p2g_gather", range_policy<ExecSpace>(0, items.count()),
         KOKKOS_LAMBDA(const int t) {
@@ -388,7 +509,10 @@ P2GBoxes gather_nodes(S& scatter, NodeBox touched, const NodeBox& whole,
           }
         });
   }
-  return {touched, region};
+  if constexpr (S::atomic)
+    return {touched, region};
+  else
+    return {touched, region, &scatter.rows(0, 0), spans};
 }
 
 // The APIC momentum w (m v + m C (x_i - x_p)) of the nodes of stencil row b, separable:
@@ -452,12 +576,12 @@ KOKKOS_FORCEINLINE_FUNCTION void p2g_point(const Particles<MemorySpace>& p, cons
 // the points, so that the compiler vectorises it over the points (component arrays,
 // particles.hpp); then the additions point by point (neighbouring points add into the same
 // nodes), 8 points' values transposed in registers where host_transpose.hpp is compiled in. The
-// same sums as p2g_point. Widens i0..i1 x j0..j1 by the stencils.
+// same sums as p2g_point. Widens `touched` by the stencils.
 KOKKOS_FORCEINLINE_FUNCTION void p2g_block(const PointArrays a, const int q0, const int q1,
                                            double* const buf, const int nx, const double ox,
                                            const double oy, const double dx, const double inv_dx,
-                                           const double gx, const double gy, int& i0, int& i1,
-                                           int& j0, int& j1) {
+                                           const double gx, const double gy,
+                                           TouchedNodes& touched) {
   constexpr int F = kP2GFields, B = kP2GBlock;
   alignas(64) double add[3][3 * F][B];
   int first_i[B], first_j[B];
@@ -492,6 +616,7 @@ KOKKOS_FORCEINLINE_FUNCTION void p2g_block(const PointArrays a, const int q0, co
     first_i[k] = sx.base;
     first_j[k] = sy.base;
   }
+  touched.widen_block(first_i, first_j, q1 - q0);
   int k = 0;
 #if LSI_MPM_HOST_TRANSPOSE
   // 8 points at a time: each row's 15 values of the 8 points transposed in registers (values
@@ -512,7 +637,6 @@ KOKKOS_FORCEINLINE_FUNCTION void p2g_block(const PointArrays a, const int q0, co
     }
     for (int p = 0; p < 8; ++p) {
       const int bi = first_i[k + p], bj = first_j[k + p], n = bi + nx * bj;
-      widen_by_stencil(bi, bj, i0, i1, j0, j1);
       for (int b = 0; b < 3; ++b) {
         double* row = buf + F * (n + nx * b);
         host_simd::store8(row, host_simd::load8(row) + t[b][0][p]);
@@ -523,7 +647,6 @@ KOKKOS_FORCEINLINE_FUNCTION void p2g_block(const PointArrays a, const int q0, co
 #endif
   for (; k < q1 - q0; ++k) {
     const int bi = first_i[k], bj = first_j[k], n = bi + nx * bj;
-    widen_by_stencil(bi, bj, i0, i1, j0, j1);
     for (int b = 0; b < 3; ++b) {
       double* row = buf + F * (n + nx * b);
       for (int v = 0; v < 3 * F; ++v) row[v] += add[b][v][k];
@@ -537,9 +660,9 @@ struct P2GBlock {
   Particles<MemorySpace> p;
   int nx;
   double ox, oy, dx, inv_dx, gx, gy;
-  KOKKOS_INLINE_FUNCTION void operator()(const int q0, const int q1, double* buf, int& i0, int& i1,
-                                         int& j0, int& j1) const {
-    p2g_block(PointArrays(p), q0, q1, buf, nx, ox, oy, dx, inv_dx, gx, gy, i0, i1, j0, j1);
+  KOKKOS_INLINE_FUNCTION void operator()(const int q0, const int q1, double* buf,
+                                         TouchedNodes& touched) const {
+    p2g_block(PointArrays(p), q0, q1, buf, nx, ox, oy, dx, inv_dx, gx, gy, touched);
   }
 };
 
@@ -566,7 +689,7 @@ void p2g(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g,
   const auto momentum = g.momentum;
   const auto force = g.force;
   const P2GBoxes boxes = detail::gather_nodes(
-      scatter, touched, g.whole(), g.dirty_box(), nx,
+      scatter, touched, g.whole(), g.dirty_box(), g.dirty_rows(), nx,
       KOKKOS_LAMBDA(const int n, const double* acc) {
         mass(n) = acc[0];
         momentum(n, 0) = acc[1];
@@ -574,8 +697,8 @@ void p2g(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g,
         force(n, 0) = acc[3];
         force(n, 1) = acc[4];
       });
-  g.set_mass_box(boxes.mass);
-  g.set_dirty_box(boxes.dirty);
+  g.set_mass_box(boxes.mass, boxes.mass_rows);
+  g.set_dirty_box(boxes.dirty, boxes.dirty_rows);
 }
 
 }  // namespace lsi::mpm

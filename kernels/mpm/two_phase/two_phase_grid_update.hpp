@@ -126,14 +126,16 @@ KOKKOS_FORCEINLINE_FUNCTION void update_two_phase_node(
 }
 
 // The update of every node of `region` (a reduction of the report's sums over the nodes in
-// rows, NodeItems): node_sums(ii, j, i) gives the sums of node (ii, j), index i (read from the
-// grids here; taken from P2G's buffers, and stored, by two_phase_p2g_grid_update.hpp), then
-// update_two_phase_node. Afterwards every node outside the mass rectangle is zero.
+// rows, NodeItems, narrowed by the row spans `spans` where given): node_sums(ii, j, i) gives the
+// sums of node (ii, j), index i (read from the grids here; taken from P2G's buffers, and
+// stored, by two_phase_p2g_grid_update.hpp), then update_two_phase_node. Afterwards every node
+// outside the mass rectangle (and its row spans) is zero.
 template <class ExecSpace, bool SemiImplicit, class MemorySpace, class NodeSums>
 GridUpdateReport update_two_phase_nodes(const char* name, const TwoPhaseGrid<MemorySpace>& g,
-                                        const NodeBox& region, const Boundaries& walls,
-                                        const Boundaries& liquid_walls, double dt,
-                                        const double gravity[2], const NodeSums& node_sums) {
+                                        const NodeBox& region, const int* spans,
+                                        const Boundaries& walls, const Boundaries& liquid_walls,
+                                        double dt, const double gravity[2],
+                                        const NodeSums& node_sums) {
   const auto S = g.solid;
   const auto L = g.liquid;
   const double ox = S.origin[0], oy = S.origin[1], dx = S.dx, tol = 1e-9 * S.dx;
@@ -142,7 +144,7 @@ GridUpdateReport update_two_phase_nodes(const char* name, const TwoPhaseGrid<Mem
   GridUpdateReport rep;
   if (region.empty()) return rep;
   double fx = 0.0, fy = 0.0;
-  const NodeItems<ExecSpace> items(region);
+  const NodeItems<ExecSpace> items(region, spans);
   Kokkos::parallel_reduce(
       name, range_policy<ExecSpace>(0, items.count()),
       KOKKOS_LAMBDA(const int t, double& wall_lost, double& drag_lost, double& seep, double& rx,
@@ -163,8 +165,8 @@ GridUpdateReport update_two_phase_nodes(const char* name, const TwoPhaseGrid<Mem
         ry = r.ry;
       },
       rep.wall_dissipation, rep.drag_dissipation, rep.seepage_gravity_work, fx, fy);
-  S.set_dirty_box(S.mass_box());
-  L.set_dirty_box(L.mass_box());
+  S.set_dirty_to_mass();
+  L.set_dirty_to_mass();
   rep.wall_force[0] = fx;
   rep.wall_force[1] = fy;
   return rep;
@@ -182,7 +184,7 @@ GridUpdateReport two_phase_grid_update_impl(const TwoPhaseGrid<MemorySpace>& g,
   return update_two_phase_nodes<ExecSpace, SemiImplicit>(
       SemiImplicit ? "lsi::mpm::two_phase::grid_update_semi_implicit"
                    : "lsi::mpm::two_phase::grid_update_explicit",
-      g, S.dirty_box(), walls, liquid_walls, dt, gravity,
+      g, S.dirty_box(), S.dirty_rows(), walls, liquid_walls, dt, gravity,
       KOKKOS_LAMBDA(const int, const int, const int i) {
         return TwoPhaseNodeSums{S.mass(i),
                                 L.mass(i),

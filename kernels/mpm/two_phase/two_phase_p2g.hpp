@@ -1,6 +1,7 @@
 // Two-phase particle to grid with the single-phase P2G's two passes (p2g.hpp: a scatter into
 // node-interleaved buffers, 11 doubles per node, per thread or atomic, then a gather over the
-// touched rectangle of nodes that leaves the grids' active rectangles for the grid update).
+// touched rectangle of nodes, and its row spans, that leaves the grids' active rectangles and
+// spans for the grid update).
 // Per node i and point p, w = w_ip, with APIC momenta:
 //   solid   mass     w m_S                 momentum w m_S (v_S + C_S (x_i - x_p))
 //   liquid  mass     w m_L                 momentum w m_L (v_L + C_L (x_i - x_p))
@@ -143,7 +144,7 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_point_contributions(const Points& p, 
 // `buf` (node (i, j) at node_field::Count tile.offset(i, j)). Wall k: axis a (0: x, 1: y),
 // position c, inward sign s (+1: the material is on the side of larger coordinates). The free
 // nodes of an image's stencil lie in the point's own stencil (the point is within 1.5 cells of
-// the wall), so the touched rectangle covers them.
+// the wall), so the touched rectangle and its row spans cover them.
 template <bool Atomic, class Points>
 KOKKOS_INLINE_FUNCTION void two_phase_p2g_mirrors(const Points& p, const int q, double* buf,
                                                   const lsi::mpm::detail::NodeTile& tile,
@@ -230,12 +231,12 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_p2g_point(
 // Between the two, the next block's point data is prefetched (prefetch_points.hpp): loop 1 reads
 // 26 streams with little arithmetic between the loads and, on its own, waits for memory;
 // prefetched, the loads overlap loop 2's arithmetic (the dry P2G's first loop, 13 streams,
-// measured no gain from it). The sums of two_phase_point_contributions up to round-off. Widens i0..i1 x j0..j1 by the stencils.
+// measured no gain from it). The sums of two_phase_point_contributions up to round-off. Widens `touched` by the stencils.
 inline void two_phase_p2g_block(const TwoPhasePointArrays p, const int q0, const int q1,
                                 double* const buf, const int nx, const double ox, const double oy,
                                 const double dx, const double inv_dx, const double gx,
-                                const double gy, const double rhoLg, const MirrorWalls& mw, int& i0,
-                                int& i1, int& j0, int& j1) {
+                                const double gy, const double rhoLg, const MirrorWalls& mw,
+                                lsi::mpm::detail::TouchedNodes& touched) {
   namespace nf = node_field;
   constexpr int F = nf::Count, B = lsi::mpm::detail::kP2GBlock;
   // The record as a vector of 8 fields and one of 4: (SolidMass, SolidMomentumX,
@@ -338,6 +339,7 @@ inline void two_phase_p2g_block(const TwoPhasePointArrays p, const int q0, const
                                                    point_stream(p.liquid_affine.c[1][0]),
                                                    point_stream(p.liquid_affine.c[1][1])};
   lsi::mpm::detail::prefetch_streams(streams, q1, q1 + (q1 - q0));
+  touched.widen_block(first_i, first_j, q1 - q0);
   for (int k = 0; k < q1 - q0; ++k) {
     const Oct A = {f[kMassS][k],  f[kMomSx][k], f[kMomSy][k], f[kForceX][k],
                    f[kForceY][k], f[kMassL][k], f[kMomLx][k], f[kMomLy][k]};
@@ -363,7 +365,6 @@ inline void two_phase_p2g_block(const TwoPhasePointArrays p, const int q0, const
         *hi += wx[a][k] * H + dwx[a][k] * H2;
       }
     }
-    mpm::detail::widen_by_stencil(bi, bj, i0, i1, j0, j1);
     if (mw.any) two_phase_p2g_mirrors<false>(p, q0 + k, buf, grid, ox, oy, dx, inv_dx, gx, gy, mw);
   }
 }
@@ -375,11 +376,11 @@ struct TwoPhaseP2GBlock {
   int nx;
   double ox, oy, dx, inv_dx, gx, gy, rhoLg;
   MirrorWalls mw;
-  KOKKOS_INLINE_FUNCTION void operator()(const int q0, const int q1, double* buf, int& i0, int& i1,
-                                         int& j0, int& j1) const {
+  KOKKOS_INLINE_FUNCTION void operator()(const int q0, const int q1, double* buf,
+                                         lsi::mpm::detail::TouchedNodes& touched) const {
 #if !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)  // host buffers only
     two_phase_p2g_block(TwoPhasePointArrays(p), q0, q1, buf, nx, ox, oy, dx, inv_dx, gx, gy, rhoLg,
-                        mw, i0, i1, j0, j1);
+                        mw, touched);
 #endif
   }
 };
@@ -442,7 +443,7 @@ void two_phase_p2g(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<M
   const auto L_ = g.liquid;
   const auto drag = g.drag;
   const P2GBoxes boxes = lsi::mpm::detail::gather_nodes(
-      scatter, touched, g.solid.whole(), g.solid.dirty_box(), g.solid.nx,
+      scatter, touched, g.solid.whole(), g.solid.dirty_box(), g.solid.dirty_rows(), g.solid.nx,
       KOKKOS_LAMBDA(const int n, const double* acc) {
         S_.mass(n) = acc[nf::SolidMass];
         S_.momentum(n, 0) = acc[nf::SolidMomentumX];
@@ -457,8 +458,8 @@ void two_phase_p2g(const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<M
         drag(n) = acc[nf::Drag];
       });
   for (const auto* grid : {&g.solid, &g.liquid}) {
-    grid->set_mass_box(boxes.mass);
-    grid->set_dirty_box(boxes.dirty);
+    grid->set_mass_box(boxes.mass, boxes.mass_rows);
+    grid->set_dirty_box(boxes.dirty, boxes.dirty_rows);
   }
 }
 

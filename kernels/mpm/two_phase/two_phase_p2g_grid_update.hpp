@@ -1,5 +1,6 @@
 // Two-phase P2G and grid update in one pass over the nodes: the P2G's scatter
-// (two_phase_p2g.hpp, detail::two_phase_scatter), then, per node of the gather's rectangle, the
+// (two_phase_p2g.hpp, detail::two_phase_scatter), then, per node of the gather's rectangle
+// (within its row spans, p2g.hpp), the
 // buffers' sums (stored into the grids as two_phase_p2g stores them) and at once the node's
 // update (two_phase_grid_update.hpp, update_two_phase_node) from those sums still in registers.
 // The same results as two_phase_p2g followed by two_phase_grid_update, bitwise: the same sums,
@@ -31,11 +32,15 @@ GridUpdateReport two_phase_p2g_grid_update_impl(const TwoPhaseParticles<MemorySp
   constexpr int F = S::kFields;
   NodeBox touched = detail::two_phase_scatter(p, g, scatter, gravity, liquid_density, darcy_gravity,
                                               nullptr, nullptr);
-  const NodeBox region =
-      lsi::mpm::detail::gather_region(touched, g.solid.whole(), g.solid.dirty_box());
+  const NodeBox previous = g.solid.dirty_box();
+  const NodeBox region = lsi::mpm::detail::gather_region(touched, g.solid.whole(), previous);
+  const int* const spans =
+      lsi::mpm::detail::region_rows(scatter, touched, region, previous, g.solid.dirty_rows());
+  const int* touched_rows = nullptr;
+  if constexpr (!S::atomic) touched_rows = &scatter.rows(0, 0);
   for (const auto* grid : {&g.solid, &g.liquid}) {
-    grid->set_mass_box(touched);
-    grid->set_dirty_box(region);
+    grid->set_mass_box(touched, touched_rows);
+    grid->set_dirty_box(region, spans);
   }
   const int nc = scatter.copies_count;
   const auto copies = scatter.copies;
@@ -46,7 +51,7 @@ GridUpdateReport two_phase_p2g_grid_update_impl(const TwoPhaseParticles<MemorySp
   return update_two_phase_nodes<ExecSpace, SemiImplicit>(
       SemiImplicit ? "lsi::mpm::two_phase::p2g_grid_update_semi_implicit"
                    : "lsi::mpm::two_phase::p2g_grid_update_explicit",
-      g, region, walls, liquid_walls, dt, gravity,
+      g, region, spans, walls, liquid_walls, dt, gravity,
       KOKKOS_LAMBDA(const int ii, const int j, const int i) {
         double acc[F];
         lsi::mpm::detail::take_node_sums<F>(copies, boxes, nc, ii, j, i, acc);
