@@ -6,8 +6,9 @@
 //     (mass, momentum x, y, force x, y: 40 contiguous bytes per node instead of three arrays).
 //     Duplicated (the default on host spaces): one buffer per thread; the points are cut into as
 //     many contiguous chunks as there are copies, and each chunk records the rectangle of nodes it
-//     touched and, row by row, a span that holds them (TouchedNodes). Atomic: one buffer and atomic additions (the choice on devices; `Atomic` asks for
-//     it on the host too), optionally tiled: a team of threads takes `tile_points` consecutive
+//     touched and, row by row, a span that holds them (TouchedNodes). Atomic: one buffer and
+//     atomic additions (the choice on devices; `Atomic` asks for it on the host too), optionally
+//     tiled: a team of threads takes `tile_points` consecutive
 //     points, adds them into a tile of nodes in its fast (shared) memory and then adds the tile
 //     into the buffer, one atomic addition per node and field instead of one per point
 //     (detail::scatter_tiles; the default on a device). Serial: one buffer, plain additions.
@@ -430,36 +431,46 @@ inline NodeBox gather_region(NodeBox& touched, const NodeBox& whole,
   return touched.merged(previous_dirty);
 }
 
-// The row spans of gather_region's `region` (into scatter.rows(1, .); nullptr where the scatter
-// has no row spans): per row, from the first to the last node touched now (scatter.rows(0, .),
-// in `touched`) or that may be nonzero from before (`previous_rows`, or where nullptr the whole
-// row of `previous_dirty`).
+// The row spans of gather_region's `region` (into scatter.rows(1, .), a scatter with row spans
+// only): per row, from the first to the last node touched now (scatter.rows(0, .), in `touched`)
+// or that may be nonzero from before (`previous_rows`, or where nullptr the whole row of
+// `previous_dirty`).
 template <class S>
 const int* region_rows(const S& scatter, const NodeBox& touched, const NodeBox& region,
                        const NodeBox& previous_dirty, const int* previous_rows) {
-  if constexpr (S::atomic) {
-    return nullptr;
-  } else {
-    if (region.empty()) return nullptr;
-    const int* now = &scatter.rows(0, 0);
-    int* out = &scatter.rows(1, 0);
-    for (int j = region.j0; j <= region.j1; ++j) {
-      int lo = INT_MAX, hi = INT_MIN;
-      if (!touched.empty() && j >= touched.j0 && j <= touched.j1) {
-        lo = now[2 * j];
-        hi = now[2 * j + 1];
-      }
-      if (!previous_dirty.empty() && j >= previous_dirty.j0 && j <= previous_dirty.j1) {
-        const int plo = previous_rows ? previous_rows[2 * j] : previous_dirty.i0;
-        const int phi = previous_rows ? previous_rows[2 * j + 1] : previous_dirty.i1;
-        lo = plo < lo ? plo : lo;
-        hi = phi > hi ? phi : hi;
-      }
-      out[2 * j] = lo;
-      out[2 * j + 1] = hi;
+  const int* now = &scatter.rows(0, 0);
+  int* out = &scatter.rows(1, 0);
+  for (int j = region.j0; j <= region.j1; ++j) {
+    int lo = INT_MAX, hi = INT_MIN;
+    if (!touched.empty() && j >= touched.j0 && j <= touched.j1) {
+      lo = now[2 * j];
+      hi = now[2 * j + 1];
     }
-    return out;
+    if (!previous_dirty.empty() && j >= previous_dirty.j0 && j <= previous_dirty.j1) {
+      const int plo = previous_rows ? previous_rows[2 * j] : previous_dirty.i0;
+      const int phi = previous_rows ? previous_rows[2 * j + 1] : previous_dirty.i1;
+      lo = plo < lo ? plo : lo;
+      hi = phi > hi ? phi : hi;
+    }
+    out[2 * j] = lo;
+    out[2 * j + 1] = hi;
   }
+  return out;
+}
+
+// What a P2G's gather visits and leaves on its grid(s), from scatter_points' rectangle of
+// touched nodes: the touched nodes clipped to the grid (the mass rectangle), gather_region (the
+// dirty rectangle) and, where the scatter records them, the row spans of both.
+template <class S>
+P2GBoxes gather_boxes(const S& scatter, NodeBox touched, const NodeBox& whole,
+                      const NodeBox& previous_dirty, const int* previous_rows) {
+  const NodeBox region = gather_region(touched, whole, previous_dirty);
+  P2GBoxes boxes{touched, region};
+  if constexpr (!S::atomic) {
+    boxes.mass_rows = &scatter.rows(0, 0);
+    boxes.dirty_rows = region_rows(scatter, touched, region, previous_dirty, previous_rows);
+  }
+  return boxes;
 }
 
 // The sums of node n = i + nx j over a scatter's buffers (F fields) into acc; the buffers are
@@ -480,7 +491,7 @@ KOKKOS_FORCEINLINE_FUNCTION void take_node_sums(const Copies& copies, const Boxe
   }
 }
 
-// Pass 2 of a P2G: for the nodes of gather_region (and its row spans: region_rows), sums the
+// Pass 2 of a P2G: for the nodes of gather_region (and its row spans: gather_boxes), sums the
 // buffers, zeroes them and calls store(n, acc) with the kFields sums of node n. Returns the new
 // rectangles. previous_rows: the row spans of previous_dirty (nullptr: whole rows).
 template <class S, class StoreFn>
@@ -492,10 +503,10 @@ P2GBoxes gather_nodes(S& scatter, NodeBox touched, const NodeBox& whole,
   const int nc = scatter.copies_count;
   const auto copies = scatter.copies;
   const auto boxes = scatter.boxes;
-  const NodeBox region = gather_region(touched, whole, previous_dirty);
-  const int* const spans = region_rows(scatter, touched, region, previous_dirty, previous_rows);
+  const P2GBoxes left = gather_boxes(scatter, touched, whole, previous_dirty, previous_rows);
+  const NodeBox region = left.dirty;
   if (!region.empty()) {
-    const NodeItems<ExecSpace> items(region, spans);
+    const NodeItems<ExecSpace> items(region, left.dirty_rows);
     Kokkos::parallel_for(
         "lsi::mpm::p2g_gather", range_policy<ExecSpace>(0, items.count()),
         KOKKOS_LAMBDA(const int t) {
@@ -509,10 +520,7 @@ P2GBoxes gather_nodes(S& scatter, NodeBox touched, const NodeBox& whole,
           }
         });
   }
-  if constexpr (S::atomic)
-    return {touched, region};
-  else
-    return {touched, region, &scatter.rows(0, 0), spans};
+  return left;
 }
 
 // The APIC momentum w (m v + m C (x_i - x_p)) of the nodes of stencil row b, separable:

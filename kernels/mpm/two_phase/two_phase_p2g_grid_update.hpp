@@ -30,17 +30,13 @@ GridUpdateReport two_phase_p2g_grid_update_impl(const TwoPhaseParticles<MemorySp
   namespace nf = node_field;
   using S = TwoPhaseScatter<ExecSpace, Atomic>;
   constexpr int F = S::kFields;
-  NodeBox touched = detail::two_phase_scatter(p, g, scatter, gravity, liquid_density, darcy_gravity,
-                                              nullptr, nullptr);
-  const NodeBox previous = g.solid.dirty_box();
-  const NodeBox region = lsi::mpm::detail::gather_region(touched, g.solid.whole(), previous);
-  const int* const spans =
-      lsi::mpm::detail::region_rows(scatter, touched, region, previous, g.solid.dirty_rows());
-  const int* touched_rows = nullptr;
-  if constexpr (!S::atomic) touched_rows = &scatter.rows(0, 0);
+  const NodeBox touched = detail::two_phase_scatter(p, g, scatter, gravity, liquid_density,
+                                                    darcy_gravity, nullptr, nullptr);
+  const P2GBoxes left = lsi::mpm::detail::gather_boxes(scatter, touched, g.solid.whole(),
+                                                       g.solid.dirty_box(), g.solid.dirty_rows());
   for (const auto* grid : {&g.solid, &g.liquid}) {
-    grid->set_mass_box(touched, touched_rows);
-    grid->set_dirty_box(region, spans);
+    grid->set_mass_box(left.mass, left.mass_rows);
+    grid->set_dirty_box(left.dirty, left.dirty_rows);
   }
   const int nc = scatter.copies_count;
   const auto copies = scatter.copies;
@@ -51,7 +47,7 @@ GridUpdateReport two_phase_p2g_grid_update_impl(const TwoPhaseParticles<MemorySp
   return update_two_phase_nodes<ExecSpace, SemiImplicit>(
       SemiImplicit ? "lsi::mpm::two_phase::p2g_grid_update_semi_implicit"
                    : "lsi::mpm::two_phase::p2g_grid_update_explicit",
-      g, region, spans, walls, liquid_walls, dt, gravity,
+      g, left.dirty, left.dirty_rows, walls, liquid_walls, dt, gravity,
       KOKKOS_LAMBDA(const int ii, const int j, const int i) {
         double acc[F];
         lsi::mpm::detail::take_node_sums<F>(copies, boxes, nc, ii, j, i, acc);
