@@ -34,6 +34,7 @@
 #include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 #include "io/scene_overrides.hpp"
 #include "model/concurrent_runs.hpp"
+#include "model/run_threads.hpp"
 #include "model/progress.hpp"
 #include "io/scene_parser.hpp"
 
@@ -129,16 +130,19 @@ int run_mpm_case(const std::string& path, const nlohmann::json& doc, const std::
                         {"end_time", o.result.time.empty() ? 0.0 : o.result.time.back()},
                         {"energy_residual", res.empty() ? 0.0 : res.back()},
                         {"solver_seconds", o.run().solver_seconds},
-                        {"particle_updates_per_second", o.run().particle_updates_per_second}};
+                        {"particle_updates_per_second", o.run().particle_updates_per_second},
+                        {"threads", o.run().threads}};
     std::cout << nlohmann::json{{"mpm", j}}.dump(2) << "\n";
   } else {
     std::printf("scene %s (MPM): %s after %lld steps, t = %.4g s; %lld material points\n",
                 c.name.c_str(), o.status().c_str(), static_cast<long long>(o.run().steps),
                 o.result.time.empty() ? 0.0 : o.result.time.back(),
                 static_cast<long long>(o.run().particles));
-    std::printf("energy balance residual %.3g; %.3g s in the solver, %.3g particle-updates/s\n",
-                res.empty() ? 0.0 : res.back(), o.run().solver_seconds,
-                o.run().particle_updates_per_second);
+    std::printf(
+        "energy balance residual %.3g; %.3g s in the solver on %d threads, %.3g "
+        "particle-updates/s\n",
+        res.empty() ? 0.0 : res.back(), o.run().solver_seconds, o.run().threads,
+        o.run().particle_updates_per_second);
   }
   if (!o.finished()) {
     std::cerr << "lsi: " << path << ": the MPM run stopped: " << o.status() << "\n";
@@ -183,7 +187,14 @@ int main(int argc, char** argv) {
          "run side by side, one thread each: 0 (default) as many as threads, 1 one after the "
          "other with every thread")
       ->check(CLI::Range(0, 4096));
-  app.fallthrough();  // --progress and --runs-at-once also after the subcommand
+  long points_per_thread = -1;
+  app.add_option("--points-per-thread", points_per_thread,
+                 "An MPM run that runs alone (lsi run, design --verify, each run of lsi "
+                 "accuracy) takes one thread per this many of its material points, at least "
+                 "one: a small scene runs faster on fewer threads. Default 1024 for a dry run, "
+                 "2048 for a saturated one; 0: every thread")
+      ->check(CLI::Range(0L, 1000000000L));
+  app.fallthrough();  // --progress, --runs-at-once, --points-per-thread also after the subcommand
 
   std::string scene_path, methods_list, out_path, format = "table";
   std::vector<std::string> overrides;
@@ -263,6 +274,7 @@ int main(int argc, char** argv) {
     lsi::reject_empty_values(app);
     lsi::set_progress_mode(lsi::progress_mode_from(progress));
     lsi::set_runs_at_once(runs_at_once);
+    if (points_per_thread >= 0) lsi::set_points_per_thread(points_per_thread);
     for (const auto& s : subcommands)
       if (*s.command) return s.run();
     check_format(format);

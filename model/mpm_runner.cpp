@@ -12,8 +12,10 @@
 #include "model/impact_summary.hpp"
 #include "kernels/closed_form/barrier_geometry.hpp"
 #include "kernels/common/constants.hpp"
+#include "kernels/common/execution_instance.hpp"
 #include "model/mpm_footprint.hpp"
 #include "model/progress.hpp"
+#include "model/run_threads.hpp"
 #include "kernels/mpm/momentum.hpp"
 #include "kernels/mpm/overtopping.hpp"
 #include "kernels/mpm/particle_builder.hpp"
@@ -510,6 +512,8 @@ void drive(const MpmCase& c, SolverT& solver, int particle_count, MpmOutcome& ou
   run.particle_updates_per_second =
       run.solver_seconds > 0 ? double(particle_count) * solver.steps() / run.solver_seconds : 0.0;
   run.saturated = c.two_phase.has_value();
+  if constexpr (runs_on_host<Kokkos::DefaultExecutionSpace>)
+    run.threads = instance_concurrency<Kokkos::DefaultExecutionSpace>();
   r.peak_force = r.rise_time = r.impact_duration = r.final_displacement =
       std::numeric_limits<double>::quiet_NaN();  // not an impact: not given
   // A run that stopped unstable keeps its histories up to the stop; its summary would look like
@@ -575,9 +579,12 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
     auto particles = mpm::build_particles<Mem>(c.bodies, c.materials, lo, dx);
     auto s = solver_settings<mpm::Settings>(c);
     s.small_mass_fraction = c.settings.small_mass_fraction;
-    DrySolver solver(grid, particles, c.materials, c.walls, s);
-    if (c.barrier) solver.attach_barrier(*c.barrier);
-    drive(c, solver, particles.count, out);
+    // The solver inside: its per-thread grid copies for the threads the run takes.
+    run_on_threads(threads_for_run(particles.count, /*saturated=*/false), [&] {
+      DrySolver solver(grid, particles, c.materials, c.walls, s);
+      if (c.barrier) solver.attach_barrier(*c.barrier);
+      drive(c, solver, particles.count, out);
+    });
     return out;
   }
   namespace tp = mpm::two_phase;
@@ -602,10 +609,12 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
     w->friction = 0.0;
     w->no_slip = false;
   }
-  SaturatedSolver solver(grid, particles, c.materials, c.two_phase->liquid, c.walls, liquid_walls,
-                         s);
-  if (c.barrier) solver.attach_barrier(*c.barrier);
-  drive(c, solver, particles.count, out);
+  run_on_threads(threads_for_run(particles.count, /*saturated=*/true), [&] {
+    SaturatedSolver solver(grid, particles, c.materials, c.two_phase->liquid, c.walls, liquid_walls,
+                           s);
+    if (c.barrier) solver.attach_barrier(*c.barrier);
+    drive(c, solver, particles.count, out);
+  });
   return out;
 }
 

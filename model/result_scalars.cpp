@@ -128,6 +128,10 @@ const RunField kRunFields[] = {
      "true: a saturated (two-phase) landslide; false: a dry one",
      [](const RunStatistics& s) { return s.saturated ? 1.0 : 0.0; },
      [](RunStatistics& s, double v) { s.saturated = v != 0.0; }},
+    {"threads", "1", ScalarKind::Count,
+     "host threads the run's kernels ran on (0: a device ran them); solver_seconds is theirs",
+     [](const RunStatistics& s) { return double(s.threads); },
+     [](RunStatistics& s, double v) { s.threads = static_cast<int>(v); }},
 };
 
 bool ends_with(const std::string& s, const std::string& tail) {

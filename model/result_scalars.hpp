@@ -73,6 +73,7 @@ struct RunStatistics {
   double solver_seconds = 0.0;  // s, wall time without output
   double particle_updates_per_second = 0.0;
   bool saturated = false;  // two-phase
+  int threads = 0;         // host threads the kernels ran on (model/run_threads.hpp); 0: a device
 };
 
 // The error bars a grid-convergence study gives the MPM's outputs: for each output (named as in

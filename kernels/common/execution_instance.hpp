@@ -43,6 +43,18 @@ ExecSpace execution_instance() {
   return ExecSpace();
 }
 
+// The threads that the calling thread's kernels on ExecSpace run on: inside a partition of
+// Kokkos 3's OpenMP backend (model/concurrent_runs.hpp, model/run_threads.hpp) the partition's,
+// which ExecSpace().concurrency() does not tell there (it gives the whole pool's).
+template <class ExecSpace>
+int instance_concurrency() {
+#if defined(KOKKOS_ENABLE_OPENMP) && KOKKOS_VERSION < 40000
+  if constexpr (std::is_same_v<ExecSpace, Kokkos::OpenMP>)
+    return Kokkos::OpenMP::impl_thread_pool_size();
+#endif
+  return ExecSpace().concurrency();
+}
+
 // Points begin .. end - 1 on the calling thread's instance.
 template <class ExecSpace, class Begin, class End>
 auto range_policy(const Begin begin, const End end) {

@@ -117,7 +117,7 @@ struct P2GScatter {
 
   P2GScatter() = default;
   explicit P2GScatter(const Grid<Mem>& g) {
-    copies_count = duplicated ? ExecSpace().concurrency() : 1;
+    copies_count = duplicated ? instance_concurrency<ExecSpace>() : 1;
     copies = decltype(copies)("p2g_copies", copies_count, static_cast<size_t>(kFields) * g.size());
     boxes = decltype(boxes)("p2g_boxes", copies_count);
     if constexpr (!atomic) {
