@@ -11,10 +11,10 @@
 // with the work the contact took from the material, measured with the mid-step node velocity as
 // for the walls (grid_update.hpp), and the moment of the upstream face's forces about the
 // barrier's downstream toe (the overturning moment of the face load, from where along the face
-// each node pushes). With face bands (band_force of n > 0 entries, band_height > 0), each upstream
-// face node's normal force on the barrier is also shared among the height bands above the base
-// that its tributary height dx overlaps (the lowest band takes what lies below, the top band what
-// lies above): the face load's distribution, whose bands add up to the face's normal force.
+// each node pushes). Given row_force (one entry per node row of the grid), each upstream face
+// node's normal force on the barrier is also added into its row's entry: the face load's
+// distribution with height, which the caller shares among height bands (face_bands.hpp). On the
+// host a row is one work item, so its entry is summed in the same order whatever the threads.
 #pragma once
 #include <Kokkos_Core.hpp>
 #include <cmath>
@@ -22,7 +22,6 @@
 #include "kernels/common/execution_instance.hpp"
 #include "kernels/common/math.hpp"
 #include "kernels/mpm/barrier_shape.hpp"
-#include "kernels/mpm/height_bands.hpp"
 #include "kernels/mpm/grid.hpp"
 
 namespace lsi::mpm {
@@ -42,8 +41,7 @@ template <class ExecSpace, class MemorySpace>
 BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierShape& shape,
                                      double displacement, double velocity, double friction,
                                      double dt,
-                                     const Kokkos::View<double*, MemorySpace>& band_force = {},
-                                     double band_height = 0.0) {
+                                     const Kokkos::View<double*, MemorySpace>& row_force = {}) {
   const double ox = g.origin[0], oy = g.origin[1], dx = g.dx, tol = 1e-9 * g.dx;
   const int nx = g.nx;
   const BarrierShape b = shape;
@@ -70,7 +68,7 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
   if (first > region.i0) region.i0 = static_cast<int>(first);
   if (last < region.i1) region.i1 = static_cast<int>(last);
   const NodeItems<ExecSpace> items(region, g.mass_rows());
-  const int bands = band_height > 0.0 ? static_cast<int>(band_force.extent(0)) : 0;
+  const bool rows = row_force.extent(0) > 0;
   Kokkos::parallel_reduce(
       "lsi::mpm::barrier_contact", range_policy<ExecSpace>(0, items.count()),
       KOKKOS_LAMBDA(const int item, double& f0, double& f1, double& f2, double& f3, double& f4,
@@ -109,12 +107,8 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
             f0 += fx;
             f1 += fy;
             mo += (y - b.toe[1]) * fx - (x - x_downstream_toe) * fy;
-            if (bands > 0) {
-              // The face's normal force in height bands above the base (height_bands.hpp).
-              const double fn = -(fx * nxk + fy * nyk);
-              share_among_bands(bands, band_height, y - b.toe[1], dx, fn,
-                                [&](int kb, double f) { Kokkos::atomic_add(&band_force(kb), f); });
-            }
+            // The face's normal force per row (on a device several work items share a row).
+            if (rows) Kokkos::atomic_add(&row_force(j), -(fx * nxk + fy * nyk));
           } else if (k == 1) {
             f2 += fx;
             f3 += fy;

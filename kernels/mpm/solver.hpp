@@ -127,11 +127,10 @@ class Solver : public SolverBase<Solver<ExecSpace>, ExecSpace, Settings> {
   // Contact with the rigid barrier, which moves under it (barrier_coupling.hpp).
   void contact_barrier() {
     const Barrier& b = this->barrier_.barrier();
-    this->barrier_.begin_step();
+    this->barrier_.begin_step(grid_);
     this->boundary_ += this->barrier_.apply(
         barrier_contact<ExecSpace>(grid_, b.shape, b.motion.displacement, b.motion.velocity,
-                                   b.face_friction, this->dt_, this->barrier_.band_force(),
-                                   b.face_band_height),
+                                   b.face_friction, this->dt_, this->barrier_.row_force()),
         this->dt_);
   }
   // G2P and the stress update in one pass over the points (g2p.hpp).

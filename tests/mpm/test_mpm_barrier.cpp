@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "kernels/closed_form/rigid_block_response.hpp"
+#include "kernels/mpm/barrier_coupling.hpp"
 #include "kernels/mpm/overtopping.hpp"
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
@@ -288,6 +289,64 @@ TYPED_TEST(MpmBarrier, UpstreamFaceMomentIsTheSumOverTheNodesForces) {
   EXPECT_EQ(r.nodes, 3);
   EXPECT_GT(want, 0.0);  // pushed downstream above the base: it tips the barrier
   EXPECT_NEAR(r.upstream_moment, want, 1e-12 * std::fabs(want));
+}
+
+// The same three face nodes (rows 4, 8, 12: y = 1, 2, 3 m) with face bands of 1 m: the contact
+// adds each node's normal force on the barrier, m |v_n| / dt, into its row, and the coupling
+// shares each row's force among the bands its tributary height [y - dx/2, y + dx/2] overlaps,
+// half below and half above each band edge at y = 1, 2, 3 m (computed here by hand); the rows
+// are left at zero for the next step. To round-off.
+TYPED_TEST(MpmBarrier, FaceRowForcesGoToTheBandsTheirHeightOverlaps) {
+  using Mem = typename TypeParam::memory_space;
+  const double beta = 80.0 * kPi / 180.0, dx = 0.25, dt = 1e-3, shift = 0.25;
+  Barrier b;
+  b.shape = BarrierShape(1.0, 0.0, 4.0, 3.0, 1.0, beta);
+  b.face_band_height = 1.0;
+  ASSERT_EQ(b.face_bands(), 4);
+  const double lo[2] = {0.0, 0.0}, hi[2] = {6.0, 6.0};
+  Grid<Mem> grid(lo, hi, dx);
+  grid.mark_all_active();
+  const double n[2] = {-std::sin(beta), std::cos(beta)};
+  struct Node {
+    int i, j;
+    double m, vx, vy;
+  };
+  const Node nodes[] = {{6, 4, 3.0, 2.0, 0.0}, {7, 8, 2.0, 3.0, -0.5}, {8, 12, 1.0, 1.0, 0.2}};
+  auto m_h = Kokkos::create_mirror_view(grid.mass);
+  auto v_h = Kokkos::create_mirror_view(grid.velocity);
+  Kokkos::deep_copy(m_h, 0.0);
+  Kokkos::deep_copy(v_h, 0.0);
+  double f[3];  // each node's normal force on the barrier, N/m
+  for (int k = 0; k < 3; ++k) {
+    const Node& q = nodes[k];
+    m_h(q.i + grid.nx * q.j) = q.m;
+    v_h(q.i + grid.nx * q.j, 0) = q.vx;
+    v_h(q.i + grid.nx * q.j, 1) = q.vy;
+    f[k] = -q.m * (q.vx * n[0] + q.vy * n[1]) / dt;
+    ASSERT_GT(f[k], 0.0);
+  }
+  Kokkos::deep_copy(grid.mass, m_h);
+  Kokkos::deep_copy(grid.velocity, v_h);
+  Kokkos::deep_copy(grid.velocity_old, v_h);
+  BarrierCoupling<Mem> coupling;
+  coupling.attach(b);
+  coupling.begin_step(grid);
+  ASSERT_EQ(coupling.row_force().extent(0), static_cast<std::size_t>(grid.ny));
+  const BarrierContactReport r =
+      barrier_contact<TypeParam>(grid, b.shape, shift, 0.0, 0.0, dt, coupling.row_force());
+  ASSERT_EQ(r.nodes, 3);
+  auto rows = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), coupling.row_force());
+  for (int j = 0; j < grid.ny; ++j) {
+    const double want = j == 4 ? f[0] : j == 8 ? f[1] : j == 12 ? f[2] : 0.0;
+    EXPECT_NEAR(rows(j), want, 1e-12 * f[0]) << "row " << j;
+  }
+  coupling.apply(r, dt);
+  const std::vector<double> bands = coupling.take_band_impulse();
+  ASSERT_EQ(bands.size(), 4u);
+  const double want[4] = {0.5 * f[0], 0.5 * (f[0] + f[1]), 0.5 * (f[1] + f[2]), 0.5 * f[2]};
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(bands[k], want[k] * dt, 1e-12 * f[0] * dt) << k;
+  rows = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), coupling.row_force());
+  for (int j = 0; j < grid.ny; ++j) EXPECT_EQ(rows(j), 0.0) << "row " << j << " after the step";
 }
 
 // Points placed around a trapezoid (H 4, B 2, b 1 m, face 80 deg, toe at x = 1 m), at rest and
