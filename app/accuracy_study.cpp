@@ -234,6 +234,7 @@ AccuracyRun run_accuracy_case(const json& scene, const AccuracySeries& series, d
   r.solver_seconds = o.run().solver_seconds;
   r.steps = static_cast<double>(o.run().steps);
   r.particles = static_cast<double>(o.run().particles);
+  r.threads = o.run().threads;
   r.result = o.result;
   const MethodResult& m = r.result;
   r.outputs["peak_force"] = m.peak_force;
@@ -257,6 +258,7 @@ json to_json(const AccuracyRun& r) {
           {"solver_seconds", r.solver_seconds},
           {"steps", r.steps},
           {"particles", r.particles},
+          {"threads", r.threads},
           {"outputs", o}};
 }
 
@@ -269,6 +271,7 @@ AccuracyRun accuracy_run_from_json(const json& j) {
   r.solver_seconds = j.at("solver_seconds").get<double>();
   r.steps = j.at("steps").get<double>();
   r.particles = j.at("particles").get<double>();
+  r.threads = j.value("threads", 0);  // 0: not recorded
   for (const auto& [k, v] : j.at("outputs").items()) {
     if (v.is_number())
       r.outputs[k] = v.get<double>();

@@ -63,6 +63,7 @@ struct AccuracyRun {
   bool finished = false;
   double solver_seconds = 0.0;  // the solver loop (no setup, no I/O)
   double steps = 0.0, particles = 0.0;
+  int threads = 0;  // host threads the run's kernels ran on (model/run_threads.hpp; 0: a device)
   std::map<std::string, double> outputs;  // NaN: not known (e.g. a run cut short)
   MethodResult result;                    // the histories (not kept in the run's JSON record)
 };

@@ -190,9 +190,9 @@ int main(int argc, char** argv) {
   long points_per_thread = -1;
   app.add_option("--points-per-thread", points_per_thread,
                  "An MPM run that runs alone (lsi run, design --verify, each run of lsi "
-                 "accuracy) takes one thread per this many of its material points, at least "
-                 "one: a small scene runs faster on fewer threads. Default 1024 for a dry run, "
-                 "2048 for a saturated one; 0: every thread")
+                 "accuracy) with fewer than twice this many material points runs on one thread, "
+                 "a larger one on every thread: a small scene runs faster on one. Default 1024 "
+                 "for a dry run, 2048 for a saturated one; 0: every run on every thread")
       ->check(CLI::Range(0L, 1000000000L));
   app.fallthrough();  // --progress, --runs-at-once, --points-per-thread also after the subcommand
 

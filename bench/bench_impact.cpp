@@ -83,6 +83,7 @@
 #include "model/concurrent_runs.hpp"
 #include "model/mpm_impact.hpp"
 #include "model/mpm_runner.hpp"
+#include "model/run_threads.hpp"
 #include "model/scene.hpp"
 #include "kernels/mpm/particle_builder.hpp"
 #include "kernels/mpm/solver.hpp"
@@ -485,6 +486,16 @@ void bm_campaign(benchmark::State& state, double cell, bool side_by_side, int ru
     return;
   }
   const int at_once = side_by_side ? 0 : 1;
+  // One after the other: each run on every thread, whatever its points (model/run_threads.hpp).
+  struct EveryThread {
+    explicit EveryThread(bool on) : on(on) {
+      if (on) set_points_per_thread(0);
+    }
+    ~EveryThread() {
+      if (on) reset_points_per_thread();
+    }
+    bool on;
+  } const every_thread(!side_by_side);
   for (auto _ : state) {
     std::vector<int> finished(cases.size(), 0);
     run_concurrently(

@@ -288,8 +288,9 @@ def main():
     fig.savefig(os.path.join(args.out, "dam-break-wall.png"), dpi=120)
     plt.close(fig)
 
-    note = "\n`bash ci/validation.sh%s`; solver time: the MPM solver's, with the threads " \
-        "OMP_NUM_THREADS allows, on the machine that ran it.\n" % (" --quick" if args.quick else "")
+    note = "\n`bash ci/validation.sh%s`; solver time: the MPM solver's, on the threads the run " \
+        "took (one for a small run, else those OMP_NUM_THREADS allows: `--points-per-thread`), " \
+        "on the machine that ran it.\n" % (" --quick" if args.quick else "")
     table = "\n".join(lines) + "\n" + note
     granular = "\n".join(granular_impact(args, factors, plt, h5py)) + "\n" + note
     with open(os.path.join(args.out, "summary.md"), "w") as f:

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "model/host_threads.hpp"
+#include "model/run_threads.hpp"
 #include "model/input_error.hpp"
 #include "model/messages.hpp"
 #include "model/resource_estimate.hpp"
@@ -68,7 +69,11 @@ MpmFootprint estimate_footprint(const MpmCase& c) {
   f.nodes = (std::floor((c.upper[0] - c.lower[0]) / dx + 0.5) + 1.0) *
             (std::floor((c.upper[1] - c.lower[1]) / dx + 0.5) + 1.0);
   const bool saturated = c.two_phase.has_value();
-  const double copies = s.atomic_scatter ? 0.0 : static_cast<double>(host_thread_count());
+  // The host scatter's copies of the grid: one per thread of the run (model/run_threads.hpp).
+  const double copies = s.atomic_scatter ? 0.0
+                        : runs_on_one_thread(static_cast<long>(f.points), saturated)
+                            ? 1.0
+                            : static_cast<double>(host_thread_count());
   f.state_bytes =
       f.points * (saturated ? kSaturatedPointBytes : kDryPointBytes) +
       f.nodes * ((saturated ? kSaturatedNodeBytes : kDryNodeBytes) +

@@ -579,8 +579,9 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
     auto particles = mpm::build_particles<Mem>(c.bodies, c.materials, lo, dx);
     auto s = solver_settings<mpm::Settings>(c);
     s.small_mass_fraction = c.settings.small_mass_fraction;
-    // The solver inside: its per-thread grid copies for the threads the run takes.
-    run_on_threads(threads_for_run(particles.count, /*saturated=*/false), [&] {
+    // The solver inside: its per-thread grid copies for the threads the run takes
+    // (model/run_threads.hpp).
+    run_with_threads_for(particles.count, /*saturated=*/false, [&] {
       DrySolver solver(grid, particles, c.materials, c.walls, s);
       if (c.barrier) solver.attach_barrier(*c.barrier);
       drive(c, solver, particles.count, out);
@@ -609,7 +610,7 @@ MpmOutcome run_mpm_case(const MpmCase& c) {
     w->friction = 0.0;
     w->no_slip = false;
   }
-  run_on_threads(threads_for_run(particles.count, /*saturated=*/true), [&] {
+  run_with_threads_for(particles.count, /*saturated=*/true, [&] {
     SaturatedSolver solver(grid, particles, c.materials, c.two_phase->liquid, c.walls, liquid_walls,
                            s);
     if (c.barrier) solver.attach_barrier(*c.barrier);

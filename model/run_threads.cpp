@@ -1,6 +1,7 @@
 #include "model/run_threads.hpp"
 
 #include "kernels/common/execution_instance.hpp"
+#include "model/host_threads.hpp"
 
 #include <Kokkos_Core.hpp>
 
@@ -34,19 +35,27 @@ long points_per_thread(bool saturated) {
   return saturated ? kDefaultPointsPerThreadSaturated : kDefaultPointsPerThreadDry;
 }
 
-int threads_for_run(long points, bool saturated) {
-  const int threads = instance_concurrency<Kokkos::DefaultExecutionSpace>();
-  const long per_thread = points_per_thread(saturated);
-  if (per_thread <= 0) return threads;
-  const long wanted = std::max(1L, points / per_thread);
-  return static_cast<int>(std::min<long>(wanted, threads));
-}
-
-void run_on_threads(int threads, const std::function<void()>& f) {
+bool runs_on_one_thread(long points, bool saturated) {
 #if defined(KOKKOS_ENABLE_OPENMP) && KOKKOS_VERSION < 40000
   if constexpr (kPartitions) {
+    const long per_thread = points_per_thread(saturated);
     // Inside a parallel region (a campaign's partition) the run keeps the threads it was given.
-    if (threads >= 1 && threads < instance_concurrency<Kokkos::OpenMP>() && omp_get_level() == 0) {
+    // Before Kokkos starts (a footprint's estimate), the threads it will take.
+    const std::size_t threads =
+        Kokkos::is_initialized() ? static_cast<std::size_t>(instance_concurrency<Kokkos::OpenMP>())
+                                 : host_thread_count();
+    return per_thread > 0 && points < 2 * per_thread && omp_get_level() == 0 && threads > 1;
+  }
+#endif
+  (void)points;
+  (void)saturated;
+  return false;
+}
+
+void run_with_threads_for(long points, bool saturated, const std::function<void()>& f) {
+#if defined(KOKKOS_ENABLE_OPENMP) && KOKKOS_VERSION < 40000
+  if constexpr (kPartitions) {
+    if (runs_on_one_thread(points, saturated)) {
       const int levels = omp_get_max_active_levels();
       omp_set_max_active_levels(std::max(levels, 2));
       std::exception_ptr error;
@@ -58,14 +67,13 @@ void run_on_threads(int threads, const std::function<void()>& f) {
               error = std::current_exception();
             }
           },
-          1, threads);
+          1, 1);
       omp_set_max_active_levels(levels);
       if (error) std::rethrow_exception(error);
       return;
     }
   }
 #endif
-  (void)threads;
   f();
 }
 

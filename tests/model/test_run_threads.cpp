@@ -1,6 +1,6 @@
-// The threads one MPM run takes (model/run_threads.hpp): one per points_per_thread() of its
-// points, the run on a partition of that many threads, and the same numbers as with every thread
-// up to the order of its sums.
+// The threads one MPM run takes (model/run_threads.hpp): one thread below two threads' worth of
+// points_per_thread(), in a partition of one, else every thread; a one-thread run gives the
+// numbers of a campaign's one-thread run to the last bit.
 #include <gtest/gtest.h>
 
 #include <Kokkos_Core.hpp>
@@ -39,32 +39,30 @@ struct PointsPerThread {
   ~PointsPerThread() { lsi::reset_points_per_thread(); }
 };
 
-TEST(RunThreads, OneThreadPerPointsPerThreadAtLeastOneAtMostAll) {
-  const int all = lsi::instance_concurrency<Kokkos::DefaultExecutionSpace>();
+TEST(RunThreads, FewerThanTwoThreadsWorthOfPointsRunOnOneThread) {
   // The defaults: a saturated run needs more points per thread than a dry one.
   EXPECT_EQ(lsi::points_per_thread(false), lsi::kDefaultPointsPerThreadDry);
   EXPECT_EQ(lsi::points_per_thread(true), lsi::kDefaultPointsPerThreadSaturated);
   EXPECT_LT(lsi::kDefaultPointsPerThreadDry, lsi::kDefaultPointsPerThreadSaturated);
+  const bool p = partitions_here();
   const long dry = lsi::kDefaultPointsPerThreadDry, wet = lsi::kDefaultPointsPerThreadSaturated;
-  EXPECT_EQ(lsi::threads_for_run(2 * dry, false), std::min(all, 2));
-  EXPECT_EQ(lsi::threads_for_run(2 * dry, true), 1);
-  EXPECT_EQ(lsi::threads_for_run(2 * wet - 1, true), 1);
-  EXPECT_EQ(lsi::threads_for_run(2 * wet, true), std::min(all, 2));
+  EXPECT_EQ(lsi::runs_on_one_thread(2 * dry - 1, false), p);
+  EXPECT_FALSE(lsi::runs_on_one_thread(2 * dry, false));
+  EXPECT_EQ(lsi::runs_on_one_thread(2 * dry, true), p);
+  EXPECT_EQ(lsi::runs_on_one_thread(2 * wet - 1, true), p);
+  EXPECT_FALSE(lsi::runs_on_one_thread(2 * wet, true));
   // One number for both, set from the command line.
   const PointsPerThread set(1000);
   for (const bool saturated : {false, true}) {
-    EXPECT_EQ(lsi::threads_for_run(0, saturated), 1);
-    EXPECT_EQ(lsi::threads_for_run(999, saturated), 1);
-    EXPECT_EQ(lsi::threads_for_run(1999, saturated), 1);
-    EXPECT_EQ(lsi::threads_for_run(2000, saturated), std::min(all, 2));
-    EXPECT_EQ(lsi::threads_for_run(1000L * all + 999, saturated), all);
-    EXPECT_EQ(lsi::threads_for_run(1000000000L, saturated), all);
+    EXPECT_EQ(lsi::runs_on_one_thread(0, saturated), p);
+    EXPECT_EQ(lsi::runs_on_one_thread(1999, saturated), p);
+    EXPECT_FALSE(lsi::runs_on_one_thread(2000, saturated));
   }
-  lsi::set_points_per_thread(0);
-  EXPECT_EQ(lsi::threads_for_run(1, true), all);
+  lsi::set_points_per_thread(0);  // every run on every thread
+  EXPECT_FALSE(lsi::runs_on_one_thread(1, true));
   lsi::set_points_per_thread(-5);  // as 0
   EXPECT_EQ(lsi::points_per_thread(false), 0);
-  EXPECT_EQ(lsi::threads_for_run(1, false), all);
+  EXPECT_FALSE(lsi::runs_on_one_thread(1, false));
   lsi::reset_points_per_thread();
   EXPECT_EQ(lsi::points_per_thread(true), lsi::kDefaultPointsPerThreadSaturated);
 }
@@ -72,28 +70,29 @@ TEST(RunThreads, OneThreadPerPointsPerThreadAtLeastOneAtMostAll) {
 TEST(RunThreads, TheRunSeesItsThreadsAndTheirErrorsComeBack) {
   const int all = lsi::instance_concurrency<Kokkos::DefaultExecutionSpace>();
   int inside = 0;
-  lsi::run_on_threads(1,
-                      [&] { inside = lsi::instance_concurrency<Kokkos::DefaultExecutionSpace>(); });
+  lsi::run_with_threads_for(
+      1, false, [&] { inside = lsi::instance_concurrency<Kokkos::DefaultExecutionSpace>(); });
   EXPECT_EQ(inside, partitions_here() ? 1 : all);
   EXPECT_EQ(lsi::instance_concurrency<Kokkos::DefaultExecutionSpace>(), all) << "after the run";
-  lsi::run_on_threads(all,
-                      [&] { inside = lsi::instance_concurrency<Kokkos::DefaultExecutionSpace>(); });
+  lsi::run_with_threads_for(
+      1000000, false, [&] { inside = lsi::instance_concurrency<Kokkos::DefaultExecutionSpace>(); });
   EXPECT_EQ(inside, all);
   // A kernel inside the partition reaches every index once.
   long sum = -1;
-  lsi::run_on_threads(1, [&] {
+  lsi::run_with_threads_for(1, false, [&] {
     Kokkos::parallel_reduce(
         "test_sum", Kokkos::RangePolicy<>(0, 1000), KOKKOS_LAMBDA(const int i, long& s) { s += i; },
         sum);
   });
   EXPECT_EQ(sum, 999L * 1000 / 2);
-  EXPECT_THROW(lsi::run_on_threads(1, [] { throw std::runtime_error("inside"); }),
+  EXPECT_THROW(lsi::run_with_threads_for(1, false, [] { throw std::runtime_error("inside"); }),
                std::runtime_error);
-  // Inside a campaign's partition the run keeps the threads it was given.
+  // Inside a campaign's partition the run keeps the thread it was given.
   lsi::run_concurrently(2, [&](std::size_t k) {
+    EXPECT_FALSE(lsi::runs_on_one_thread(1, false)) << "inside a parallel region";
     int seen = 0;
-    lsi::run_on_threads(1,
-                        [&] { seen = lsi::instance_concurrency<Kokkos::DefaultExecutionSpace>(); });
+    lsi::run_with_threads_for(
+        1, false, [&] { seen = lsi::instance_concurrency<Kokkos::DefaultExecutionSpace>(); });
     if (k == 0) inside = seen;
   });
   EXPECT_EQ(inside, partitions_here() ? 1 : all);
@@ -110,7 +109,7 @@ TEST(RunThreads, TheScatterOfARunKeepsACopyPerThreadOfTheRun) {
   const int all = lsi::instance_concurrency<Exec>();
   EXPECT_EQ(Scatter(grid).copies_count, all);
   int copies = 0;
-  lsi::run_on_threads(1, [&] { copies = Scatter(grid).copies_count; });
+  lsi::run_with_threads_for(1, false, [&] { copies = Scatter(grid).copies_count; });
   EXPECT_EQ(copies, partitions_here() ? 1 : all);
 }
 
@@ -132,7 +131,7 @@ TEST(RunThreads, ASmallRunOnOneThreadIsTheRunOfAOneThreadPartition) {
   lsi::MpmOutcome one, every;
   {
     const PointsPerThread set(1000000);
-    ASSERT_EQ(lsi::threads_for_run(100000, false), 1);
+    ASSERT_EQ(lsi::runs_on_one_thread(100000, false), partitions_here());
     one = lsi::run_mpm_case(c);
   }
   {

@@ -291,19 +291,20 @@ TYPED_TEST(MpmBarrier, UpstreamFaceMomentIsTheSumOverTheNodesForces) {
   EXPECT_NEAR(r.upstream_moment, want, 1e-12 * std::fabs(want));
 }
 
-// The same three face nodes (rows 4, 8, 12: y = 1, 2, 3 m) with face bands of 1 m: the contact
-// adds each node's normal force on the barrier, m |v_n| / dt, into its row, and the coupling
-// shares each row's force among the bands its tributary height [y - dx/2, y + dx/2] overlaps,
-// half below and half above each band edge at y = 1, 2, 3 m (computed here by hand); the rows
-// are left at zero for the next step. To round-off.
+// Three face nodes 1, 2 and 3 m above the toe of the barrier of the test above, here standing
+// at y = 0.25 m on a grid whose first node row is at y = -0.5 m (rows 7, 11, 15), with face bands
+// of 1 m: the contact adds each node's normal force on the barrier, m |v_n| / dt, into its row,
+// and the coupling shares each row's force among the bands its tributary height
+// [y - dx/2, y + dx/2] overlaps, half below and half above each band edge 1, 2, 3 m above the
+// toe (computed here by hand); the rows are left at zero for the next step. To round-off.
 TYPED_TEST(MpmBarrier, FaceRowForcesGoToTheBandsTheirHeightOverlaps) {
   using Mem = typename TypeParam::memory_space;
   const double beta = 80.0 * kPi / 180.0, dx = 0.25, dt = 1e-3, shift = 0.25;
   Barrier b;
-  b.shape = BarrierShape(1.0, 0.0, 4.0, 3.0, 1.0, beta);
+  b.shape = BarrierShape(1.0, 0.25, 4.0, 3.0, 1.0, beta);
   b.face_band_height = 1.0;
   ASSERT_EQ(b.face_bands(), 4);
-  const double lo[2] = {0.0, 0.0}, hi[2] = {6.0, 6.0};
+  const double lo[2] = {0.0, -0.5}, hi[2] = {6.0, 6.0};
   Grid<Mem> grid(lo, hi, dx);
   grid.mark_all_active();
   const double n[2] = {-std::sin(beta), std::cos(beta)};
@@ -311,7 +312,7 @@ TYPED_TEST(MpmBarrier, FaceRowForcesGoToTheBandsTheirHeightOverlaps) {
     int i, j;
     double m, vx, vy;
   };
-  const Node nodes[] = {{6, 4, 3.0, 2.0, 0.0}, {7, 8, 2.0, 3.0, -0.5}, {8, 12, 1.0, 1.0, 0.2}};
+  const Node nodes[] = {{6, 7, 3.0, 2.0, 0.0}, {7, 11, 2.0, 3.0, -0.5}, {8, 15, 1.0, 1.0, 0.2}};
   auto m_h = Kokkos::create_mirror_view(grid.mass);
   auto v_h = Kokkos::create_mirror_view(grid.velocity);
   Kokkos::deep_copy(m_h, 0.0);
@@ -337,7 +338,7 @@ TYPED_TEST(MpmBarrier, FaceRowForcesGoToTheBandsTheirHeightOverlaps) {
   ASSERT_EQ(r.nodes, 3);
   auto rows = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), coupling.row_force());
   for (int j = 0; j < grid.ny; ++j) {
-    const double want = j == 4 ? f[0] : j == 8 ? f[1] : j == 12 ? f[2] : 0.0;
+    const double want = j == 7 ? f[0] : j == 11 ? f[1] : j == 15 ? f[2] : 0.0;
     EXPECT_NEAR(rows(j), want, 1e-12 * f[0]) << "row " << j;
   }
   coupling.apply(r, dt);
