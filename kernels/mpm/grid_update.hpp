@@ -69,7 +69,7 @@ double grid_update(const Grid<MemorySpace>& g, const Boundaries& walls, double d
             const double Ix = -m * (v[0] - before[0]), Iy = -m * (v[1] - before[1]);  // on walls
             rx += Ix / dt;
             ry += Iy / dt;
-            if (banded) bands.add(walls, x, y, tol, dx, Ix, Iy);
+            if (banded) bands.add(walls, i, j, x, y, tol, Ix, Iy);
           }
           velocity_old(n, 0) = vo[0];
           velocity_old(n, 1) = vo[1];

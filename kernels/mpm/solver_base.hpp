@@ -78,9 +78,7 @@ class SolverBase {
   // The walls' bands (settings().wall_band > 0) for a grid with these walls.
   template <class GridT>
   void prepare_wall_bands(const Boundaries& walls, const GridT& grid) {
-    const double lower[2] = {grid.origin[0], grid.origin[1]};
-    const double upper[2] = {grid.upper(0), grid.upper(1)};
-    wall_bands_ = make_wall_bands<Mem>(walls, lower, upper, settings_.wall_band);
+    wall_bands_ = make_wall_bands<Mem>(walls, grid, settings_.wall_band);
   }
 
   // The materials on the device; notes whether any is plastic. Returns the largest elastic wave

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -69,7 +70,7 @@ TEST(MpmWallBands, BandsAddUpToTheWallsReaction) {
   Kokkos::deep_copy(g.momentum, momentum);
   lsi::mpm::Boundaries walls;
   walls.right = {true, 0.9, 0.0, false, false};
-  const auto bands = lsi::mpm::make_wall_bands<Mem>(walls, lower, upper, 0.13);
+  const auto bands = lsi::mpm::make_wall_bands<Mem>(walls, g, 0.13);
   ASSERT_EQ(bands.count[lsi::mpm::RightWall], 8);  // 0 .. 1 m in 0.13 m bands
   ASSERT_EQ(bands.count[lsi::mpm::LeftWall], 0);
   double wall_force[2] = {0.0, 0.0};
@@ -86,6 +87,44 @@ TEST(MpmWallBands, BandsAddUpToTheWallsReaction) {
   // Taking resets the account.
   const auto again = lsi::mpm::take_wall_band_impulse(bands);
   for (double v : again[lsi::mpm::RightWall]) EXPECT_EQ(v, 0.0);
+}
+
+// One grid update against a bottom wall at y = 0.3 m: the nodes of rows 0 to 3 (on and below
+// the wall) move down into it, so four rows add into each column of the wall, each row into a
+// slot of its own (wall_bands.hpp); the bottom's bands (0.17 m) add up to its reaction, and each
+// band gets the impulse of the columns its length overlaps (computed here by hand for the first
+// band: columns x = 0, 0.1 whole, x = 0.2 for 0.17 - 0.15 = 0.02 of its 0.1 m).
+TEST(MpmWallBands, ABottomWallsBandsTakeEveryRowOnAndBelowIt) {
+  const double lower[2] = {0.0, 0.0}, upper[2] = {1.0, 1.0}, dx = 0.1, dt = 1e-3;
+  lsi::mpm::Grid<Mem> g(lower, upper, dx);
+  auto mass = Kokkos::create_mirror_view(g.mass);
+  auto momentum = Kokkos::create_mirror_view(g.momentum);
+  std::vector<double> column(g.nx, 0.0);  // each column's impulse on the wall, N s/m
+  for (int j = 0; j <= 3; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const int n = i + g.nx * j;
+      mass(n) = 1.0 + 0.1 * i + 0.01 * j;
+      momentum(n, 1) = -mass(n) * (1.0 + 0.2 * j);  // down, into the bottom wall
+      column[i] += mass(n) * (1.0 + 0.2 * j);       // the wall stops it: m |v| on the wall
+    }
+  Kokkos::deep_copy(g.mass, mass);
+  Kokkos::deep_copy(g.momentum, momentum);
+  lsi::mpm::Boundaries walls;
+  walls.bottom = {true, 0.3, 0.0, false, false};
+  const auto bands = lsi::mpm::make_wall_bands<Mem>(walls, g, 0.17);
+  ASSERT_EQ(bands.count[lsi::mpm::BottomWall], 6);  // 0 .. 1 m in 0.17 m bands
+  double wall_force[2] = {0.0, 0.0};
+  lsi::mpm::grid_update<Exec>(g, walls, dt, wall_force, 0.0, nullptr, bands);
+  const auto impulse = lsi::mpm::take_wall_band_impulse(bands);
+  ASSERT_EQ(impulse[lsi::mpm::BottomWall].size(), 6u);
+  double sum = 0.0;
+  for (double v : impulse[lsi::mpm::BottomWall]) sum += v;
+  // Sums of ~40 terms in two orders: round-off.
+  constexpr double kRel = 1e-13;
+  EXPECT_NEAR(sum, -wall_force[1] * dt, kRel * std::fabs(wall_force[1] * dt));
+  // Band 0 ([0, 0.17] m; x = 0 carries [-0.05, 0.05], the band takes what lies below 0).
+  const double first = column[0] + column[1] + 0.2 * column[2];
+  EXPECT_NEAR(impulse[lsi::mpm::BottomWall][0], first, kRel * first);
 }
 
 TEST(MpmWallBands, HydrostaticTankLoadsItsWallsAsTheLawSays) {
