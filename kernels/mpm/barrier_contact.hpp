@@ -11,10 +11,11 @@
 // with the work the contact took from the material, measured with the mid-step node velocity as
 // for the walls (grid_update.hpp), and the moment of the upstream face's forces about the
 // barrier's downstream toe (the overturning moment of the face load, from where along the face
-// each node pushes). Given row_force (one entry per node row of the grid), each upstream face
-// node's normal force on the barrier is also added into its row's entry: the face load's
-// distribution with height, which the caller shares among height bands (face_bands.hpp). On the
-// host a row is one work item, so its entry is summed in the same order whatever the threads.
+// each node pushes). Given row_impulse (one entry per node row of the grid), each upstream face
+// node's normal impulse on the barrier this step is also added into its row's entry: the face
+// load's distribution with height, which the caller shares among height bands
+// (barrier_coupling.hpp). On the host a row is one work item, so its entry is summed in the same
+// order whatever the threads.
 #pragma once
 #include <Kokkos_Core.hpp>
 #include <cmath>
@@ -41,7 +42,7 @@ template <class ExecSpace, class MemorySpace>
 BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierShape& shape,
                                      double displacement, double velocity, double friction,
                                      double dt,
-                                     const Kokkos::View<double*, MemorySpace>& row_force = {}) {
+                                     const Kokkos::View<double*, MemorySpace>& row_impulse = {}) {
   const double ox = g.origin[0], oy = g.origin[1], dx = g.dx, tol = 1e-9 * g.dx;
   const int nx = g.nx;
   const BarrierShape b = shape;
@@ -68,7 +69,7 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
   if (first > region.i0) region.i0 = static_cast<int>(first);
   if (last < region.i1) region.i1 = static_cast<int>(last);
   const NodeItems<ExecSpace> items(region, g.mass_rows());
-  const bool rows = row_force.extent(0) > 0;
+  const bool rows = row_impulse.extent(0) > 0;
   Kokkos::parallel_reduce(
       "lsi::mpm::barrier_contact", range_policy<ExecSpace>(0, items.count()),
       KOKKOS_LAMBDA(const int item, double& f0, double& f1, double& f2, double& f3, double& f4,
@@ -107,8 +108,8 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
             f0 += fx;
             f1 += fy;
             mo += (y - b.toe[1]) * fx - (x - x_downstream_toe) * fy;
-            // The face's normal force per row (on a device several work items share a row).
-            if (rows) Kokkos::atomic_add(&row_force(j), -(fx * nxk + fy * nyk));
+            // The face's normal impulse per row (on a device several work items share a row).
+            if (rows) Kokkos::atomic_add(&row_impulse(j), imp[0] * nxk + imp[1] * nyk);
           } else if (k == 1) {
             f2 += fx;
             f3 += fy;

@@ -130,7 +130,7 @@ class Solver : public SolverBase<Solver<ExecSpace>, ExecSpace, Settings> {
     this->barrier_.begin_step(grid_);
     this->boundary_ += this->barrier_.apply(
         barrier_contact<ExecSpace>(grid_, b.shape, b.motion.displacement, b.motion.velocity,
-                                   b.face_friction, this->dt_, this->barrier_.row_force()),
+                                   b.face_friction, this->dt_, this->barrier_.row_impulse()),
         this->dt_);
   }
   // G2P and the stress update in one pass over the points (g2p.hpp).

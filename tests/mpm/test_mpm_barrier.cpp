@@ -293,13 +293,15 @@ TYPED_TEST(MpmBarrier, UpstreamFaceMomentIsTheSumOverTheNodesForces) {
 
 // Three face nodes 1, 2 and 3 m above the toe of the barrier of the test above, here standing
 // at y = 0.25 m on a grid whose first node row is at y = -0.5 m (rows 7, 11, 15), with face bands
-// of 1 m: the contact adds each node's normal force on the barrier, m |v_n| / dt, into its row,
-// and the coupling shares each row's force among the bands its tributary height
-// [y - dx/2, y + dx/2] overlaps, half below and half above each band edge 1, 2, 3 m above the
-// toe (computed here by hand); the rows are left at zero for the next step. To round-off.
-TYPED_TEST(MpmBarrier, FaceRowForcesGoToTheBandsTheirHeightOverlaps) {
+// of 1 m, in two steps of the same node velocities (different time steps): the contact adds each
+// node's normal impulse on the barrier, m |v_n|, into its row, step after step; taking the bands
+// shares each row's impulse among the bands its tributary height [y - dx/2, y + dx/2] overlaps,
+// half below and half above each band edge 1, 2, 3 m above the toe (computed here by hand), and
+// leaves the rows at zero. To round-off.
+TYPED_TEST(MpmBarrier, FaceRowImpulsesGoToTheBandsTheirHeightOverlaps) {
   using Mem = typename TypeParam::memory_space;
-  const double beta = 80.0 * kPi / 180.0, dx = 0.25, dt = 1e-3, shift = 0.25;
+  const double beta = 80.0 * kPi / 180.0, dx = 0.25, shift = 0.25;
+  const double dt[2] = {1e-3, 2.5e-3};
   Barrier b;
   b.shape = BarrierShape(1.0, 0.25, 4.0, 3.0, 1.0, beta);
   b.face_band_height = 1.0;
@@ -314,40 +316,44 @@ TYPED_TEST(MpmBarrier, FaceRowForcesGoToTheBandsTheirHeightOverlaps) {
   };
   const Node nodes[] = {{6, 7, 3.0, 2.0, 0.0}, {7, 11, 2.0, 3.0, -0.5}, {8, 15, 1.0, 1.0, 0.2}};
   auto m_h = Kokkos::create_mirror_view(grid.mass);
-  auto v_h = Kokkos::create_mirror_view(grid.velocity);
+  auto v_h = Kokkos::create_mirror(grid.velocity);  // its own memory: the contact changes v
   Kokkos::deep_copy(m_h, 0.0);
   Kokkos::deep_copy(v_h, 0.0);
-  double f[3];  // each node's normal force on the barrier, N/m
+  double p[3];  // each node's normal impulse on the barrier in a step, N s/m
   for (int k = 0; k < 3; ++k) {
     const Node& q = nodes[k];
     m_h(q.i + grid.nx * q.j) = q.m;
     v_h(q.i + grid.nx * q.j, 0) = q.vx;
     v_h(q.i + grid.nx * q.j, 1) = q.vy;
-    f[k] = -q.m * (q.vx * n[0] + q.vy * n[1]) / dt;
-    ASSERT_GT(f[k], 0.0);
+    p[k] = -q.m * (q.vx * n[0] + q.vy * n[1]);
+    ASSERT_GT(p[k], 0.0);
   }
   Kokkos::deep_copy(grid.mass, m_h);
-  Kokkos::deep_copy(grid.velocity, v_h);
-  Kokkos::deep_copy(grid.velocity_old, v_h);
   BarrierCoupling<Mem> coupling;
   coupling.attach(b);
-  coupling.begin_step(grid);
-  ASSERT_EQ(coupling.row_force().extent(0), static_cast<std::size_t>(grid.ny));
-  const BarrierContactReport r =
-      barrier_contact<TypeParam>(grid, b.shape, shift, 0.0, 0.0, dt, coupling.row_force());
-  ASSERT_EQ(r.nodes, 3);
-  auto rows = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), coupling.row_force());
-  for (int j = 0; j < grid.ny; ++j) {
-    const double want = j == 7 ? f[0] : j == 11 ? f[1] : j == 15 ? f[2] : 0.0;
-    EXPECT_NEAR(rows(j), want, 1e-12 * f[0]) << "row " << j;
+  for (int step = 0; step < 2; ++step) {
+    Kokkos::deep_copy(grid.velocity, v_h);
+    Kokkos::deep_copy(grid.velocity_old, v_h);
+    coupling.begin_step(grid);
+    ASSERT_EQ(coupling.row_impulse().extent(0), static_cast<std::size_t>(grid.ny));
+    const BarrierContactReport r = barrier_contact<TypeParam>(grid, b.shape, shift, 0.0, 0.0,
+                                                              dt[step], coupling.row_impulse());
+    ASSERT_EQ(r.nodes, 3) << "step " << step;
+    coupling.apply(r, dt[step]);
+    auto rows = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), coupling.row_impulse());
+    for (int j = 0; j < grid.ny; ++j) {
+      const double want = (step + 1) * (j == 7 ? p[0] : j == 11 ? p[1] : j == 15 ? p[2] : 0.0);
+      EXPECT_NEAR(rows(j), want, 1e-12 * p[0]) << "row " << j << ", step " << step;
+    }
   }
-  coupling.apply(r, dt);
   const std::vector<double> bands = coupling.take_band_impulse();
   ASSERT_EQ(bands.size(), 4u);
-  const double want[4] = {0.5 * f[0], 0.5 * (f[0] + f[1]), 0.5 * (f[1] + f[2]), 0.5 * f[2]};
-  for (int k = 0; k < 4; ++k) EXPECT_NEAR(bands[k], want[k] * dt, 1e-12 * f[0] * dt) << k;
-  rows = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), coupling.row_force());
-  for (int j = 0; j < grid.ny; ++j) EXPECT_EQ(rows(j), 0.0) << "row " << j << " after the step";
+  const double want[4] = {0.5 * p[0], 0.5 * (p[0] + p[1]), 0.5 * (p[1] + p[2]), 0.5 * p[2]};
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(bands[k], 2.0 * want[k], 1e-12 * p[0]) << k;
+  auto rows = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), coupling.row_impulse());
+  for (int j = 0; j < grid.ny; ++j) EXPECT_EQ(rows(j), 0.0) << "row " << j << " after the take";
+  const std::vector<double> again = coupling.take_band_impulse();
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(again[k], 0.0) << k;
 }
 
 // Points placed around a trapezoid (H 4, B 2, b 1 m, face 80 deg, toe at x = 1 m), at rest and

@@ -242,10 +242,10 @@ class TwoPhaseSolver : public SolverBase<TwoPhaseSolver<ExecSpace>, ExecSpace, T
     this->barrier_.begin_step(grid_.solid);  // both phases add into the face's rows
     BarrierContactReport both =
         barrier_contact<ExecSpace>(grid_.solid, b.shape, m.displacement, m.velocity,
-                                   b.face_friction, this->dt_, this->barrier_.row_force());
+                                   b.face_friction, this->dt_, this->barrier_.row_impulse());
     const BarrierContactReport l =
         barrier_contact<ExecSpace>(grid_.liquid, b.shape, m.displacement, m.velocity, 0.0,
-                                   this->dt_, this->barrier_.row_force());
+                                   this->dt_, this->barrier_.row_impulse());
     for (int k = 0; k < 3; ++k)
       for (int d = 0; d < 2; ++d) both.force[k][d] += l.force[k][d];
     both.work += l.work;
