@@ -14,8 +14,8 @@
 // each node pushes). Given row_impulse (one entry per node row of the grid), each upstream face
 // node's normal impulse on the barrier this step is also added into its row's entry: the face
 // load's distribution with height, which the caller shares among height bands
-// (barrier_coupling.hpp). On the host a row is one work item, so its entry is summed in the same
-// order whatever the threads.
+// (barrier_coupling.hpp). On the host a row is one thread's (NodeItems), so its entry is summed
+// in the same order whatever the threads.
 #pragma once
 #include <Kokkos_Core.hpp>
 #include <cmath>
@@ -53,8 +53,7 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
   // Only the nodes that may hold mass (Grid::mass_box and its row spans, set by P2G), and of
   // those the columns the barrier covers, one cell wider on each side (a node beyond them is
   // outside the barrier by more than the tolerance). The rows stay those of the mass rectangle:
-  // on the host (a work item per row) the same work items, so the same sums, as over the whole
-  // rectangle.
+  // on one host thread (a work item per row) the same sums as over the whole rectangle.
   NodeBox region = g.mass_box();
   if (region.empty()) return r;
   double x_lo = b.toe[0], x_hi = b.toe[0];
@@ -74,51 +73,51 @@ BarrierContactReport barrier_contact(const Grid<MemorySpace>& g, const BarrierSh
       "lsi::mpm::barrier_contact", range_policy<ExecSpace>(0, items.count()),
       KOKKOS_LAMBDA(const int item, double& f0, double& f1, double& f2, double& f3, double& f4,
                     double& f5, double& w, double& mo, int& count) {
-        int j, i_begin, i_end;
-        items.nodes(item, j, i_begin, i_end);
-        for (int i = i_begin; i <= i_end; ++i) {  // a row of the region, or one node
-          const int n = i + nx * j;
-          const double m = g.mass(n);
-          if (!(m > 0.0)) continue;
-          const double x = ox + i * dx - displacement, y = oy + j * dx;
-          if (y < b.toe[1] - tol) continue;  // below the base: the base wall's business
-          int k = 0;
-          if (b.outside_distance(x, y, k) > tol) continue;
-          const double nxk = b.face[k].normal[0], nyk = b.face[k].normal[1];
-          const double v[2] = {g.velocity(n, 0), g.velocity(n, 1)};
-          const double rel[2] = {v[0] - velocity, v[1]};
-          const double vn = rel[0] * nxk + rel[1] * nyk;
-          if (vn >= 0.0) continue;
-          // Tangential relative velocity after removing the normal part, then Coulomb.
-          double t[2] = {rel[0] - vn * nxk, rel[1] - vn * nyk};
-          const double vt = math::sqrt(t[0] * t[0] + t[1] * t[1]);
-          const double reduce = friction * (-vn);
-          const double keep = vt <= reduce ? 0.0 : (vt - reduce) / vt;
-          t[0] *= keep;
-          t[1] *= keep;
-          const double vnew[2] = {velocity + t[0], t[1]};
-          double imp[2];
-          for (int d = 0; d < 2; ++d) {
-            imp[d] = m * (vnew[d] - v[d]);  // impulse on the node
-            w -= imp[d] * 0.5 * (g.velocity_old(n, d) + vnew[d]);
-            g.velocity(n, d) = vnew[d];
+        items.visit(item, [&](const int j, const int i_begin, const int i_end) {
+          for (int i = i_begin; i <= i_end; ++i) {  // a row of the region, or one node
+            const int n = i + nx * j;
+            const double m = g.mass(n);
+            if (!(m > 0.0)) continue;
+            const double x = ox + i * dx - displacement, y = oy + j * dx;
+            if (y < b.toe[1] - tol) continue;  // below the base: the base wall's business
+            int k = 0;
+            if (b.outside_distance(x, y, k) > tol) continue;
+            const double nxk = b.face[k].normal[0], nyk = b.face[k].normal[1];
+            const double v[2] = {g.velocity(n, 0), g.velocity(n, 1)};
+            const double rel[2] = {v[0] - velocity, v[1]};
+            const double vn = rel[0] * nxk + rel[1] * nyk;
+            if (vn >= 0.0) continue;
+            // Tangential relative velocity after removing the normal part, then Coulomb.
+            double t[2] = {rel[0] - vn * nxk, rel[1] - vn * nyk};
+            const double vt = math::sqrt(t[0] * t[0] + t[1] * t[1]);
+            const double reduce = friction * (-vn);
+            const double keep = vt <= reduce ? 0.0 : (vt - reduce) / vt;
+            t[0] *= keep;
+            t[1] *= keep;
+            const double vnew[2] = {velocity + t[0], t[1]};
+            double imp[2];
+            for (int d = 0; d < 2; ++d) {
+              imp[d] = m * (vnew[d] - v[d]);  // impulse on the node
+              w -= imp[d] * 0.5 * (g.velocity_old(n, d) + vnew[d]);
+              g.velocity(n, d) = vnew[d];
+            }
+            const double fx = -imp[0] / dt, fy = -imp[1] / dt;  // on the barrier
+            if (k == 0) {
+              f0 += fx;
+              f1 += fy;
+              mo += (y - b.toe[1]) * fx - (x - x_downstream_toe) * fy;
+              // The face's normal impulse per row (on a device several work items share a row).
+              if (rows) Kokkos::atomic_add(&row_impulse(j), imp[0] * nxk + imp[1] * nyk);
+            } else if (k == 1) {
+              f2 += fx;
+              f3 += fy;
+            } else {
+              f4 += fx;
+              f5 += fy;
+            }
+            ++count;
           }
-          const double fx = -imp[0] / dt, fy = -imp[1] / dt;  // on the barrier
-          if (k == 0) {
-            f0 += fx;
-            f1 += fy;
-            mo += (y - b.toe[1]) * fx - (x - x_downstream_toe) * fy;
-            // The face's normal impulse per row (on a device several work items share a row).
-            if (rows) Kokkos::atomic_add(&row_impulse(j), imp[0] * nxk + imp[1] * nyk);
-          } else if (k == 1) {
-            f2 += fx;
-            f3 += fy;
-          } else {
-            f4 += fx;
-            f5 += fy;
-          }
-          ++count;
-        }
+        });
       },
       f[0], f[1], f[2], f[3], f[4], f[5], work, moment, nodes);
   for (int k = 0; k < 3; ++k) {

@@ -3,6 +3,8 @@
 #pragma once
 #include <Kokkos_Core.hpp>
 
+#include "kernels/common/execution_instance.hpp"
+
 namespace lsi::mpm {
 
 // A rectangle of nodes, i0..i1 x j0..j1 inclusive (empty when i1 < i0 or j1 < j0).
@@ -25,35 +27,88 @@ struct NodeBox {
 // spans[2 j] .. spans[2 j + 1] (Grid's row spans; an empty row when the first exceeds the
 // second): a flow that spreads thin over a long box (an overtopping jet, a deposit on both sides
 // of a barrier) leaves most of its box's nodes empty.
+// On `threads` > 1 host threads with more rows than threads, a work item is a run of consecutive
+// rows, one run per thread, cut where the runs hold equal numbers of nodes: a flow's rows differ
+// in length (a wedge against the barrier, a thin jet above it), so a thread per equal number of
+// rows would leave one thread with most of the nodes. Either way a row is one thread's, its nodes
+// visited in order, and the cutting depends on the box, the spans and the threads alone: the
+// same sums from run to run.
 template <bool WholeRows>
 struct NodeItemsOf {
   static constexpr bool whole_rows = WholeRows;
+  static constexpr int kMaxRuns = 64;  // more threads than this: one row per work item
   int i0, j0, cols, rows;
   const int* spans = nullptr;
-  explicit NodeItemsOf(const NodeBox& b, const int* row_spans = nullptr)
+  int runs = 0;  // 0: one row per work item; else the runs of rows
+  // Run r: rows j0 + first[r] .. j0 + first[r + 1] - 1 (host, with runs).
+  int first[WholeRows ? kMaxRuns + 1 : 1] = {};
+  explicit NodeItemsOf(const NodeBox& b, const int* row_spans = nullptr, const int threads = 1)
       : i0(b.i0), j0(b.j0), cols(b.i1 - b.i0 + 1), rows(b.j1 - b.j0 + 1) {
-    if constexpr (WholeRows) spans = row_spans;
-  }
-  int count() const { return whole_rows ? rows : rows * cols; }
-  // Work item t covers the nodes i_begin..i_end (inclusive) of row j.
-  KOKKOS_INLINE_FUNCTION void nodes(const int t, int& j, int& i_begin, int& i_end) const {
-    if constexpr (whole_rows) {
-      j = j0 + t;
-      i_begin = i0;
-      i_end = i0 + cols - 1;
-      if (spans != nullptr) {
-        i_begin = spans[2 * j] > i_begin ? spans[2 * j] : i_begin;
-        i_end = spans[2 * j + 1] < i_end ? spans[2 * j + 1] : i_end;
-      }
-    } else {
-      j = j0 + t / cols;
-      i_begin = i_end = i0 + t % cols;
+    if constexpr (WholeRows) {
+      spans = row_spans;
+      if (threads > 1 && threads <= kMaxRuns && rows > threads && !b.empty()) cut_runs(threads);
     }
   }
+  int count() const { return whole_rows ? (runs > 0 ? runs : rows) : rows * cols; }
+  // Row j's nodes i_begin..i_end (inclusive; none when i_end < i_begin), whole rows only.
+  KOKKOS_INLINE_FUNCTION void row(const int j, int& i_begin, int& i_end) const {
+    i_begin = i0;
+    i_end = i0 + cols - 1;
+    if (spans != nullptr) {
+      i_begin = spans[2 * j] > i_begin ? spans[2 * j] : i_begin;
+      i_end = spans[2 * j + 1] < i_end ? spans[2 * j + 1] : i_end;
+    }
+  }
+  // Calls f(j, i_begin, i_end) for each row of work item t, lowest first (host), or for its one
+  // node (device, i_begin == i_end).
+  template <class F>
+  KOKKOS_INLINE_FUNCTION void visit(const int t, const F& f) const {
+    if constexpr (whole_rows) {
+      const int r0 = runs > 0 ? first[t] : t, r1 = runs > 0 ? first[t + 1] : t + 1;
+      for (int r = r0; r < r1; ++r) {
+        int i_begin, i_end;
+        row(j0 + r, i_begin, i_end);
+        f(j0 + r, i_begin, i_end);
+      }
+    } else {
+      f(j0 + t / cols, i0 + t % cols, i0 + t % cols);
+    }
+  }
+
+ private:
+  // Runs of consecutive rows, `threads` of them, each ending at the first row where the nodes
+  // so far reach its share of the box's nodes.
+  void cut_runs(const int threads) {
+    long total = 0;
+    for (int r = 0; r < rows; ++r) total += row_nodes(r);
+    runs = threads;
+    first[0] = 0;
+    long sum = 0;
+    int r = 0;
+    for (int k = 1; k < threads; ++k) {
+      const long share = total * k / threads;
+      while (r < rows && sum < share) sum += row_nodes(r++);
+      first[k] = r;
+    }
+    first[threads] = rows;
+  }
+  long row_nodes(const int r) const {
+    int i_begin, i_end;
+    row(j0 + r, i_begin, i_end);
+    return i_end >= i_begin ? i_end - i_begin + 1 : 0;
+  }
 };
+
+// The work items of a pass over a NodeBox on the calling thread's instance of ExecSpace.
 template <class ExecSpace>
-using NodeItems = NodeItemsOf<
-    Kokkos::SpaceAccessibility<Kokkos::HostSpace, typename ExecSpace::memory_space>::accessible>;
+struct NodeItems
+    : NodeItemsOf<Kokkos::SpaceAccessibility<Kokkos::HostSpace,
+                                             typename ExecSpace::memory_space>::accessible> {
+  using Base = NodeItemsOf<
+      Kokkos::SpaceAccessibility<Kokkos::HostSpace, typename ExecSpace::memory_space>::accessible>;
+  explicit NodeItems(const NodeBox& b, const int* row_spans = nullptr)
+      : Base(b, row_spans, instance_concurrency<ExecSpace>()) {}
+};
 
 template <class MemorySpace>
 struct Grid {

@@ -47,35 +47,35 @@ double grid_update(const Grid<MemorySpace>& g, const Boundaries& walls, double d
   Kokkos::parallel_reduce(
       "lsi::mpm::grid_update", range_policy<ExecSpace>(0, items.count()),
       KOKKOS_LAMBDA(const int t, double& lost, double& rx, double& ry) {
-        int j, i_begin, i_end;
-        items.nodes(t, j, i_begin, i_end);
-        for (int i = i_begin; i <= i_end; ++i) {  // a row of the region, or one node
-          const int n = i + nx * j;
-          const double m = mass(n);
-          if (!(m > 0.0)) {
-            velocity(n, 0) = velocity(n, 1) = 0.0;
-            velocity_old(n, 0) = velocity_old(n, 1) = 0.0;
-            continue;
+        items.visit(t, [&](const int j, const int i_begin, const int i_end) {
+          for (int i = i_begin; i <= i_end; ++i) {  // a row of the region, or one node
+            const int n = i + nx * j;
+            const double m = mass(n);
+            if (!(m > 0.0)) {
+              velocity(n, 0) = velocity(n, 1) = 0.0;
+              velocity_old(n, 0) = velocity_old(n, 1) = 0.0;
+              continue;
+            }
+            double v[2], vo[2];
+            for (int d = 0; d < 2; ++d) {
+              vo[d] = momentum(n, d) / m;
+              v[d] = vo[d] + dt * (m < small_mass ? (d == 0 ? gx : gy) : force(n, d) / m);
+            }
+            const double before[2] = {v[0], v[1]};
+            const double x = ox + i * dx, y = oy + j * dx;
+            if (apply_walls(walls, x, y, v, tol)) {
+              for (int d = 0; d < 2; ++d) lost -= m * (v[d] - before[d]) * 0.5 * (vo[d] + v[d]);
+              const double Ix = -m * (v[0] - before[0]), Iy = -m * (v[1] - before[1]);  // on walls
+              rx += Ix / dt;
+              ry += Iy / dt;
+              if (banded) bands.add(walls, i, j, x, y, tol, Ix, Iy);
+            }
+            velocity_old(n, 0) = vo[0];
+            velocity_old(n, 1) = vo[1];
+            velocity(n, 0) = v[0];
+            velocity(n, 1) = v[1];
           }
-          double v[2], vo[2];
-          for (int d = 0; d < 2; ++d) {
-            vo[d] = momentum(n, d) / m;
-            v[d] = vo[d] + dt * (m < small_mass ? (d == 0 ? gx : gy) : force(n, d) / m);
-          }
-          const double before[2] = {v[0], v[1]};
-          const double x = ox + i * dx, y = oy + j * dx;
-          if (apply_walls(walls, x, y, v, tol)) {
-            for (int d = 0; d < 2; ++d) lost -= m * (v[d] - before[d]) * 0.5 * (vo[d] + v[d]);
-            const double Ix = -m * (v[0] - before[0]), Iy = -m * (v[1] - before[1]);  // on walls
-            rx += Ix / dt;
-            ry += Iy / dt;
-            if (banded) bands.add(walls, i, j, x, y, tol, Ix, Iy);
-          }
-          velocity_old(n, 0) = vo[0];
-          velocity_old(n, 1) = vo[1];
-          velocity(n, 0) = v[0];
-          velocity(n, 1) = v[1];
-        }
+        });
       },
       dissipated, fx, fy);
   // Every node outside the mass rectangle (and its row spans) is now zero.

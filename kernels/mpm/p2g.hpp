@@ -510,14 +510,14 @@ P2GBoxes gather_nodes(S& scatter, NodeBox touched, const NodeBox& whole,
     Kokkos::parallel_for(
         "lsi::mpm::p2g_gather", range_policy<ExecSpace>(0, items.count()),
         KOKKOS_LAMBDA(const int t) {
-          int j, i_begin, i_end;
-          items.nodes(t, j, i_begin, i_end);
-          for (int i = i_begin; i <= i_end; ++i) {  // a row of the region, or one node
-            const int n = i + nx * j;
-            double acc[F];
-            take_node_sums<F>(copies, boxes, nc, i, j, n, acc);
-            store(n, acc);
-          }
+          items.visit(t, [&](const int j, const int i_begin, const int i_end) {
+            for (int i = i_begin; i <= i_end; ++i) {  // a row of the region, or one node
+              const int n = i + nx * j;
+              double acc[F];
+              take_node_sums<F>(copies, boxes, nc, i, j, n, acc);
+              store(n, acc);
+            }
+          });
         });
   }
   return left;

@@ -7,10 +7,10 @@
 // the grid's left edge); each wall's last band ends at the facing wall (or the grid's edge).
 // The grid update adds each wall node's impulse into its line of nodes along the wall (a side
 // wall's node rows, a bottom or top wall's node columns); the lines are shared among the bands
-// when the caller takes them, line by line in one order. On the host a node row is one work item
-// of the grid update, so a side wall's line is added to by one thread; a bottom or top wall's
-// column has nodes on several rows beyond the wall (the stencils reach two rows past the
-// material), so each of four consecutive rows adds into a line of its own (row j into slot
+// when the caller takes them, line by line in one order. On the host a node row is one thread's
+// in the grid update (NodeItems), so a side wall's line is added to by one thread; a bottom or
+// top wall's column has nodes on several rows beyond the wall (the stencils reach two rows past
+// the material), so each of four consecutive rows adds into a line of its own (row j into slot
 // j mod 4), summed in order when taken: the bands are the same from run to run whatever the
 // threads. The sharing is linear in the impulse, so sharing the sum over the steps is sharing
 // each step's.

@@ -320,18 +320,17 @@ TEST(NodeItemsRowSpans, WholeRowsKeepToTheirSpansAndSingleNodesIgnoreThem) {
   ASSERT_EQ(rows.count(), 3);
   const int expect[3][2] = {{4, 6}, {0, -1}, {2, 9}};
   int visited = 0;
-  for (int t = 0; t < rows.count(); ++t) {
-    int j, i_begin, i_end;
-    rows.nodes(t, j, i_begin, i_end);
-    EXPECT_EQ(j, box.j0 + t);
-    if (expect[t][1] < expect[t][0]) {
-      EXPECT_LT(i_end, i_begin) << "row " << j;
-    } else {
-      EXPECT_EQ(i_begin, expect[t][0]) << "row " << j;
-      EXPECT_EQ(i_end, expect[t][1]) << "row " << j;
-    }
-    for (int i = i_begin; i <= i_end; ++i) ++visited;
-  }
+  for (int t = 0; t < rows.count(); ++t)
+    rows.visit(t, [&](const int j, const int i_begin, const int i_end) {
+      EXPECT_EQ(j, box.j0 + t);
+      if (expect[t][1] < expect[t][0]) {
+        EXPECT_LT(i_end, i_begin) << "row " << j;
+      } else {
+        EXPECT_EQ(i_begin, expect[t][0]) << "row " << j;
+        EXPECT_EQ(i_end, expect[t][1]) << "row " << j;
+      }
+      for (int i = i_begin; i <= i_end; ++i) ++visited;
+    });
   EXPECT_EQ(visited, 3 + 8);
   // A device's single-node items visit the whole box whatever the spans.
   const NodeItemsOf<false> nodes(box, spans.data());

@@ -39,12 +39,12 @@ void mirror_wall_reaction(const TwoPhaseGrid<MemorySpace>& g,
   Kokkos::parallel_reduce(
       "lsi::mpm::two_phase::mirror_reaction_nodes", range_policy<ExecSpace>(0, items.count()),
       KOKKOS_LAMBDA(const int t, double& sx, double& sy) {
-        int j, i_begin, i_end;
-        items.nodes(t, j, i_begin, i_end);
-        for (int ii = i_begin; ii <= i_end; ++ii) {
-          sx += S.force(ii + nx * j, 0);
-          sy += S.force(ii + nx * j, 1);
-        }
+        items.visit(t, [&](const int j, const int i_begin, const int i_end) {
+          for (int ii = i_begin; ii <= i_end; ++ii) {
+            sx += S.force(ii + nx * j, 0);
+            sy += S.force(ii + nx * j, 1);
+          }
+        });
       },
       fx, fy);
   const auto ms = p.solid.mass;

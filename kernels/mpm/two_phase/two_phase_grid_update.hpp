@@ -149,15 +149,15 @@ GridUpdateReport update_two_phase_nodes(const char* name, const TwoPhaseGrid<Mem
       name, range_policy<ExecSpace>(0, items.count()),
       KOKKOS_LAMBDA(const int t, double& wall_lost, double& drag_lost, double& seep, double& rx,
                     double& ry) {
-        int j, i_begin, i_end;
-        items.nodes(t, j, i_begin, i_end);
         TwoPhaseUpdateSums r{wall_lost, drag_lost, seep, rx, ry};
-        for (int ii = i_begin; ii <= i_end; ++ii) {  // a row of the region, or one node
-          const int i = ii + nx * j;
-          const TwoPhaseNodeSums n = node_sums(ii, j, i);
-          update_two_phase_node<SemiImplicit>(S, L, i, ii, j, n, walls, liquid_walls, ox, oy, dx,
-                                              tol, dt, gx, gy, r);
-        }
+        items.visit(t, [&](const int j, const int i_begin, const int i_end) {
+          for (int ii = i_begin; ii <= i_end; ++ii) {  // a row of the region, or one node
+            const int i = ii + nx * j;
+            const TwoPhaseNodeSums n = node_sums(ii, j, i);
+            update_two_phase_node<SemiImplicit>(S, L, i, ii, j, n, walls, liquid_walls, ox, oy, dx,
+                                                tol, dt, gx, gy, r);
+          }
+        });
         wall_lost = r.wall_lost;
         drag_lost = r.drag_lost;
         seep = r.seep;
