@@ -341,10 +341,13 @@ void check_shard_rows(const Study& study, const std::string& file, const SweepHe
   }
 }
 
-// Refuses, before anything is written, a run whose table cannot be held in memory (the rows
-// run now and the gathered table: twice the table, plus a column for the statistics) or whose
-// files cannot fit beside `out` (the result's table, and its copy when the run stops early: at
-// most twice the table).
+// Refuses, before anything is written, a run whose rows cannot be held in memory or whose files
+// cannot fit beside `out` (the result's table, and its copy when the run stops early: at most
+// twice the table). In memory: a chunk's rows, twice (the evaluator's and the table's), and the
+// values the statistics keep (sweeps/column_accumulator.hpp: the first values of each output
+// column and a few per cent of the rest; 4 % is counted). The whole table is held instead (twice,
+// plus a column) where the MPM runs again at the quantiles, and once more beside the chunks where
+// the statistics may read it back (designs whose samples do not come in random order).
 void check_sweep_fits(const Study& s, const SweepOptions& opt) {
   const std::uint64_t chunks = (s.samples + s.chunk_samples - 1) / s.chunk_samples;
   const std::uint64_t n = static_cast<std::uint64_t>(opt.shard_count);
@@ -355,14 +358,32 @@ void check_sweep_fits(const Study& s, const SweepOptions& opt) {
   // index (8), status (1), wall time (4), one double per input and per output column.
   const double row_bytes = 13.0 + 8.0 * double(s.inputs.size() + s.output_columns().size());
   const double table = rows * row_bytes;
+  const double columns = double(s.output_columns().size());
+  const bool describe_here = opt.shard_count == 1;
+  const bool keep_rows = describe_here && s.mpm_at_quantiles.has_value();
+  const bool may_read_back =
+      describe_here && (s.design == sweeps::Design::Grid || s.design == sweeps::Design::Points);
+  const double chunk = 2.0 * std::min(rows, double(s.chunk_samples)) * row_bytes;
+  double memory = chunk;
+  std::string what = "a chunk's rows (" + json_fields::format_number(row_bytes) + " bytes each)";
+  if (keep_rows) {
+    memory = 2.0 * table + 8.0 * rows;
+    what = "the sweep table (" + json_fields::format_number(rows) + " rows of " +
+           json_fields::format_number(row_bytes) + " bytes, held twice)";
+  } else if (describe_here) {
+    memory += 8.0 * columns * (double(sweeps::stats::kShiftValues) + 0.04 * rows);
+    what += " and the statistics' values";
+    if (may_read_back) {
+      memory += table;
+      what += " and the table, read back for the quantiles of a " +
+              std::string(s.design == sweeps::Design::Grid ? "grid" : "points") + " design";
+    }
+  }
   const std::string value = json_fields::format_number(double(s.samples));
   const std::string remedy = opt.shard_count > 1
                                  ? "more shards (--shard i/N) or fewer samples"
                                  : "fewer samples, or shards (--shard i/N) on several machines";
-  require_fits("samples", value,
-               "the sweep table (" + json_fields::format_number(rows) + " rows of " +
-                   json_fields::format_number(row_bytes) + " bytes, held twice)",
-               2.0 * table + 8.0 * rows, available_memory_bytes(), "memory", remedy);
+  require_fits("samples", value, what, memory, available_memory_bytes(), "memory", remedy);
   require_fits("samples", value, "the result file and its copy at a stop", 2.0 * table,
                free_disk_bytes(opt.out), "disk where --out goes", remedy + ", or another --out");
 }
@@ -514,15 +535,28 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
                          chunk_rows);
   const SweepHeader chunk_header = header_of(study, opt.shard, opt.shard_count);
   std::vector<StoredChunk> stored;  // every compressed chunk of the table, where it lies
-  // The rows for the statistics: the inputs (and wall times) only where the MPM at the
-  // quantiles needs them; the file has them all.
-  SweepTable all = SweepTable::with_columns(paths, study.output_columns());
-  const bool keep_inputs = study.mpm_at_quantiles.has_value();
+  // The rows go into the statistics as they finish (model/sweep_statistics.hpp), and are not
+  // kept; only where the MPM runs again at the quantiles (study.mpm_at_quantiles), which needs
+  // their inputs, are they kept whole. A shard has no statistics (merge describes the shards'
+  // rows together).
+  const bool describe_here = opt.shard_count == 1;
+  const bool keep_rows = describe_here && study.mpm_at_quantiles.has_value();
+  SweepTable all = SweepTable::with_columns(paths, study.output_columns());  // keep_rows only
+  std::optional<SweepStatisticsAccumulator> accumulator;
+  if (describe_here && !keep_rows) accumulator.emplace(study, study.output_columns());
+  std::vector<std::uint64_t> failure_index;
+  std::vector<std::string> failure_reason;
+  std::uint64_t rows_done = 0, rows_ok = 0;
   auto gather = [&](const SweepTable& rows) {
-    if (keep_inputs)
+    if (keep_rows)
       all.append(rows);
-    else
-      all.append_results(rows);
+    else if (accumulator)
+      accumulator->add(rows);
+    failure_index.insert(failure_index.end(), rows.failure_index.begin(), rows.failure_index.end());
+    failure_reason.insert(failure_reason.end(), rows.failure_reason.begin(),
+                          rows.failure_reason.end());
+    rows_done += rows.rows();
+    for (const std::int8_t s : rows.status) rows_ok += s == std::int8_t(SampleStatus::ok);
   };
   std::vector<double> rule_values;  // the values the interval rule has seen so far
   if (!earlier.empty()) {
@@ -531,10 +565,8 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
       e.table_file = table_name;
       e.chunk_rows = chunk_rows;
       stored.insert(stored.end(), e.chunks.begin(), e.chunks.end());
-      all.failure_index.insert(all.failure_index.end(), e.failure_index.begin(),
-                               e.failure_index.end());
-      all.failure_reason.insert(all.failure_reason.end(), e.failure_reason.begin(),
-                                e.failure_reason.end());
+      failure_index.insert(failure_index.end(), e.failure_index.begin(), e.failure_index.end());
+      failure_reason.insert(failure_reason.end(), e.failure_reason.begin(), e.failure_reason.end());
     }
     table.restore(earlier.back().stored_rows, earlier.back().pending);
     hdf5::fsync_file(table.path());
@@ -545,14 +577,11 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     rows.failure_index.clear();
     rows.failure_reason.clear();
     gather(rows);
-    collect_rule_values(study, all, rule_values);
+    collect_rule_values(study, rows, rule_values);
     earlier.clear();
   }
   for (const auto& t : old_tables) fs::remove(t);
-  if (keep_inputs)
-    all.reserve(my_samples);
-  else
-    all.reserve_results(my_samples);
+  if (keep_rows) all.reserve(my_samples);
 
   ensure_kokkos();
   ChunkEvaluator evaluator(study);
@@ -562,7 +591,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   std::uint64_t run_here = 0;
   double evaluate_s = 0.0, write_s = 0.0, gather_s = 0.0;
   // Each chunk's entry is written once the table file's fsync, which runs while the chunk's rows
-  // are gathered, has returned.
+  // are described, has returned.
   SweepJournal journal(table.path(), chunk_header);
   for (std::size_t m = 0; m < mine.size() && !rule_met && stopped_by.empty(); ++m) {
     if (done[m]) continue;
@@ -616,12 +645,23 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   h.wall_seconds = seconds_since(t0);
   outcome.complete = complete;
   outcome.stopped_by = stopped_by;
-  outcome.samples_done = all.rows();
+  outcome.samples_done = rows_done;
   outcome.samples_run = run_here;
-  for (auto s : all.status) outcome.samples_ok += s == static_cast<std::int8_t>(SampleStatus::ok);
+  outcome.samples_ok = rows_ok;
   gather_s += seconds_since(ts);
   ts = Clock::now();
-  if (opt.shard_count == 1) outcome.statistics = sweep_statistics(study, all);
+  // The table file's rows, read back only where a column's quantiles need all its values.
+  std::optional<SweepTable> whole;
+  const auto whole_table = [&]() -> const SweepTable& {
+    whole = table.read_stored();
+    whole->append(table.pending());
+    return *whole;
+  };
+  if (keep_rows)
+    outcome.statistics = sweep_statistics(study, all);
+  else if (accumulator)
+    outcome.statistics = accumulator->result(whole_table);
+  whole.reset();
   const double statistics_s = seconds_since(ts);
   ts = Clock::now();
   if (opt.shard_count == 1 && complete && study.mpm_at_quantiles)
@@ -634,7 +674,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     // kill during the removal leaves no parts to resume.
     if (const std::string why = unsafe_output_reason(opt.out); !why.empty())
       throw std::runtime_error("lsi sweep: cannot write '" + opt.out + "': " + why);
-    table.finish(h, all.failure_index, all.failure_reason, statistics);
+    table.finish(h, failure_index, failure_reason, statistics);
     hdf5::fsync_file(table.path());
     if (std::rename(table.path().c_str(), opt.out.c_str()) != 0)
       throw std::runtime_error("lsi sweep: cannot rename '" + table.path() + "' onto '" + opt.out +
@@ -649,7 +689,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
       SweepTableStream copy(tmp, paths, study.output_columns(), table.rows(), chunk_rows);
       copy.adopt(table.path(), stored);
       copy.restore(table.stored_rows(), table.pending());
-      copy.finish(h, all.failure_index, all.failure_reason, statistics);
+      copy.finish(h, failure_index, failure_reason, statistics);
     });
   }
   gather_s += seconds_since(ts);

@@ -16,6 +16,10 @@
 //                              (io/sweep_table_stream.hpp): its chunks compressed on the threads
 //                              (io/compressed_chunks.hpp) and written, then the file finished;
 //                              counter stored_fraction = the file's bytes / the table's
+//   BM_column_accumulator / BM_describe  one output column's statistics (2^23 values, one thread)
+//                              as `lsi sweep` takes them, a chunk at a time, and as `lsi merge`
+//                              does, from the gathered column; counter kept_fraction = the
+//                              values the accumulator keeps / the column's
 // items_per_second = samples per second; per-sample cost = 1 / items_per_second.
 // Run (docs/notes/performance.md, "Sweeps", has the numbers and the machine):
 //   OMP_NUM_THREADS=2 OMP_PROC_BIND=false OMP_WAIT_POLICY=passive build/bench/bench_sweep
@@ -36,6 +40,8 @@
 #include "model/sweep_table.hpp"
 #include "kernels/closed_form/batch.hpp"
 #include "sweeps/closed_form_sweep.hpp"
+#include "sweeps/column_accumulator.hpp"
+#include "sweeps/statistics.hpp"
 #include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 #include "io/study_parser.hpp"
 #include "io/sweep_file.hpp"
@@ -343,6 +349,57 @@ void BM_table_stream(benchmark::State& state) {
   state.SetBytesProcessed(static_cast<std::int64_t>(double(state.iterations()) * table_bytes(t)));
 }
 BENCHMARK(BM_table_stream)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The statistics of one output column, the analytical model's peak force of the 2^20-row chunk
+// fed 8 times (2^23 values), on one thread: BM_column_accumulator hands it over a chunk at a
+// time to a ColumnAccumulator and describes it at the end (sweeps/column_accumulator.hpp), as
+// `lsi sweep` does; BM_describe describes the gathered column (sweeps/statistics.hpp), as
+// `lsi merge` does. items_per_second = values per second.
+const std::vector<double>& peak_force_column() {
+  static const std::vector<double> column = [] {
+    const SweepTable t = chunk_table();
+    std::size_t c = 0;
+    while (c + 1 < t.output_columns.size() && t.output_columns[c] != "analytical/peak_force") ++c;
+    return t.outputs[c];
+  }();
+  return column;
+}
+constexpr int kColumnFeeds = 8;
+
+void BM_column_accumulator(benchmark::State& state) {
+  const std::vector<double>& v = peak_force_column();
+  const Study& s = study();
+  double q50 = 0.0;
+  for (auto _ : state) {
+    sweeps::ColumnAccumulator a({2.0e5}, s.confidence);
+    for (int k = 0; k < kColumnFeeds; ++k) a.add(v.data(), v.size());
+    sweeps::OrderScratch scratch;
+    q50 = a.describe([&] { return std::vector<double>(); }, scratch).q50;
+    state.counters["kept_fraction"] =
+        double(a.values_kept()) / (double(kColumnFeeds) * double(v.size()));
+  }
+  benchmark::DoNotOptimize(q50);
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * kColumnFeeds * std::int64_t(v.size()));
+}
+BENCHMARK(BM_column_accumulator)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_describe(benchmark::State& state) {
+  const std::vector<double>& v = peak_force_column();
+  const Study& s = study();
+  double q50 = 0.0;
+  for (auto _ : state) {
+    std::vector<double> all;
+    all.reserve(kColumnFeeds * v.size());
+    for (int k = 0; k < kColumnFeeds; ++k) all.insert(all.end(), v.begin(), v.end());
+    sweeps::OrderScratch scratch;
+    q50 = sweeps::describe(all, scratch, s.confidence).q50;
+    sweeps::ExceedanceEstimate e = sweeps::exceedance(all, 2.0e5, s.confidence);
+    benchmark::DoNotOptimize(e);
+  }
+  benchmark::DoNotOptimize(q50);
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * kColumnFeeds * std::int64_t(v.size()));
+}
+BENCHMARK(BM_describe)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -106,13 +106,18 @@ def group_sweep(build, repetitions):
         for _ in range(repetitions):
             kernel_runs.append(benchmark(
                 build, "bench_sweep",
-                "BM_sampler|BM_sweep_kernel/methods:3|BM_models_only/methods:3|BM_table_stream"))
+                "BM_sampler|BM_sweep_kernel/methods:3|BM_models_only/methods:3|BM_table_stream|"
+                "BM_column_accumulator"))
             sweep_runs.append(sweep_once(build, tmp))
     k = medians(kernel_runs, rate)
     sampler = next(v for n, v in k.items() if n.startswith("BM_sampler"))
     kernel = next(v for n, v in k.items() if n.startswith("BM_sweep_kernel"))
     models = next(v for n, v in k.items() if n.startswith("BM_models_only"))
     table_write = next(v for n, v in k.items() if n.startswith("BM_table_stream"))
+    column = next(v for n, v in k.items() if n.startswith("BM_column_accumulator"))
+    kept = statistics.median(
+        next(v for n, v in r.items() if n.startswith("BM_column_accumulator"))["kept_fraction"]
+        for r in kernel_runs)
     stored = statistics.median(
         next(v for n, v in r.items() if n.startswith("BM_table_stream"))["stored_fraction"]
         for r in kernel_runs)
@@ -141,6 +146,8 @@ def group_sweep(build, repetitions):
         ("both models alone, samples/s", models, None, ""),
         ("result table written compressed (2^20 rows; the file %.1f %% of the table's bytes), "
          "samples/s" % (100.0 * stored), table_write, None, ""),
+        ("one output column's statistics taken a chunk at a time (2^23 values, one thread; "
+         "%.1f %% of them kept), values/s" % (100.0 * kept), column, None, ""),
     ]
     return rows, "sweep", "bench_sweep, lsi sweep " + STUDY
 

@@ -9,7 +9,6 @@
 #include <map>
 
 #include "model/host_threads.hpp"
-#include "sweeps/huge_pages.hpp"
 #include "sweeps/statistics.hpp"
 
 namespace lsi {
@@ -53,78 +52,114 @@ json json_number(double v) {
   return v > 0 ? "inf" : "-inf";
 }
 
-namespace {
+SweepStatisticsAccumulator::SweepStatisticsAccumulator(
+    const Study& study, const std::vector<std::string>& output_columns)
+    : study_(study), columns_(output_columns), threshold_of_(output_columns.size()) {
+  column_.reserve(columns_.size());
+  for (std::size_t c = 0; c < columns_.size(); ++c) {
+    const std::string& column = columns_[c];
+    const std::string method = column.substr(0, column.find('/'));
+    const std::string output = column.substr(column.find('/') + 1);
+    std::vector<double> above;
+    for (std::size_t t = 0; t < study.thresholds.size(); ++t) {
+      const StudyThreshold& th = study.thresholds[t];
+      if (th.output != output || (!th.method.empty() && th.method != method)) continue;
+      threshold_of_[c].push_back(t);
+      above.push_back(th.above);
+    }
+    column_.emplace_back(std::move(above), study.confidence);
+  }
+}
 
-json statistics_of(const Study& study, const SweepTable& table) {
-  json j;
-  const std::size_t n = table.rows();
+void SweepStatisticsAccumulator::add(const SweepTable& rows) {
+  const std::size_t n = rows.rows();
   const auto is_ok = [&](std::size_t i) {
-    return table.status[i] == static_cast<std::int8_t>(SampleStatus::ok);
+    return rows.status[i] == static_cast<std::int8_t>(SampleStatus::ok);
   };
   std::size_t ok_count = 0;
-  std::map<std::string, std::size_t> failed;
   for (std::size_t i = 0; i < n; ++i) {
     if (is_ok(i))
       ++ok_count;
     else
-      ++failed[describe(static_cast<SampleStatus>(table.status[i]))];
+      ++failed_[describe(static_cast<SampleStatus>(rows.status[i]))];
   }
+  rows_ += n;
+  ok_ += ok_count;
   const bool all_ok = ok_count == n;
   std::vector<std::size_t> ok;  // the rows of the ok samples, where some failed
   if (!all_ok) {
-    sweeps::reserve_on_huge_pages(ok, ok_count);
+    ok.reserve(ok_count);
     for (std::size_t i = 0; i < n; ++i)
       if (is_ok(i)) ok.push_back(i);
   }
+  // Each column on its own (its ok values in sample order), the columns in parallel.
+  const std::size_t columns = columns_.size();
+  std::atomic<std::size_t> next{0};
+  on_host_threads(std::min(columns, host_thread_count()), [&](std::size_t) {
+    std::vector<double> copy;  // the column's ok values, where some failed
+    for (std::size_t c; (c = next.fetch_add(1)) < columns;) {
+      const std::vector<double>& all = rows.outputs[c];
+      if (all_ok) {
+        column_[c].add(all.data(), n);
+        continue;
+      }
+      copy.clear();
+      for (std::size_t i : ok) copy.push_back(all[i]);
+      column_[c].add(copy.data(), copy.size());
+    }
+  });
+}
+
+json SweepStatisticsAccumulator::result(const std::function<const SweepTable&()>& whole_table) {
+  const Study& study = study_;
+  json j;
   j["design"] = design_name(study.design);
   j["samples_planned"] = study.samples;
-  j["samples_done"] = n;
-  j["samples_ok"] = ok_count;
-  j["samples_failed"] = failed;
+  j["samples_done"] = rows_;
+  j["samples_ok"] = ok_;
+  j["samples_failed"] = failed_;
   j["confidence"] = study.confidence;
   if (study.design != sweeps::Design::MonteCarlo)
     j["note"] =
         "confidence intervals assume independent samples; for Latin-hypercube, Sobol "
         "and grid designs and for given points they are indicative only";
-  // Each column is described on its own (its ok values in sample order), so the columns run in
-  // parallel and the results do not depend on the thread count.
-  const std::size_t columns = table.output_columns.size();
+  const std::size_t columns = columns_.size();
+  // The whole table, read once, where a column's kept values miss one of its ranks.
+  const SweepTable* table = nullptr;
+  for (std::size_t c = 0; c < columns && table == nullptr; ++c)
+    if (column_[c].invalid_count() == 0 && column_[c].needs_column()) table = &whole_table();
   std::vector<json> column_stats(columns);
   std::vector<json> column_exceed(columns, json::array());
   std::vector<std::exception_ptr> column_error(columns);
-  // copy (the ok values, where some failed) and scratch: a thread's buffers, kept from column to
-  // column.
-  auto describe_column = [&](std::size_t c, std::vector<double>& copy,
-                             sweeps::OrderScratch& scratch) {
-    const std::string& column = table.output_columns[c];
-    if (!all_ok) {
-      copy.clear();
-      sweeps::reserve_on_huge_pages(copy, ok_count);
-      for (std::size_t i : ok) copy.push_back(table.outputs[c][i]);
-    }
-    const std::vector<double>& v = all_ok ? table.outputs[c] : copy;
+  auto describe_column = [&](std::size_t c, sweeps::OrderScratch& scratch) {
+    const std::string& column = columns_[c];
+    sweeps::ColumnAccumulator& a = column_[c];
     json& o = column_stats[c];
-    o["count"] = v.size();
-    std::size_t nan_count = 0;
-    for (double x : v) nan_count += std::isnan(x) || x == -INFINITY;
-    if (v.empty() || nan_count > 0) {
+    o["count"] = a.count();
+    if (a.count() == 0 || a.invalid_count() > 0) {
       // An ok sample always has a value; a NaN here would be a bug, reported rather than hidden.
-      if (nan_count > 0) o["error"] = std::to_string(nan_count) + " ok samples have no value";
+      if (a.invalid_count() > 0)
+        o["error"] = std::to_string(a.invalid_count()) + " ok samples have no value";
       return;
     }
-    const std::string method = column.substr(0, column.find('/'));
-    const std::string output = column.substr(column.find('/') + 1);
-    for (const auto& t : study.thresholds) {
-      if (t.output != output || (!t.method.empty() && t.method != method)) continue;
-      const sweeps::ExceedanceEstimate e = sweeps::exceedance(v, t.above, study.confidence);
+    for (std::size_t k = 0; k < threshold_of_[c].size(); ++k) {
+      const sweeps::ExceedanceEstimate e = a.exceedance(k);
       column_exceed[c].push_back({{"column", column},
-                                  {"above", t.above},
+                                  {"above", study.thresholds[threshold_of_[c][k]].above},
                                   {"count_above", e.exceed_count},
                                   {"count", e.count},
                                   {"probability", json_number(e.probability)},
                                   {"ci", interval(e.ci)}});
     }
-    const sweeps::OutputStatistics s = sweeps::describe(v, scratch, study.confidence);
+    const auto ok_values = [&]() {
+      std::vector<double> v;
+      v.reserve(a.count());
+      for (std::size_t i = 0; i < table->rows(); ++i)
+        if (table->status[i] == static_cast<std::int8_t>(SampleStatus::ok))
+          v.push_back(table->outputs[c][i]);
+      return v;
+    };
+    const sweeps::OutputStatistics s = a.describe(ok_values, scratch);
     o["infinite_count"] = s.infinite_count;
     o["mean"] = json_number(s.mean);
     o["mean_ci"] = interval(s.mean_ci);
@@ -140,11 +175,10 @@ json statistics_of(const Study& study, const SweepTable& table) {
   };
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
-    std::vector<double> v;
     sweeps::OrderScratch scratch;
     for (std::size_t c; (c = next.fetch_add(1)) < columns;) {
       try {
-        describe_column(c, v, scratch);
+        describe_column(c, scratch);
       } catch (...) {
         column_error[c] = std::current_exception();
       }
@@ -155,7 +189,7 @@ json statistics_of(const Study& study, const SweepTable& table) {
   json exceed = json::array();
   for (std::size_t c = 0; c < columns; ++c) {
     if (column_error[c]) std::rethrow_exception(column_error[c]);
-    outputs[table.output_columns[c]] = std::move(column_stats[c]);
+    outputs[columns_[c]] = std::move(column_stats[c]);
     for (auto& e : column_exceed[c]) exceed.push_back(std::move(e));
   }
   j["outputs"] = outputs;
@@ -163,10 +197,10 @@ json statistics_of(const Study& study, const SweepTable& table) {
   return j;
 }
 
-}  // namespace
-
 json sweep_statistics(const Study& study, const SweepTable& table) {
-  return statistics_of(study, table);
+  SweepStatisticsAccumulator a(study, table.output_columns);
+  a.add(table);
+  return a.result([&]() -> const SweepTable& { return table; });
 }
 
 std::string sweep_statistics_table(const json& s) {

@@ -228,104 +228,160 @@ inline void check_values(const std::vector<double>& values, const char* who) {
           "] = " + detail::format_number(values[i]) +
           ": must be a number or +inf (exclude failed samples before the statistics)");
 }
+
+// Eight compensated (Kahan) sums: the i-th term added (counting from the first) goes into lane
+// i % 8, each lane's compensation is taken back before the lanes are added pairwise. The error
+// does not grow with the number of terms as a plain sum's does, and the result depends on the
+// terms and their order only, not on how they were handed over (one at a time or in blocks).
+// Beside them run eight plain sums: where a compensated lane overflows (its compensation then
+// turns it into NaN), total() is theirs, infinite.
+class LaneSum {
+ public:
+  void add(const double x) {
+    add_to(static_cast<int>(count_ & 7), x);
+    ++count_;
+  }
+  // add(term(i)) for i in [0, n). The blocks of eight run on local copies of the lanes (the
+  // terms' reads cannot alias them: they stay in registers).
+  template <class Term>
+  void add_terms(const std::size_t n, const Term& term) {
+    std::size_t i = 0;
+    for (; i < n && (count_ & 7) != 0; ++i) add(term(i));
+    double sum[8], lost[8], plain[8];
+    for (int l = 0; l < 8; ++l) {
+      sum[l] = sum_[l];
+      lost[l] = lost_[l];
+      plain[l] = plain_[l];
+    }
+    const std::size_t from = i;
+    for (; i + 8 <= n; i += 8)
+      for (int l = 0; l < 8; ++l) {
+        const double x = term(i + std::size_t(l));
+        const double y = x - lost[l], t = sum[l] + y;
+        lost[l] = (t - sum[l]) - y;
+        sum[l] = t;
+        plain[l] += x;
+      }
+    for (int l = 0; l < 8; ++l) {
+      sum_[l] = sum[l];
+      lost_[l] = lost[l];
+      plain_[l] = plain[l];
+    }
+    count_ += i - from;
+    for (; i < n; ++i) add(term(i));
+  }
+  double total() const {
+    double s[8];
+    for (int l = 0; l < 8; ++l) s[l] = sum_[l] - lost_[l];
+    const double t = ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+    if (std::isfinite(t)) return t;
+    return ((plain_[0] + plain_[1]) + (plain_[2] + plain_[3])) +
+           ((plain_[4] + plain_[5]) + (plain_[6] + plain_[7]));
+  }
+
+ private:
+  void add_to(const int l, const double x) {
+    const double y = x - lost_[l], t = sum_[l] + y;
+    lost_[l] = (t - sum_[l]) - y;
+    sum_[l] = t;
+    plain_[l] += x;
+  }
+  double sum_[8] = {}, lost_[8] = {}, plain_[8] = {};
+  std::uint64_t count_ = 0;
+};
+
+// The mean and the standard deviation's sums: the sum of the values, and about a shift K the
+// sums of (x - K)^2 and of (x - K), whence var = (ss - c^2 / n) / (n - 1) (the corrected
+// two-pass formula, exact for any K in exact arithmetic; in floating point its error grows with
+// (mean - K)^2 / var). K is the mean of the first `shift_values` values (of all, where there are
+// no more: the two-pass algorithm itself), so the sums can run as the values arrive, once those
+// first values are in.
+constexpr std::size_t kShiftValues = std::size_t{1} << 18;
+
+struct Moments {
+  double mean, standard_deviation;
+};
+
+inline Moments moments_from_sums(const std::size_t n, const double sum, const double ss,
+                                 const double c) {
+  Moments m{sum / static_cast<double>(n), std::numeric_limits<double>::quiet_NaN()};
+  if (n >= 2) {
+    const double var = (ss - c * c / static_cast<double>(n)) / static_cast<double>(n - 1);
+    m.standard_deviation = std::sqrt(std::max(0.0, var));
+  }
+  return m;
+}
+
+// The ranks describe() reads: the extremes, and per quantile the two of type 7 and its
+// interval's bounds; ascending, without repeats.
+struct DescribeRanks {
+  std::size_t rank[14];
+  std::size_t count;
+  OrderStatisticRanks bounds[3];
+  static constexpr double q[3] = {0.05, 0.50, 0.95};
+};
+
 }  // namespace stats
 
-// describe() of `values`, left as they are, with `scratch` as the buffers of the order
-// statistics (order_statistics.hpp): a caller that describes many columns keeps them. The
-// quantiles and their intervals read a dozen order statistics, selected rather than sorted for;
-// the mean and the sums of the standard deviation run over the values in their order, in eight
-// interleaved compensated sums (a fixed order: the same results on any thread count).
-inline OutputStatistics describe(const std::vector<double>& values, OrderScratch& scratch,
-                                 double confidence = 0.95) {
-  stats::check_values(values, "describe");
-  stats::check_confidence(confidence);
-  const std::size_t n = values.size();
-  const double* const v = values.data();
-  // The ranks read: the extremes, and per quantile the two of type 7 and its interval's bounds.
-  constexpr double q[3] = {0.05, 0.50, 0.95};
-  OrderStatisticRanks bounds[3];
-  std::size_t ranks[14];
+inline stats::DescribeRanks describe_ranks(const std::size_t n, const double confidence) {
+  stats::DescribeRanks r;
+  std::size_t* const ranks = r.rank;
   std::size_t count = 0;
   ranks[count++] = 0;
   ranks[count++] = n - 1;
   for (int j = 0; j < 3; ++j) {
-    const std::size_t k = type7_position(n, q[j]).k;
+    const std::size_t k = type7_position(n, r.q[j]).k;
     ranks[count++] = std::min(k, n - 1);
     ranks[count++] = std::min(k + 1, n - 1);
-    bounds[j] = order_statistic_ranks(n, q[j], confidence);
-    if (bounds[j].lower >= 1) ranks[count++] = static_cast<std::size_t>(bounds[j].lower - 1);
-    if (bounds[j].upper <= static_cast<long long>(n))
-      ranks[count++] = static_cast<std::size_t>(bounds[j].upper - 1);
+    r.bounds[j] = order_statistic_ranks(n, r.q[j], confidence);
+    if (r.bounds[j].lower >= 1) ranks[count++] = static_cast<std::size_t>(r.bounds[j].lower - 1);
+    if (r.bounds[j].upper <= static_cast<long long>(n))
+      ranks[count++] = static_cast<std::size_t>(r.bounds[j].upper - 1);
   }
   for (std::size_t i = 1; i < count; ++i)  // ascending (an insertion sort of at most 14)
     for (std::size_t j = i; j > 0 && ranks[j - 1] > ranks[j]; --j)
       std::swap(ranks[j - 1], ranks[j]);
-  count = static_cast<std::size_t>(std::unique(ranks, ranks + count) - ranks);
-  double at_rank[14];
-  order_statistics(v, n, ranks, count, at_rank, scratch);
-  const auto at = [&](const std::size_t r) {
-    return at_rank[std::lower_bound(ranks, ranks + count, r) - ranks];
+  r.count = static_cast<std::size_t>(std::unique(ranks, ranks + count) - ranks);
+  return r;
+}
+
+// OutputStatistics of n values (infinite of them +inf) from their moments (ignored where some
+// are infinite) and the values at the ranks of describe_ranks (at_rank[j] at rank r.rank[j]).
+inline OutputStatistics describe_from(const std::size_t n, const std::size_t infinite,
+                                      const stats::Moments& m, const stats::DescribeRanks& r,
+                                      const double* const at_rank, const double confidence) {
+  const auto at = [&](const std::size_t rank) {
+    return at_rank[std::lower_bound(r.rank, r.rank + r.count, rank) - r.rank];
   };
   OutputStatistics s;
   s.count = n;
   s.min = at(0);
   s.max = at(n - 1);
-  std::size_t infinite = 0;
-  for (std::size_t i = 0; i < n; ++i) infinite += v[i] == stats::inf;
   s.infinite_count = infinite;
-  // Compensated (Kahan) sums in eight lanes, term i in lane i % 8, each lane's compensation
-  // taken back before the lanes are added pairwise: the error does not grow with the number of
-  // values as a plain sum's does.
-  const auto lane_sum = [n](const auto& term) {
-    double sum[8] = {0, 0, 0, 0, 0, 0, 0, 0}, lost[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-    const auto add = [&](const int l, const double x) {
-      const double y = x - lost[l], t = sum[l] + y;
-      lost[l] = (t - sum[l]) - y;
-      sum[l] = t;
-    };
-    std::size_t i = 0;
-    for (; i + 8 <= n; i += 8)
-      for (int l = 0; l < 8; ++l) add(l, term(i + l));
-    for (; i < n; ++i) add(static_cast<int>(i % 8), term(i));
-    for (int l = 0; l < 8; ++l) sum[l] -= lost[l];
-    const double s =
-        ((sum[0] + sum[1]) + (sum[2] + sum[3])) + ((sum[4] + sum[5]) + (sum[6] + sum[7]));
-    if (std::isfinite(s)) return s;
-    // A lane overflowed (its compensation then turns the lane into NaN): the plain sum, infinite.
-    double plain = 0.0;
-    for (std::size_t k = 0; k < n; ++k) plain += term(k);
-    return plain;
-  };
-  if (s.infinite_count > 0) {
+  if (infinite > 0) {
     s.mean = s.standard_deviation = stats::inf;
     s.mean_ci = {stats::inf, stats::inf};
   } else {
-    s.mean = lane_sum([v](std::size_t i) { return v[i]; }) / static_cast<double>(n);
-    const double mean = s.mean;
-    // Two-pass, with the compensation term of the corrected two-pass algorithm.
-    const double ss = lane_sum([v, mean](std::size_t i) { return (v[i] - mean) * (v[i] - mean); });
-    const double c = lane_sum([v, mean](std::size_t i) { return v[i] - mean; });
+    s.mean = m.mean;
+    s.standard_deviation = m.standard_deviation;
     if (n >= 2) {
-      const double var = (ss - c * c / static_cast<double>(n)) / static_cast<double>(n - 1);
-      s.standard_deviation = std::sqrt(std::max(0.0, var));
       const double t =
           stats::student_t_quantile(0.5 + 0.5 * confidence, static_cast<double>(n - 1));
       const double half = t * s.standard_deviation / std::sqrt(static_cast<double>(n));
       s.mean_ci = {s.mean - half, s.mean + half};
     } else {
-      s.standard_deviation = std::numeric_limits<double>::quiet_NaN();
       s.mean_ci = {-stats::inf, stats::inf};
     }
   }
   double quantile[3];
   Interval interval[3];
   for (int j = 0; j < 3; ++j) {
-    quantile[j] = quantile_type7(n, q[j], at);
+    quantile[j] = quantile_type7(n, r.q[j], at);
     interval[j].low =
-        bounds[j].lower <= 0 ? -stats::inf : at(static_cast<std::size_t>(bounds[j].lower - 1));
-    interval[j].high = bounds[j].upper > static_cast<long long>(n)
+        r.bounds[j].lower <= 0 ? -stats::inf : at(static_cast<std::size_t>(r.bounds[j].lower - 1));
+    interval[j].high = r.bounds[j].upper > static_cast<long long>(n)
                            ? stats::inf
-                           : at(static_cast<std::size_t>(bounds[j].upper - 1));
+                           : at(static_cast<std::size_t>(r.bounds[j].upper - 1));
   }
   s.q05 = quantile[0];
   s.q50 = quantile[1];
@@ -336,6 +392,43 @@ inline OutputStatistics describe(const std::vector<double>& values, OrderScratch
   return s;
 }
 
+// describe() of `values`, left as they are, with `scratch` as the buffers of the order
+// statistics (order_statistics.hpp): a caller that describes many columns keeps them. The
+// quantiles and their intervals read a dozen order statistics, selected rather than sorted for;
+// the sums of the mean and the standard deviation run over the values in their order
+// (stats::LaneSum, about the mean of the first `shift_values` values: stats::kShiftValues), so
+// the results do not depend on the thread count, and a column fed a batch at a time
+// (sweeps/column_accumulator.hpp) gets the same.
+inline OutputStatistics describe(const std::vector<double>& values, OrderScratch& scratch,
+                                 double confidence = 0.95,
+                                 std::size_t shift_values = stats::kShiftValues) {
+  stats::check_values(values, "describe");
+  stats::check_confidence(confidence);
+  const std::size_t n = values.size();
+  const double* const v = values.data();
+  const stats::DescribeRanks r = describe_ranks(n, confidence);
+  double at_rank[14];
+  order_statistics(v, n, r.rank, r.count, at_rank, scratch);
+  std::size_t infinite = 0;
+  for (std::size_t i = 0; i < n; ++i) infinite += v[i] == stats::inf;
+  stats::Moments m{stats::inf, stats::inf};
+  if (infinite == 0) {
+    const std::size_t p = std::min(n, std::max<std::size_t>(shift_values, 1));
+    stats::LaneSum sum, ss, c;
+    sum.add_terms(n, [v](std::size_t i) { return v[i]; });
+    double k = sum.total() / static_cast<double>(n);
+    if (p < n) {
+      stats::LaneSum first;
+      first.add_terms(p, [v](std::size_t i) { return v[i]; });
+      k = first.total() / static_cast<double>(p);
+    }
+    ss.add_terms(n, [v, k](std::size_t i) { return (v[i] - k) * (v[i] - k); });
+    c.add_terms(n, [v, k](std::size_t i) { return v[i] - k; });
+    m = stats::moments_from_sums(n, sum.total(), ss.total(), c.total());
+  }
+  return describe_from(n, infinite, m, r, at_rank, confidence);
+}
+
 // Throws std::invalid_argument on NaN or -inf or empty input (the caller excludes failed samples), and
 // for a confidence outside (0,1).
 inline OutputStatistics describe(const std::vector<double>& values, double confidence = 0.95) {
@@ -343,16 +436,12 @@ inline OutputStatistics describe(const std::vector<double>& values, double confi
   return describe(values, scratch, confidence);
 }
 
-// P(value > threshold), Wilson score interval at `confidence`. Same input rules as describe().
-inline ExceedanceEstimate exceedance(const std::vector<double>& values, double threshold,
-                                     double confidence = 0.95) {
-  stats::check_values(values, "exceedance");
-  stats::check_confidence(confidence);
-  if (std::isnan(threshold))
-    throw std::invalid_argument("exceedance: threshold = nan: must be a number");
-  ExceedanceEstimate e{threshold, 0, values.size(), 0.0, {0, 0}};
-  for (double v : values)
-    if (v > threshold) ++e.exceed_count;
+// P(value > threshold) from the count of values above it among `count`, with the Wilson score
+// interval at `confidence` (count >= 1).
+inline ExceedanceEstimate exceedance_from_counts(const double threshold,
+                                                 const std::size_t exceed_count,
+                                                 const std::size_t count, const double confidence) {
+  ExceedanceEstimate e{threshold, exceed_count, count, 0.0, {0, 0}};
   const double n = static_cast<double>(e.count), k = static_cast<double>(e.exceed_count);
   e.probability = k / n;
   const double z = normal_quantile(0.5 + 0.5 * confidence), z2 = z * z;
@@ -363,6 +452,18 @@ inline ExceedanceEstimate exceedance(const std::vector<double>& values, double t
   e.ci.low = e.exceed_count == 0 ? 0.0 : std::max(0.0, center - half);
   e.ci.high = e.exceed_count == e.count ? 1.0 : std::min(1.0, center + half);
   return e;
+}
+
+// P(value > threshold), Wilson score interval at `confidence`. Same input rules as describe().
+inline ExceedanceEstimate exceedance(const std::vector<double>& values, double threshold,
+                                     double confidence = 0.95) {
+  stats::check_values(values, "exceedance");
+  stats::check_confidence(confidence);
+  if (std::isnan(threshold))
+    throw std::invalid_argument("exceedance: threshold = nan: must be a number");
+  std::size_t above = 0;
+  for (double v : values) above += v > threshold;
+  return exceedance_from_counts(threshold, above, values.size(), confidence);
 }
 
 }  // namespace lsi::sweeps

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
 #include <vector>
 
 #include "io/study_parser.hpp"
@@ -89,6 +90,52 @@ TEST(SweepStatistics, EachColumnDescribesItsOkValues) {
         EXPECT_EQ(o[std::string(name) + "_ci"], ci) << c << name;
       }
     }
+  }
+}
+
+// Rows [from, from + count) of t (statuses and outputs).
+lsi::SweepTable rows_of(const lsi::SweepTable& t, std::size_t from, std::size_t count) {
+  lsi::SweepTable r = lsi::SweepTable::with_columns(t.input_paths, t.output_columns);
+  const auto at = [&](const auto& v) {
+    return std::vector<typename std::decay_t<decltype(v)>::value_type>(
+        v.begin() + std::ptrdiff_t(from), v.begin() + std::ptrdiff_t(from + count));
+  };
+  r.index = at(t.index);
+  r.status = at(t.status);
+  for (std::size_t c = 0; c < t.outputs.size(); ++c) r.outputs[c] = at(t.outputs[c]);
+  return r;
+}
+
+// The statistics of rows added a chunk at a time are those of the whole table, bit for bit
+// (JSON equality), and the table is asked for only where the values came in order.
+TEST(SweepStatistics, RowsAddedAChunkAtATimeGiveTheWholeTablesStatistics) {
+  const lsi::Study study = two_output_study();
+  // 6000 rows: fewer than the accumulator's first values (described whole); 300000 rows in the
+  // order of table_of (a permutation: ranges set from the first values), then ascending (the
+  // table read back once).
+  struct Case {
+    std::size_t n, chunk;
+    bool ascending;
+    int asked;
+  };
+  for (const Case k :
+       {Case{6000, 700, false, 0}, Case{300000, 40000, false, 0}, Case{300000, 40000, true, 1}}) {
+    lsi::SweepTable t = table_of(study, k.n, {3, 1000, 5999});
+    if (k.ascending)
+      for (std::size_t c = 0; c < t.outputs.size(); ++c)
+        for (std::size_t i = 0; i < k.n; ++i)
+          if (t.status[i] == 0) t.outputs[c][i] = 10.0 * double(c + 1) + double(i);
+    lsi::SweepStatisticsAccumulator a(study, t.output_columns);
+    for (std::size_t from = 0; from < k.n; from += k.chunk)
+      a.add(rows_of(t, from, std::min(k.chunk, k.n - from)));
+    int asked = 0;
+    const nlohmann::json got = a.result([&]() -> const lsi::SweepTable& {
+      ++asked;
+      return t;
+    });
+    EXPECT_EQ(asked, k.asked) << k.n;
+    EXPECT_EQ(got, lsi::sweep_statistics(study, t)) << k.n;
+    EXPECT_EQ(got["samples_failed"]["failed"], 3) << got.dump();
   }
 }
 

@@ -29,6 +29,7 @@
 #include "io/hdf5_io.hpp"
 #include "io/sweep_file.hpp"
 #include "io/sweep_table_stream.hpp"
+#include "sweeps/statistics.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -556,6 +557,49 @@ TEST(SweepCli, GridDesignRunsTheFullFactorialFirstInputFastest) {
   for (int i = 0; i < 6; ++i) {
     EXPECT_EQ(f.table.inputs[0][i], v[i]);
     EXPECT_EQ(f.table.inputs[1][i], mu[i]);
+  }
+}
+
+// A grid walked in order is no random sample: its first values (those the statistics locate the
+// quantiles from, 2^18 of them) cover the lower velocities only, so the statistics read the
+// table file back for the quantiles. 300000 samples in chunks of 50000 (the last rows pending in
+// the table when the file is read); the statistics are those of the table's ok rows.
+TEST(SweepCli, AGridWalkedInOrderIsDescribedFromTheTableReadBack) {
+  const fs::path study = write_study("big-grid", {{"design", "grid"},
+                                                  {"samples", nullptr},
+                                                  {"correlation", nullptr},
+                                                  {"chunk_samples", 50000},
+                                                  {"inputs",
+                                                   {{{"path", "/barrier/base_friction"},
+                                                     {"distribution", "grid"},
+                                                     {"min", 0.3},
+                                                     {"max", 0.7},
+                                                     {"count", 3}},
+                                                    {{"path", "/landslide/velocity_m_s"},
+                                                     {"distribution", "grid"},
+                                                     {"min", 2},
+                                                     {"max", 12},
+                                                     {"count", 100000}}}}});
+  const fs::path out = temp_dir() / "big-grid.h5";
+  const Outcome r = run("sweep " + study.string() + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const lsi::SweepFile f = lsi::read_sweep_file(out.string());
+  ASSERT_EQ(f.table.rows(), 300000u);
+  for (std::size_t c = 0; c < f.table.output_columns.size(); ++c) {
+    std::vector<double> ok;
+    for (std::size_t i = 0; i < f.table.rows(); ++i)
+      if (f.table.status[i] == 0) ok.push_back(f.table.outputs[c][i]);
+    const lsi::sweeps::OutputStatistics want = lsi::sweeps::describe(ok, 0.95);
+    const json& o = f.statistics["outputs"][f.table.output_columns[c]];
+    ASSERT_TRUE(o.contains("q95")) << o.dump();
+    EXPECT_EQ(o["count"].get<std::size_t>(), ok.size());
+    EXPECT_EQ(o["mean"].get<double>(), want.mean);
+    EXPECT_EQ(o["standard_deviation"].get<double>(), want.standard_deviation);
+    EXPECT_EQ(o["q05"].get<double>(), want.q05);
+    EXPECT_EQ(o["q50"].get<double>(), want.q50);
+    EXPECT_EQ(o["q95"].get<double>(), want.q95);
+    EXPECT_EQ(o["q95_ci"][1].get<double>(), want.q95_ci.high);
+    EXPECT_EQ(o["max"].get<double>(), want.max);
   }
 }
 
