@@ -75,17 +75,15 @@ SweepJournal::~SweepJournal() {
 
 void SweepJournal::add(std::string entry_path, SweepJournalEntry entry) {
   flush();
-  // The fsync started first: where no thread can be started nothing is held.
-  synced_ = std::async(std::launch::async, [path = table_path_] { hdf5::fsync_file(path); });
-  held_.emplace(std::move(entry_path), std::move(entry));
+  written_ = std::async(std::launch::async, [table = table_path_, header = header_,
+                                             path = std::move(entry_path), e = std::move(entry)] {
+    hdf5::fsync_file(table);  // the chunks on disk before the entry names them
+    write_journal_entry(path, header, e);
+  });
 }
 
 void SweepJournal::flush() {
-  if (!held_) return;
-  auto held = std::move(*held_);
-  held_.reset();
-  synced_.get();  // the chunks on disk before the entry names them
-  write_journal_entry(held.first, header_, held.second);
+  if (written_.valid()) written_.get();
 }
 
 }  // namespace lsi

@@ -6,7 +6,6 @@
 #pragma once
 #include <cstdint>
 #include <future>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,29 +38,30 @@ void write_journal_entry(const std::string& path, SweepHeader header,
 // kJournalFormat (a later version's).
 SweepJournalEntry read_journal_entry(const std::string& path, const std::string& fingerprint);
 
-// Journals a run's chunks: the table file's fsync after a chunk runs on a thread of its own
-// while the caller goes on (gathers the chunk's rows for the statistics), and the chunk's entry
-// is written, on the caller's thread (HDF5), at `flush` (or the next `add`), once that fsync has
-// returned. The entries stay in chunk order and each names bytes already on disk.
+// Journals a run's chunks: after a chunk, a thread of its own fsyncs the table file and then
+// writes the chunk's entry, while the caller goes on (describes the chunk's rows, evaluates the
+// next chunk); the caller calls `flush` before it uses HDF5 again (the next chunk's rows into the
+// table file). The entries stay in chunk order and each names bytes already on disk. A chunk is
+// journalled one fsync after its rows were written, whatever the next chunk takes: a kill then
+// loses the chunks not yet journalled, the one whose fsync was under way at most.
 class SweepJournal {
  public:
   SweepJournal(std::string table_path, SweepHeader header);
   SweepJournal(const SweepJournal&) = delete;
   SweepJournal& operator=(const SweepJournal&) = delete;
-  // Writes what it holds where it can (an error leaves the chunk to run again on --resume).
+  // Waits for the entry under way (an error leaves the chunk to run again on --resume).
   ~SweepJournal();
 
-  // The chunk whose rows the table file has just taken: its entry, for `entry_path`. Writes an
-  // entry still held first, then starts this one's fsync.
+  // The chunk whose rows the table file has just taken: its entry, for `entry_path`. Waits for
+  // the entry under way first, then starts this one's fsync and entry.
   void add(std::string entry_path, SweepJournalEntry entry);
-  // Writes the entry held, if any, after its fsync (whose failure is thrown here).
+  // Waits for the entry under way, if any (its fsync's or writing's failure is thrown here).
   void flush();
 
  private:
   std::string table_path_;
   SweepHeader header_;
-  std::optional<std::pair<std::string, SweepJournalEntry>> held_;
-  std::future<void> synced_;
+  std::future<void> written_;
 };
 
 }  // namespace lsi

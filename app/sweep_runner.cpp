@@ -590,8 +590,9 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   bool rule_met = false;
   std::uint64_t run_here = 0;
   double evaluate_s = 0.0, write_s = 0.0, gather_s = 0.0;
-  // Each chunk's entry is written once the table file's fsync, which runs while the chunk's rows
-  // are described, has returned.
+  // Each chunk's entry is written on the journal's thread once the table file's fsync has
+  // returned, while the chunk's rows are described and the next chunk is evaluated; the journal
+  // is waited for before the table file takes the next rows (HDF5 from one thread at a time).
   SweepJournal journal(table.path(), chunk_header);
   for (std::size_t m = 0; m < mine.size() && !rule_met && stopped_by.empty(); ++m) {
     if (done[m]) continue;
@@ -599,6 +600,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     const SweepTable& t = evaluator.run(mine[m]);
     evaluate_s += seconds_since(ts);
     ts = Clock::now();
+    journal.flush();
     SweepJournalEntry entry;
     entry.table_file = table_name;
     entry.chunk_rows = chunk_rows;
@@ -618,9 +620,6 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     ts = Clock::now();
     gather(t);
     gather_s += seconds_since(ts);
-    ts = Clock::now();
-    journal.flush();
-    write_s += seconds_since(ts);
     std::string why;
     if (interval_rule_met(study, rule_values, why)) {
       rule_met = true;
@@ -632,8 +631,11 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     }
   }
 
-  progress.finishing("writing the result file");
   auto ts = Clock::now();
+  journal.flush();
+  write_s += seconds_since(ts);
+  progress.finishing("writing the result file");
+  ts = Clock::now();
   all.sort_by_index();
   // The interval rule ends the sweep where it was met: later chunks (none in a sequential run)
   // would not be part of the answer.
