@@ -67,6 +67,16 @@ TEST(RunThreads, FewerThanTwoThreadsWorthOfPointsRunOnOneThread) {
   EXPECT_EQ(lsi::points_per_thread(true), lsi::kDefaultPointsPerThreadSaturated);
 }
 
+// 0 + 1 + ... + (n - 1) by a kernel (outside the test body: nvcc takes no device lambda in a
+// test's body, a private member function).
+long sum_of_indices(const int n) {
+  long sum = -1;
+  Kokkos::parallel_reduce(
+      "test_sum", Kokkos::RangePolicy<>(0, n), KOKKOS_LAMBDA(const int i, long& s) { s += i; },
+      sum);
+  return sum;
+}
+
 TEST(RunThreads, TheRunSeesItsThreadsAndTheirErrorsComeBack) {
   const int all = lsi::instance_concurrency<Kokkos::DefaultExecutionSpace>();
   int inside = 0;
@@ -79,11 +89,7 @@ TEST(RunThreads, TheRunSeesItsThreadsAndTheirErrorsComeBack) {
   EXPECT_EQ(inside, all);
   // A kernel inside the partition reaches every index once.
   long sum = -1;
-  lsi::run_with_threads_for(1, false, [&] {
-    Kokkos::parallel_reduce(
-        "test_sum", Kokkos::RangePolicy<>(0, 1000), KOKKOS_LAMBDA(const int i, long& s) { s += i; },
-        sum);
-  });
+  lsi::run_with_threads_for(1, false, [&] { sum = sum_of_indices(1000); });
   EXPECT_EQ(sum, 999L * 1000 / 2);
   EXPECT_THROW(lsi::run_with_threads_for(1, false, [] { throw std::runtime_error("inside"); }),
                std::runtime_error);
