@@ -86,30 +86,27 @@ class ChunkEvaluator {
     const std::uint64_t count = std::min(study_.chunk_samples, study_.samples - first);
     const int dims = static_cast<int>(study_.inputs.size());
     const int columns = 2 * sweeps::closed_form_output_count;
-    if (input_store_.extent(0) < count) {
-      // Allocated once, for the longest chunk, without filling them (the kernel writes every
+    // On the host the kernel runs a block of samples at a time, each block's working columns
+    // (its inputs, the models' inputs and outputs: a few MB) reused by the next, so that the
+    // only memory a chunk touches for the first time is its table's; on a device, the chunk in
+    // one launch and one copy back. A sample's values do not depend on the block it is drawn in
+    // (counter-based sampling; the batched models give each sample the scalar models' bits).
+    const std::uint64_t block = on_host ? std::min(count, kBlockSamples) : count;
+    if (input_store_.extent(0) < block) {
+      // Allocated once, for the longest block, without filling them (the kernel writes every
       // value it reads back), on huge pages where they are host memory (sweeps/huge_pages.hpp).
       input_store_ =
-          Matrix(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sweep inputs"), count, dims);
+          Matrix(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sweep inputs"), block, dims);
       output_store_ =
-          Matrix(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sweep outputs"), count, columns);
-      invalid_store_ = Kokkos::View<int*, Mem>(
-          Kokkos::view_alloc(Kokkos::WithoutInitializing, "sweep invalid field"), count);
+          Matrix(Kokkos::view_alloc(Kokkos::WithoutInitializing, "sweep outputs"), block, columns);
       sweeps::advise_huge_pages(input_store_);
       sweeps::advise_huge_pages(output_store_);
+    }
+    if (invalid_store_.extent(0) < count) {
+      invalid_store_ = Kokkos::View<int*, Mem>(
+          Kokkos::view_alloc(Kokkos::WithoutInitializing, "sweep invalid field"), count);
       sweeps::advise_huge_pages(invalid_store_);
     }
-    // A shorter chunk (the last) takes the front of the buffers, as views of its own extents.
-    const Matrix inputs(input_store_.data(), count, dims);
-    const Matrix outputs(output_store_.data(), count, columns);
-    const Kokkos::View<int*, Mem> invalid(invalid_store_.data(), count);
-    const auto t0 = Clock::now();
-    sweeps::evaluate_closed_form_chunk(Exec(), sweep_, first, inputs, outputs, invalid, columns_);
-    Exec().fence();
-    const auto in = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), inputs);
-    const auto out = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), outputs);
-    const auto bad = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), invalid);
-    const float closed_form_seconds = static_cast<float>(seconds_since(t0) / double(count));
 
     // Columns kept from chunk to chunk: resized, not allocated anew, and every row overwritten.
     SweepTable& t = table_;
@@ -118,36 +115,27 @@ class ChunkEvaluator {
     t.failure_reason.clear();
     t.index.resize(count);
     t.status.assign(count, static_cast<std::int8_t>(SampleStatus::ok));
-    t.wall_time.assign(count, closed_form_seconds);
-    // The chunk's columns copied into the table's by the host's threads: (destination, source
-    // column of `in` or `out`, or NaN for an MPM column, filled below).
-    struct Copy {
-      double* to;
-      const double* from;
-    };
-    std::vector<Copy> copies;
-    for (int d = 0; d < dims; ++d) {
-      t.inputs[d].resize(count);
-      copies.push_back({t.inputs[d].data(), in.data() + d * in.stride(1)});
+    for (int d = 0; d < dims; ++d) t.inputs[d].resize(count);
+    for (auto& col : t.outputs) col.resize(count);
+    double kernel_seconds = 0.0;
+    for (std::uint64_t offset = 0; offset < count; offset += block) {
+      const std::uint64_t m = std::min(block, count - offset);
+      // A shorter block (the last) takes the front of the buffers, as views of its own extents.
+      const Matrix inputs(input_store_.data(), m, dims);
+      const Matrix outputs(output_store_.data(), m, columns);
+      const Kokkos::View<int*, Mem> invalid(invalid_store_.data() + offset, m);
+      const auto t0 = Clock::now();
+      sweeps::evaluate_closed_form_chunk(Exec(), sweep_, first + offset, inputs, outputs, invalid,
+                                         columns_);
+      Exec().fence();
+      const auto in = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), inputs);
+      const auto out = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), outputs);
+      kernel_seconds += seconds_since(t0);
+      copy_block(t, first, offset, m, in, out);
     }
-    for (std::size_t c = 0; c < source_.size(); ++c) {
-      auto& col = t.outputs[c];
-      col.resize(count);
-      const int offset = source_[c].method == "empirical"    ? 0
-                         : source_[c].method == "analytical" ? sweeps::closed_form_output_count
-                                                             : -1;
-      const int o = offset + source_[c].output;
-      copies.push_back({col.data(), offset < 0 ? nullptr : out.data() + o * out.stride(1)});
-    }
-    std::uint64_t* const index = t.index.data();
-    Kokkos::parallel_for(
-        "lsi::sweep_chunk_table",
-        Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, static_cast<std::int64_t>(count)),
-        [&](const std::int64_t i) {
-          for (const Copy& c : copies) c.to[i] = c.from ? c.from[i] : NAN;
-          index[i] = first + static_cast<std::uint64_t>(i);
-        });
-    Kokkos::DefaultHostExecutionSpace().fence();  // `copies` is captured by reference
+    const Kokkos::View<int*, Mem> invalid(invalid_store_.data(), count);
+    const auto bad = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), invalid);
+    t.wall_time.assign(count, static_cast<float>(kernel_seconds / double(count)));
     const bool mpm = study_.runs("mpm");
     bool any_invalid = false;
     for (std::uint64_t i = 0; i < count && !any_invalid; ++i) any_invalid = bad(i) >= 0;
@@ -161,7 +149,7 @@ class ChunkEvaluator {
     std::vector<MpmSample> runs(to_run.size());
     run_concurrently(to_run.size(), [&](std::size_t r) {
       std::vector<double> xr(dims);
-      for (int d = 0; d < dims; ++d) xr[d] = in(to_run[r], d);
+      for (int d = 0; d < dims; ++d) xr[d] = t.inputs[d][to_run[r]];
       runs[r] = run_mpm_sample(t.index[to_run[r]], xr.data());
     });
     std::vector<double> x(dims);
@@ -171,7 +159,7 @@ class ChunkEvaluator {
         if (mpm) take_mpm_sample(t, i, runs[next_run++]);
         continue;
       }
-      for (int d = 0; d < dims; ++d) x[d] = in(i, d);
+      for (int d = 0; d < dims; ++d) x[d] = t.inputs[d][i];
       std::string reason = invalid_sample_reason(study_, x.data());
       if (reason.empty())  // the kernel's range check and the scene parser disagree: a bug
         reason = std::string("rejected by the sweep's range check at ") +
@@ -186,6 +174,44 @@ class ChunkEvaluator {
     std::string method;
     int output;
   };
+
+  static constexpr bool on_host = Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
+  // Samples in a block on the host: its working columns, about 200 bytes a sample, a few MB.
+  static constexpr std::uint64_t kBlockSamples = 16384;
+
+  // A block's rows [offset, offset + m) of the chunk's table from the kernel's columns (`in`,
+  // `out`, host views of the block), by the host's threads; the MPM columns NaN (filled later).
+  template <class HostMatrix>
+  void copy_block(SweepTable& t, std::uint64_t first, std::uint64_t offset, std::uint64_t m,
+                  const HostMatrix& in, const HostMatrix& out) const {
+    struct Copy {
+      double* to;
+      const double* from;
+    };
+    Copy copies[sweeps::ClosedFormSweep<Mem>::max_inputs + 3 * sweeps::closed_form_output_count];
+    std::size_t n = 0;
+    for (std::size_t d = 0; d < t.inputs.size(); ++d)
+      copies[n++] = {t.inputs[d].data() + offset, in.data() + d * in.stride(1)};
+    for (std::size_t c = 0; c < source_.size(); ++c) {
+      const int o = source_[c].method == "empirical" ? source_[c].output
+                    : source_[c].method == "analytical"
+                        ? sweeps::closed_form_output_count + source_[c].output
+                        : -1;
+      copies[n++] = {t.outputs[c].data() + offset,
+                     o < 0 ? nullptr : out.data() + o * out.stride(1)};
+    }
+    std::uint64_t* const index = t.index.data() + offset;
+    const std::uint64_t start = first + offset;
+    Kokkos::parallel_for(
+        "lsi::sweep_chunk_table",
+        Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, static_cast<std::int64_t>(m)),
+        [&](const std::int64_t i) {
+          for (std::size_t c = 0; c < n; ++c)
+            copies[c].to[i] = copies[c].from ? copies[c].from[i] : NAN;
+          index[i] = start + static_cast<std::uint64_t>(i);
+        });
+    Kokkos::DefaultHostExecutionSpace().fence();  // `copies` is captured by reference
+  }
 
   static void fail_sample(SweepTable& t, std::uint64_t i, SampleStatus s, const std::string& why) {
     t.status[i] = static_cast<std::int8_t>(s);

@@ -536,6 +536,43 @@ TEST(SweepCli, TableChunksFollowChunkSamplesAndTheJournalNamesThem) {
       << mixed.out;
 }
 
+TEST(SweepCli, AChunkOfSeveralKernelBlocksHoldsTheRowsOfSmallChunks) {
+  // On the host a chunk runs through the kernel a block of 16384 samples at a time: a chunk of
+  // 40000 samples is two whole blocks and a partial one. Its rows must be, bit for bit, those of
+  // chunks of 4096 (one block each), invalid samples (v <= 0, about 2 %) and their reasons
+  // included.
+  const json velocity = {
+      {"path", "/landslide/velocity_m_s"}, {"distribution", "normal"}, {"mean", 6.0}, {"sd", 3.0}};
+  const json inputs = {{{"path", "/landslide/thickness_m"},
+                        {"distribution", "lognormal"},
+                        {"mean", 2.0},
+                        {"sd", 0.3}},
+                       velocity,
+                       {{"path", "/barrier/base_friction"},
+                        {"distribution", "uniform"},
+                        {"min", 0.3},
+                        {"max", 0.7}}};
+  const fs::path small = write_study(
+      "small_chunks", {{"samples", 40000}, {"chunk_samples", 4096}, {"inputs", inputs}});
+  const fs::path large = write_study(
+      "large_chunk", {{"samples", 40000}, {"chunk_samples", 40000}, {"inputs", inputs}});
+  const fs::path a = temp_dir() / "small_chunks.h5", b = temp_dir() / "large_chunk.h5";
+  const Outcome ra = run("sweep " + small.string() + " --out " + a.string());
+  ASSERT_EQ(ra.code, 0) << ra.out;
+  const Outcome rb = run("sweep " + large.string() + " --out " + b.string());
+  ASSERT_EQ(rb.code, 0) << rb.out;
+  const lsi::SweepFile fa = lsi::read_sweep_file(a.string()), fb = lsi::read_sweep_file(b.string());
+  expect_same_rows(fa.table, fb.table);
+  EXPECT_EQ(fa.table.failure_index, fb.table.failure_index);
+  EXPECT_EQ(fa.table.failure_reason, fb.table.failure_reason);
+  // P(N(6, 3) <= 0) = Phi(-2) = 0.0228: 911 of 40000 expected (sd 30); the invalid rows are
+  // spread over the blocks.
+  EXPECT_GT(fb.table.failure_index.size(), 700u);
+  EXPECT_LT(fb.table.failure_index.size(), 1100u);
+  EXPECT_GT(fb.table.failure_index.back(), 2u * 16384u);
+  EXPECT_EQ(fa.statistics["outputs"], fb.statistics["outputs"]);
+}
+
 TEST(SweepCli, GridDesignRunsTheFullFactorialFirstInputFastest) {
   const fs::path study = write_study("grid", {{"design", "grid"},
                                               {"samples", nullptr},
