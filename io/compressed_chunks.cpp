@@ -21,11 +21,23 @@
 namespace lsi::hdf5 {
 namespace {
 
-// Byte j of element i to j * count + i (HDF5's shuffle filter), for the first n elements.
+// Byte j of element i to j * count + i (HDF5's shuffle filter), for the first n elements: a
+// block of 64 elements at a time transposed into a local block, each of its planes then copied
+// whole (a form the compiler vectorises with byte shuffles; the bytes scattered one at a time
+// took 4 to 10 times as long).
 template <std::size_t E>
 void shuffle_fixed(const unsigned char* rows, std::size_t n, std::size_t count,
                    unsigned char* plain) {
-  for (std::size_t i = 0; i < n; ++i)
+  constexpr std::size_t B = 64;
+  std::size_t i = 0;
+  for (; i + B <= n; i += B) {
+    unsigned char block[E][B];
+    const unsigned char* r = rows + i * E;
+    for (std::size_t b = 0; b < B; ++b)
+      for (std::size_t j = 0; j < E; ++j) block[j][b] = r[b * E + j];
+    for (std::size_t j = 0; j < E; ++j) std::memcpy(plain + j * count + i, block[j], B);
+  }
+  for (; i < n; ++i)
     for (std::size_t j = 0; j < E; ++j) plain[j * count + i] = rows[i * E + j];
 }
 

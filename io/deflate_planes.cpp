@@ -7,6 +7,7 @@
 #include <array>
 #include <bit>
 #include <cstring>
+#include <type_traits>
 
 namespace lsi::hdf5 {
 namespace {
@@ -16,7 +17,7 @@ constexpr int kEndOfBlock = 256;
 constexpr int kMaxCodeLength = 15;         // literal/length and distance codes (3.2.7)
 constexpr int kMaxCodeLengthLength = 7;    // the code of the code lengths
 constexpr std::size_t kMaxStored = 65535;  // bytes of a stored block (3.2.4)
-constexpr int kMinMatch = 3, kMaxMatch = 258;
+constexpr int kMaxMatch = 258;  // the longest match (3.2.5); the shortest is 3 bytes
 
 // Bits written least significant first (3.1.1). Each put() stores eight bytes and advances by the
 // whole bytes written, so the output needs eight bytes of room past the stream's end; a put()
@@ -322,20 +323,63 @@ void plan_literals(const std::uint32_t byte_freq[256], LiteralBlock& b) {
   b.bits = bits + b.header.bits();
 }
 
+// The code's table for the literals: each byte's code bits below, its length from bit 16.
+void literal_table(const Code<kLiteralLengthSymbols>& code, std::uint32_t table[256]) {
+  for (int s = 0; s < 256; ++s) table[s] = code.bits[s] | std::uint32_t(code.length[s]) << 16;
+}
+
+// The literals p[0, n) by `table`, K codes between two flushes (K codes of the longest length
+// within the 57 bits put() allows).
+template <int K>
+void put_literals(BitWriter& w, const unsigned char* p, const std::size_t n,
+                  const std::uint32_t table[256]) {
+  std::size_t i = 0;
+  for (; i + K <= n; i += K) {
+    for (int k = 0; k < K; ++k) {
+      const std::uint32_t e = table[p[i + k]];
+      w.add(e & 0xffff, int(e >> 16));
+    }
+    w.flush();
+  }
+  for (; i < n; ++i) w.add(table[p[i]] & 0xffff, int(table[p[i]] >> 16));
+  w.flush();
+}
+
+// f(std::integral_constant<int, K>()) with K the most codes of `longest` bits between two
+// flushes (at most 8): the fewer flushes, the shorter the chain of shifts each byte waits on.
+template <class F>
+void with_codes_per_flush(const int longest, F&& f) {
+  switch (std::min(8, 57 / std::max(longest, 1))) {
+    case 8:
+      return f(std::integral_constant<int, 8>());
+    case 7:
+      return f(std::integral_constant<int, 7>());
+    case 6:
+      return f(std::integral_constant<int, 6>());
+    case 5:
+      return f(std::integral_constant<int, 5>());
+    case 4:
+      return f(std::integral_constant<int, 4>());
+    default:
+      return f(std::integral_constant<int, 3>());
+  }
+}
+
+// The longest code among the literals.
+int longest_literal(const Code<kLiteralLengthSymbols>& code) {
+  return *std::max_element(code.length.begin(), code.length.begin() + 256);
+}
+
 void write_literals(BitWriter& w, const unsigned char* p, const std::size_t n,
                     const LiteralBlock& b, const bool last) {
   b.header.write(w, last);
-  std::uint32_t table[256];  // the code's bits below, its length from bit 16
-  for (int s = 0; s < 256; ++s) table[s] = b.code.bits[s] | std::uint32_t(b.code.length[s]) << 16;
-  std::size_t i = 0;
-  for (; i + 3 <= n; i += 3) {  // at most 3 x 15 bits between flushes
-    const std::uint32_t e0 = table[p[i]], e1 = table[p[i + 1]], e2 = table[p[i + 2]];
-    w.add(e0 & 0xffff, int(e0 >> 16));
-    w.add(e1 & 0xffff, int(e1 >> 16));
-    w.add(e2 & 0xffff, int(e2 >> 16));
-    w.flush();
-  }
-  for (; i < n; ++i) w.put(table[p[i]] & 0xffff, int(table[p[i]] >> 16));
+  std::uint32_t table[256];
+  literal_table(b.code, table);
+  with_codes_per_flush(longest_literal(b.code), [&](auto k) {
+    BitWriter v = w;  // a local copy, whose state the compiler keeps in registers
+    put_literals<k()>(v, p, n, table);
+    w = v;
+  });
   w.put(b.code.bits[kEndOfBlock], b.code.length[kEndOfBlock]);
 }
 
@@ -356,41 +400,61 @@ std::size_t run_length(const unsigned char* p, const std::size_t most, const uns
   return r;
 }
 
+// Where the next match may start at or after i (1 <= i): the first j >= i with p[j - 1] = p[j] =
+// p[j + 1] = p[j + 2] and j + 2 < n, or n where there is none. Eight positions at a time: the
+// bytes of the three words of neighbours' differences that are zero in all three (the exact
+// zero-byte test: the high bit of ~((x & 0x7f..) + 0x7f.. | x | 0x7f..)).
+std::size_t next_match(const unsigned char* p, std::size_t i, const std::size_t n) {
+  if constexpr (std::endian::native == std::endian::little) {
+    constexpr std::uint64_t low7 = 0x7f7f7f7f7f7f7f7full;
+    auto word = [p](std::size_t k) {
+      std::uint64_t v;
+      std::memcpy(&v, p + k, 8);
+      return v;
+    };
+    for (; i + 10 <= n; i += 8) {  // the words read p[i - 1, i + 10)
+      const std::uint64_t a = word(i - 1), b = word(i), c = word(i + 1), d = word(i + 2);
+      const std::uint64_t x = (a ^ b) | (b ^ c) | (c ^ d);
+      const std::uint64_t zero = ~(((x & low7) + low7) | x | low7);
+      if (zero != 0) return i + static_cast<std::size_t>(std::countr_zero(zero) >> 3);
+    }
+  }
+  for (; i + 2 < n; ++i)
+    if (p[i - 1] == p[i] && p[i] == p[i + 1] && p[i + 1] == p[i + 2]) return i;
+  return n;
+}
+
+using Match = PlaneDeflater::Match;
+
 // A runs block: the plane as literals and matches at distance one (the greedy parse of zlib's
-// run-length strategy: a repeat of the previous byte three times or more is a match), symbols
-// below 256 literals, above them the match's length + 256; its code and size.
+// run-length strategy: a repeat of the previous byte three times or more is a match, at most
+// 258 bytes long); its matches, code, size and number of symbols. The literals' counts are the
+// plane's byte counts less the bytes the matches cover.
 struct RunsBlock {
   Code<kLiteralLengthSymbols> code;
   DynamicHeader header;
   std::uint64_t bits = 0;
   std::size_t symbols = 0;
 };
-void plan_runs(const unsigned char* p, const std::size_t n, std::vector<std::uint16_t>& symbols,
-               RunsBlock& b) {
-  symbols.resize(n);
-  std::size_t k = 0;
+void plan_runs(const unsigned char* p, const std::size_t n, const std::uint32_t byte_freq[256],
+               std::vector<Match>& matches, RunsBlock& b) {
+  matches.clear();
   std::uint32_t freq[kLiteralLengthSymbols] = {};
-  std::uint64_t extra = 0;
-  for (std::size_t i = 0; i < n;) {
-    if (i > 0) {
-      const unsigned char prev = p[i - 1];
-      const std::size_t most = std::min<std::size_t>(kMaxMatch, n - i);
-      const std::size_t r = run_length(p + i, most, prev);
-      if (r >= kMinMatch) {
-        symbols[k++] = std::uint16_t(256 + r);
-        const LengthSymbol& ls = kLengthSymbols[r];
-        ++freq[ls.symbol];
-        extra += ls.extra_bits + 1;  // the distance code's bit
-        i += r;
-        continue;
-      }
-    }
-    symbols[k++] = p[i];
-    ++freq[p[i]];
-    ++i;
+  std::copy(byte_freq, byte_freq + 256, freq);
+  std::uint64_t extra = 0, covered = 0;
+  for (std::size_t i = n == 0 ? 0 : next_match(p, 1, n); i < n; i = next_match(p, i, n)) {
+    const unsigned char v = p[i - 1];
+    const std::size_t r = run_length(p + i, std::min<std::size_t>(kMaxMatch, n - i), v);
+    matches.push_back({std::uint32_t(i), std::uint16_t(r)});
+    const LengthSymbol& ls = kLengthSymbols[r];
+    ++freq[ls.symbol];
+    freq[v] -= std::uint32_t(r);
+    extra += ls.extra_bits + 1;  // the distance code's bit
+    covered += r;
+    i += r;
   }
   freq[kEndOfBlock] = 1;
-  b.symbols = k;
+  b.symbols = n - covered + matches.size();
   code_lengths<kLiteralLengthSymbols>(freq, kLiteralLengthSymbols, kMaxCodeLength, b.code);
   std::uint64_t bits = extra;
   for (int s = 0; s < kLiteralLengthSymbols; ++s) bits += std::uint64_t(freq[s]) * b.code.length[s];
@@ -398,20 +462,25 @@ void plan_runs(const unsigned char* p, const std::size_t n, std::vector<std::uin
   b.bits = bits + b.header.bits();
 }
 
-void write_runs(BitWriter& w, const std::vector<std::uint16_t>& symbols, const RunsBlock& b,
-                const bool last) {
+void write_runs(BitWriter& w, const unsigned char* p, const std::size_t n,
+                const std::vector<Match>& matches, const RunsBlock& b, const bool last) {
   b.header.write(w, last);
-  for (std::size_t k = 0; k < b.symbols; ++k) {
-    const unsigned s = symbols[k];
-    if (s < 256) {
-      w.put(b.code.bits[s], b.code.length[s]);
-    } else {
-      const LengthSymbol& ls = kLengthSymbols[s - 256];
-      w.add(b.code.bits[ls.symbol], b.code.length[ls.symbol]);
-      w.add(ls.extra, ls.extra_bits);
-      w.put(0, 1);  // distance code 0: distance 1
+  std::uint32_t table[256];
+  literal_table(b.code, table);
+  with_codes_per_flush(longest_literal(b.code), [&](auto k) {
+    BitWriter v = w;  // a local copy, whose state the compiler keeps in registers
+    std::size_t i = 0;
+    for (const Match& m : matches) {
+      put_literals<k()>(v, p + i, m.at - i, table);
+      const LengthSymbol& ls = kLengthSymbols[m.length];
+      v.add(b.code.bits[ls.symbol], b.code.length[ls.symbol]);
+      v.add(ls.extra, ls.extra_bits);
+      v.put(0, 1);  // distance code 0: distance 1
+      i = m.at + m.length;
     }
-  }
+    put_literals<k()>(v, p + i, n - i, table);
+    w = v;
+  });
   w.put(b.code.bits[kEndOfBlock], b.code.length[kEndOfBlock]);
 }
 
@@ -444,18 +513,16 @@ std::size_t PlaneDeflater::deflate(const unsigned char* bytes, const std::size_t
     // A runs plane whose matches leave fewer symbols than half its bytes is taken as a runs block
     // without planning a block of literals too (a second code for a plane that is mostly runs;
     // the choice decides the file's size, never its values).
+    std::uint32_t freq[256];
+    histogram(p, plane_bytes, freq);
     RunsBlock runs;
     const bool try_runs = coding[j] == PlaneCoding::runs;
-    if (try_runs) plan_runs(p, plane_bytes, symbols_, runs);
+    if (try_runs) plan_runs(p, plane_bytes, freq, matches_, runs);
     LiteralBlock literals;
     const bool try_literals = !try_runs || 2 * runs.symbols > plane_bytes;
-    if (try_literals) {
-      std::uint32_t freq[256];
-      histogram(p, plane_bytes, freq);
-      plan_literals(freq, literals);
-    }
+    if (try_literals) plan_literals(freq, literals);
     if (try_runs && (!try_literals || runs.bits <= literals.bits) && runs.bits < stored)
-      write_runs(w, symbols_, runs, last);
+      write_runs(w, p, plane_bytes, matches_, runs, last);
     else if (try_literals && literals.bits < stored)
       write_literals(w, p, plane_bytes, literals, last);
     else

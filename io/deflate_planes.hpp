@@ -33,8 +33,15 @@ class PlaneDeflater {
   std::size_t deflate(const unsigned char* bytes, std::size_t plane_bytes, std::size_t planes,
                       const PlaneCoding* coding, unsigned char* out);
 
+  // A match of a runs block: `length` (3 to 258) bytes from `at`, each equal to the byte
+  // before them.
+  struct Match {
+    std::uint32_t at;
+    std::uint16_t length;
+  };
+
  private:
-  std::vector<std::uint16_t> symbols_;  // a runs plane's literals and match lengths
+  std::vector<Match> matches_;  // a runs plane's matches, kept from plane to plane
 };
 
 }  // namespace lsi::hdf5
