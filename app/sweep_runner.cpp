@@ -369,7 +369,8 @@ void check_shard_rows(const Study& study, const std::string& file, const SweepHe
 
 // Refuses, before anything is written, a run whose rows cannot be held in memory or whose files
 // cannot fit beside `out` (the result's table, and its copy when the run stops early: at most
-// twice the table). In memory: a chunk's rows, twice (the evaluator's and the table's), and the
+// twice the table). In memory: a chunk's rows, twice (the table's, and the kernel's on a device;
+// on the host the kernel's blocks take a few MB, so that this bounds it from above), and the
 // values the statistics keep (sweeps/column_accumulator.hpp: the first values of each output
 // column and a few per cent of the rest; 4 % is counted). The whole table is held instead (twice,
 // plus a column) where the MPM runs again at the quantiles, and once more beside the chunks where

@@ -17,7 +17,7 @@ constexpr int kEndOfBlock = 256;
 constexpr int kMaxCodeLength = 15;         // literal/length and distance codes (3.2.7)
 constexpr int kMaxCodeLengthLength = 7;    // the code of the code lengths
 constexpr std::size_t kMaxStored = 65535;  // bytes of a stored block (3.2.4)
-constexpr int kMaxMatch = 258;  // the longest match (3.2.5); the shortest is 3 bytes
+constexpr int kMaxMatch = 258;             // the longest match (3.2.5); the shortest is 3 bytes
 
 // Bits written least significant first (3.1.1). Each put() stores eight bytes and advances by the
 // whole bytes written, so the output needs eight bytes of room past the stream's end; a put()
