@@ -516,7 +516,8 @@ std::size_t PlaneDeflater::deflate(const unsigned char* bytes, const std::size_t
     std::uint32_t freq[256];
     histogram(p, plane_bytes, freq);
     RunsBlock runs;
-    const bool try_runs = coding[j] == PlaneCoding::runs;
+    // (A match's position is 32 bits: a plane of 4 GiB or more is coded without matches.)
+    const bool try_runs = coding[j] == PlaneCoding::runs && plane_bytes <= UINT32_MAX;
     if (try_runs) plan_runs(p, plane_bytes, freq, matches_, runs);
     LiteralBlock literals;
     const bool try_literals = !try_runs || 2 * runs.symbols > plane_bytes;
