@@ -110,10 +110,11 @@ void evaluate_closed_form_chunk(
                face_angle = col[face_angle_column], empirical_tau = col[empirical_tau_column],
                analytical_tau = col[analytical_tau_column],
                analytical_lambda = col[analytical_lambda_column];
-  // Sample i from its inputs x[d * stride] (d < dims): set into the scene, checked, and the
-  // models' inputs written (or the models evaluated, for what does not run batched).
-  const auto one_sample = KOKKOS_LAMBDA(const std::size_t i, const double* x, const int stride) {
-    SceneValues s = sweep.base;
+  // Sample i from its inputs x[d * stride] (d < dims): set into the scene s (the base scene's
+  // values but the sampled ones, which are set here), checked, and the models' inputs written
+  // (or the models evaluated, for what does not run batched).
+  const auto one_sample =
+      KOKKOS_LAMBDA(SceneValues & s, const std::size_t i, const double* x, const int stride) {
     for (int d = 0; d < dims; ++d) {
       inputs(i, d) = x[d * stride];
       if (sweep.target[d] >= 0) s.value[sweep.target[d]] = x[d * stride];
@@ -153,14 +154,15 @@ void evaluate_closed_form_chunk(
     // Not for_each_block_on_host: its `flatten` inlines the momentum variants' scalar models
     // into the block, and GCC's code there gives other last bits than the same models called on
     // their own (which the kernel's test compares bit for bit).
-    draw_blocks_on_host(space, sweep.sampler, first, n, one_sample);
+    draw_blocks_on_host(space, sweep.sampler, first, n, sweep.base, one_sample);
   } else {
     Kokkos::parallel_for(
         "lsi::closed_form_sweep", Kokkos::RangePolicy<ExecSpace>(space, 0, n),
         KOKKOS_LAMBDA(const std::size_t i) {
           double x[ClosedFormSweep<MemorySpace>::max_inputs];
           sweep.sampler.sample(first + i, x);
-          one_sample(i, x, 1);
+          SceneValues s = sweep.base;
+          one_sample(s, i, x, 1);
         });
   }
   if (!batch) return;

@@ -451,13 +451,14 @@ class Sampler {
   Kokkos::View<double**, Kokkos::LayoutLeft, MemorySpace> points_;  // Points: sample x input
 };
 
-// On a host execution space: each(i, x, stride) for the samples i in [0, n), with x[d * stride]
-// the inputs of sample first + i: drawn a block at a time (Sampler::sample_block, stride
-// block_size), the last, partial block one sample at a time (Sampler::sample, stride 1); the
-// blocks in parallel on `space`.
-template <class ExecSpace, class MemorySpace, class Each>
+// On a host execution space: each(scratch, i, x, stride) for the samples i in [0, n), with
+// x[d * stride] the inputs of sample first + i: drawn a block at a time (Sampler::sample_block,
+// stride block_size), the last, partial block one sample at a time (Sampler::sample, stride 1);
+// the blocks in parallel on `space`. `scratch` is a copy of `scratch0` made once a block, for
+// state that each() sets anew for every sample: copied once a block rather than once a sample.
+template <class ExecSpace, class MemorySpace, class Scratch, class Each>
 void draw_blocks_on_host(const ExecSpace& space, const Sampler<MemorySpace>& s, std::uint64_t first,
-                         std::size_t n, const Each& each) {
+                         std::size_t n, const Scratch& scratch0, const Each& each) {
   static_assert(Kokkos::SpaceAccessibility<ExecSpace, Kokkos::HostSpace>::accessible,
                 "draw_blocks_on_host: sample_block is host code");
   constexpr int B = Sampler<MemorySpace>::block_size;
@@ -468,16 +469,27 @@ void draw_blocks_on_host(const ExecSpace& space, const Sampler<MemorySpace>& s, 
                        [=](const std::size_t block) {
                          const std::size_t begin = block * B;
                          double x[capacity];
+                         Scratch scratch = scratch0;
                          if (begin + B <= n) {
                            sampler.sample_block(first + begin, x);
-                           for (int k = 0; k < B; ++k) each(begin + k, x + k, B);
+                           for (int k = 0; k < B; ++k) each(scratch, begin + k, x + k, B);
                          } else {
                            for (std::size_t i = begin; i < n; ++i) {
                              sampler.sample(first + i, x);
-                             each(i, x, 1);
+                             each(scratch, i, x, 1);
                            }
                          }
                        });
+}
+
+// The same without a scratch: each(i, x, stride).
+template <class ExecSpace, class MemorySpace, class Each>
+void draw_blocks_on_host(const ExecSpace& space, const Sampler<MemorySpace>& s, std::uint64_t first,
+                         std::size_t n, const Each& each) {
+  struct None {};
+  draw_blocks_on_host(
+      space, s, first, n, None{},
+      [=](None&, const std::size_t i, const double* x, const int stride) { each(i, x, stride); });
 }
 
 // Fills out(i, d) = inputs of sample first + i, in one parallel_for on `space`. out must have
