@@ -74,7 +74,10 @@ class ChunkEvaluator {
       for (const auto& o : s.outputs) {
         int out = 0;
         while (sweeps::closed_form_output_name[out] != o) ++out;
-        source_.push_back({m, out});
+        const int column = m == "empirical"    ? out
+                           : m == "analytical" ? sweeps::closed_form_output_count + out
+                                               : -1;
+        source_.push_back({m, out, column});
       }
     for (const auto& in : s.inputs) paths_.push_back(in.path);
     table_ = SweepTable::with_columns(paths_, s.output_columns());
@@ -173,6 +176,7 @@ class ChunkEvaluator {
   struct Source {
     std::string method;
     int output;
+    int kernel_column;  // the column of the kernel's outputs, or -1 (an MPM column)
   };
 
   static constexpr bool on_host = Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
@@ -193,10 +197,7 @@ class ChunkEvaluator {
     for (std::size_t d = 0; d < t.inputs.size(); ++d)
       copies[n++] = {t.inputs[d].data() + offset, in.data() + d * in.stride(1)};
     for (std::size_t c = 0; c < source_.size(); ++c) {
-      const int o = source_[c].method == "empirical" ? source_[c].output
-                    : source_[c].method == "analytical"
-                        ? sweeps::closed_form_output_count + source_[c].output
-                        : -1;
+      const int o = source_[c].kernel_column;
       copies[n++] = {t.outputs[c].data() + offset,
                      o < 0 ? nullptr : out.data() + o * out.stride(1)};
     }

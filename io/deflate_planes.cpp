@@ -370,19 +370,6 @@ int longest_literal(const Code<kLiteralLengthSymbols>& code) {
   return *std::max_element(code.length.begin(), code.length.begin() + 256);
 }
 
-void write_literals(BitWriter& w, const unsigned char* p, const std::size_t n,
-                    const LiteralBlock& b, const bool last) {
-  b.header.write(w, last);
-  std::uint32_t table[256];
-  literal_table(b.code, table);
-  with_codes_per_flush(longest_literal(b.code), [&](auto k) {
-    BitWriter v = w;  // a local copy, whose state the compiler keeps in registers
-    put_literals<k()>(v, p, n, table);
-    w = v;
-  });
-  w.put(b.code.bits[kEndOfBlock], b.code.length[kEndOfBlock]);
-}
-
 // How many of the first `most` bytes at p equal v: eight bytes at a time (the first byte that
 // differs is the lowest nonzero byte of their difference, on a little-endian host).
 std::size_t run_length(const unsigned char* p, const std::size_t most, const unsigned char v) {
@@ -462,18 +449,22 @@ void plan_runs(const unsigned char* p, const std::size_t n, const std::uint32_t 
   b.bits = bits + b.header.bits();
 }
 
-void write_runs(BitWriter& w, const unsigned char* p, const std::size_t n,
-                const std::vector<Match>& matches, const RunsBlock& b, const bool last) {
-  b.header.write(w, last);
+// A dynamic block of the plane p[0, n) as literals and the given matches (none for a block of
+// literals alone), with its code and header.
+void write_dynamic(BitWriter& w, const unsigned char* p, const std::size_t n, const Match* matches,
+                   const std::size_t match_count, const Code<kLiteralLengthSymbols>& code,
+                   const DynamicHeader& header, const bool last) {
+  header.write(w, last);
   std::uint32_t table[256];
-  literal_table(b.code, table);
-  with_codes_per_flush(longest_literal(b.code), [&](auto k) {
+  literal_table(code, table);
+  with_codes_per_flush(longest_literal(code), [&](auto k) {
     BitWriter v = w;  // a local copy, whose state the compiler keeps in registers
     std::size_t i = 0;
-    for (const Match& m : matches) {
+    for (std::size_t j = 0; j < match_count; ++j) {
+      const Match& m = matches[j];
       put_literals<k()>(v, p + i, m.at - i, table);
       const LengthSymbol& ls = kLengthSymbols[m.length];
-      v.add(b.code.bits[ls.symbol], b.code.length[ls.symbol]);
+      v.add(code.bits[ls.symbol], code.length[ls.symbol]);
       v.add(ls.extra, ls.extra_bits);
       v.put(0, 1);  // distance code 0: distance 1
       i = m.at + m.length;
@@ -481,7 +472,7 @@ void write_runs(BitWriter& w, const unsigned char* p, const std::size_t n,
     put_literals<k()>(v, p + i, n - i, table);
     w = v;
   });
-  w.put(b.code.bits[kEndOfBlock], b.code.length[kEndOfBlock]);
+  w.put(code.bits[kEndOfBlock], code.length[kEndOfBlock]);
 }
 
 }  // namespace
@@ -523,9 +514,10 @@ std::size_t PlaneDeflater::deflate(const unsigned char* bytes, const std::size_t
     const bool try_literals = !try_runs || 2 * runs.symbols > plane_bytes;
     if (try_literals) plan_literals(freq, literals);
     if (try_runs && (!try_literals || runs.bits <= literals.bits) && runs.bits < stored)
-      write_runs(w, p, plane_bytes, matches_, runs, last);
+      write_dynamic(w, p, plane_bytes, matches_.data(), matches_.size(), runs.code, runs.header,
+                    last);
     else if (try_literals && literals.bits < stored)
-      write_literals(w, p, plane_bytes, literals, last);
+      write_dynamic(w, p, plane_bytes, nullptr, 0, literals.code, literals.header, last);
     else
       write_stored(w, p, plane_bytes, last);
     ++j;
