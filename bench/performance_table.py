@@ -154,11 +154,11 @@ def group_sweep(build, repetitions):
 
 # Bytes a dry Mohr-Coulomb step moves per particle update, write-allocate included (the sum over
 # its kernels' fields: docs/notes/performance.md, "bytes per update"): the 20 k column, the 200 k.
-DRY_STEP_BYTES = {20000: 523.0, 199712: 517.0}
+DRY_STEP_BYTES = {20000: 459.0, 199712: 453.0}
 # The same for the saturated (two-phase) column step, bench_impact's
 # column_step/OpenMP/saturated/duplicated: docs/notes/performance.md, "Bytes per update of the
 # saturated step".
-SATURATED_STEP_BYTES = {20000: 909.0, 199712: 897.0}
+SATURATED_STEP_BYTES = {20000: 829.0, 199712: 817.0}
 
 
 def group_mpm(build, repetitions):

@@ -54,9 +54,10 @@ struct GridStencil {
   }
 };
 
-// The grid-to-point transfer of point q: its velocity, position, affine matrix and velocity
-// gradient, which it also returns in L.
-template <bool Flip, class Points, class Stencil>
+// The grid-to-point transfer of point q: its velocity, position and affine matrix, and its
+// velocity gradient, returned in L and stored in the point's field where StoreGradient (a later
+// pass over the points reads it there: the separate stress update; the fused pass uses L).
+template <bool Flip, bool StoreGradient, class Points, class Stencil>
 KOKKOS_FORCEINLINE_FUNCTION void g2p_point(const Points& p, const int q, const Stencil& nodes,
                                            const double ox, const double oy, const double dx,
                                            const double inv_dx, const double apic, const double fr,
@@ -105,7 +106,7 @@ KOKKOS_FORCEINLINE_FUNCTION void g2p_point(const Points& p, const int q, const S
     p.position(q, r) += dt * vmid[r];
     for (int c = 0; c < 2; ++c) {
       p.affine(q, r, c) = apic * C[r][c];
-      p.velocity_gradient(q, r, c) = L[r][c];
+      if constexpr (StoreGradient) p.velocity_gradient(q, r, c) = L[r][c];
     }
   }
 }
@@ -147,7 +148,8 @@ struct BlockStencil {
 //  1. the grid velocities of each point's 3 x 3 stencil into the block's arrays (a transpose:
 //     the nodes of neighbouring points are near, not adjacent, in the grid; in registers, 8
 //     points at a time, where host_transpose.hpp is compiled in);
-//  2. the transfer (g2p_point, reading those arrays), its velocity gradient into Lb;
+//  2. the transfer (g2p_point, reading those arrays), its velocity gradient into Lb (and into
+//     the points' field only without the stress update, whose pass reads the field);
 //  3. the trial stress, and whether the point needs the return mapping;
 //  4. the return mappings where needed: Mohr-Coulomb's vectorised
 //     (mohr_coulomb_return_selected), the rate-dependent ones point by point;
@@ -219,7 +221,8 @@ KOKKOS_FORCEINLINE_FUNCTION void g2p_block(const PointArrays a, const double* co
   for (int q = q0; q < q1; ++q) {
     const int k = q - q0;
     double L[2][2];
-    g2p_point<Flip>(a, q, BlockStencil<B>{gv, gvo, k}, ox, oy, dx, inv_dx, apic, fr, dt, L);
+    g2p_point<Flip, !with_stress>(a, q, BlockStencil<B>{gv, gvo, k}, ox, oy, dx, inv_dx, apic, fr,
+                                  dt, L);
     Lb[0][k] = L[0][0];
     Lb[1][k] = L[0][1];
     Lb[2][k] = L[1][0];
@@ -318,7 +321,7 @@ G2PReport g2p_impl(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, 
         KOKKOS_LAMBDA(const int q, double& vm, double& jm, int& nonfinite, int& outside) {
           [[maybe_unused]] const auto& mats = materials;
           double L[2][2];
-          detail::g2p_point<Flip>(
+          detail::g2p_point<Flip, Stress == G2PStress::None>(
               p, q, detail::GridStencil<decltype(velocity)>{velocity, velocity_old, nx}, ox, oy, dx,
               inv_dx, apic, flip_ratio, dt, L);
           // The template parameter, not the constexpr locals: nvcc counts a local named in an
@@ -345,7 +348,9 @@ G2PReport g2p(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g, doubl
 }
 
 // G2P and the stress update of each point in one pass: the same results as g2p() followed by
-// stress_update<ExecSpace, WithPlasticity>().
+// stress_update<ExecSpace, WithPlasticity>(), but for the points' velocity gradient field, which
+// this pass leaves as it was (the gradient goes from the transfer to the stress update in
+// registers; nothing after the step reads the field).
 template <class ExecSpace, bool WithPlasticity, class MemorySpace>
 G2PReport g2p_stress_update(const Particles<MemorySpace>& p, const Grid<MemorySpace>& g,
                             const Kokkos::View<const PreparedMaterial*, MemorySpace>& materials,

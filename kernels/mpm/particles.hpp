@@ -29,8 +29,9 @@ struct Particles {
   Kokkos::View<double* [2], PointLayout, MemorySpace> position;   // m
   Kokkos::View<double* [2], PointLayout, MemorySpace> velocity;   // m/s
   Kokkos::View<double* [2][2], PointLayout, MemorySpace> affine;  // APIC C = B D^-1, 1/s
-  Kokkos::View<double* [2][2], PointLayout, MemorySpace>
-      velocity_gradient;                                       // L = grad v of the last step, 1/s
+  // L = grad v, 1/s: of the last step where a pass after the G2P reads it (the separate
+  // stress update); the fused G2P and stress update keep it in registers and leave this as it was.
+  Kokkos::View<double* [2][2], PointLayout, MemorySpace> velocity_gradient;
   Kokkos::View<double* [4], PointLayout, MemorySpace> stress;  // Cauchy, Pa (tension positive)
   Kokkos::View<double*, MemorySpace> mass;                     // kg/m
   Kokkos::View<double*, MemorySpace> volume;                   // m^2 (current)

@@ -147,16 +147,16 @@ struct TwoPhaseBlockStencil {
 // The grid-to-point transfer of point q (see the file comment): its velocities, position, affine
 // matrices, solid velocity gradient and liquid divergence. Returns the solid velocity gradient
 // in LS, the liquid divergence in divL, the solid's mid-step velocity in vSm and the grids'
-// velocities interpolated to the point in vS and vL (the health check's speeds).
+// velocities interpolated to the point in vS and vL (the health check's speeds). LS and divL go
+// into the points' fields only where store_rates: when a later pass over the points reads them
+// there (the separate stress and pore pressure updates); the fused passes take them from here.
 // `Points`: TwoPhaseParticles, or TwoPhasePointArrays on the host.
 template <bool Apic, class Points, class Stencil>
-KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_point(const Points& points, const int q,
-                                                     const Stencil& nodes, const double ox,
-                                                     const double oy, const double dx,
-                                                     const double inv_dx, const double apic_scale,
-                                                     const double r_flip, const double r_pic,
-                                                     const double dt, double LS[2][2], double& divL,
-                                                     double vSm[2], double vS[2], double vL[2]) {
+KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_point(
+    const Points& points, const int q, const bool store_rates, const Stencil& nodes,
+    const double ox, const double oy, const double dx, const double inv_dx, const double apic_scale,
+    const double r_flip, const double r_pic, const double dt, double LS[2][2], double& divL,
+    double vSm[2], double vS[2], double vL[2]) {
   const auto& s = points.solid;
   const double xp = s.position(q, 0) - ox, yp = s.position(q, 1) - oy;
   const Stencil1D sx = quadratic_bspline(xp, inv_dx), sy = quadratic_bspline(yp, inv_dx);
@@ -227,10 +227,10 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_point(const Points& points, const
         s.affine(q, r, c) = apic_scale * CS[r][c];
         points.liquid_affine(q, r, c) = apic_scale * CL[r][c];
       }
-      s.velocity_gradient(q, r, c) = LS[r][c];
+      if (store_rates) s.velocity_gradient(q, r, c) = LS[r][c];
     }
   }
-  points.liquid_divergence(q) = divL;
+  if (store_rates) points.liquid_divergence(q) = divL;
 }
 
 // The health of point q after its update (see the file comment), from the speeds of the grids'
@@ -255,36 +255,32 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_health(const Points& p, const int
 
 // Asks the caches for the point data that two_phase_g2p_block reads or writes for the points
 // [q0, q1) (prefetch_points.hpp): up to 34 streams, more than the hardware follows. The block
-// calls it for the next block before its first loop.
-template <bool WithStress, bool Plastic, bool Pore>
+// calls it for the next block before its first loop. StoreRates: the block stores the velocity
+// gradient and the liquid divergence (two_phase_g2p_point).
+template <bool WithStress, bool Plastic, bool Pore, bool StoreRates>
 KOKKOS_FORCEINLINE_FUNCTION void prefetch_block_points(const TwoPhasePointArrays& a, const int q0,
                                                        const int q1) {
   using lsi::mpm::detail::point_stream;
   using lsi::mpm::detail::prefetch_streams;
   const PointArrays& s = a.solid;
-  const lsi::mpm::detail::PointStream transfer[] = {point_stream(s.position.c[0]),
-                                                    point_stream(s.position.c[1]),
-                                                    point_stream(s.velocity.c[0]),
-                                                    point_stream(s.velocity.c[1]),
-                                                    point_stream(s.affine.c[0][0]),
-                                                    point_stream(s.affine.c[0][1]),
-                                                    point_stream(s.affine.c[1][0]),
-                                                    point_stream(s.affine.c[1][1]),
-                                                    point_stream(s.velocity_gradient.c[0][0]),
-                                                    point_stream(s.velocity_gradient.c[0][1]),
-                                                    point_stream(s.velocity_gradient.c[1][0]),
-                                                    point_stream(s.velocity_gradient.c[1][1]),
-                                                    point_stream(a.liquid_velocity.c[0]),
-                                                    point_stream(a.liquid_velocity.c[1]),
-                                                    point_stream(a.liquid_affine.c[0][0]),
-                                                    point_stream(a.liquid_affine.c[0][1]),
-                                                    point_stream(a.liquid_affine.c[1][0]),
-                                                    point_stream(a.liquid_affine.c[1][1]),
-                                                    point_stream(a.liquid_divergence.c),
-                                                    point_stream(a.traction.c[0]),
-                                                    point_stream(a.traction.c[1]),
-                                                    point_stream(a.pore_pressure.c)};
+  const lsi::mpm::detail::PointStream transfer[] = {
+      point_stream(s.position.c[0]),         point_stream(s.position.c[1]),
+      point_stream(s.velocity.c[0]),         point_stream(s.velocity.c[1]),
+      point_stream(s.affine.c[0][0]),        point_stream(s.affine.c[0][1]),
+      point_stream(s.affine.c[1][0]),        point_stream(s.affine.c[1][1]),
+      point_stream(a.liquid_velocity.c[0]),  point_stream(a.liquid_velocity.c[1]),
+      point_stream(a.liquid_affine.c[0][0]), point_stream(a.liquid_affine.c[0][1]),
+      point_stream(a.liquid_affine.c[1][0]), point_stream(a.liquid_affine.c[1][1]),
+      point_stream(a.traction.c[0]),         point_stream(a.traction.c[1]),
+      point_stream(a.pore_pressure.c)};
   prefetch_streams<2>(transfer, q0, q1);
+  if constexpr (StoreRates) {
+    const lsi::mpm::detail::PointStream rates[] = {
+        point_stream(s.velocity_gradient.c[0][0]), point_stream(s.velocity_gradient.c[0][1]),
+        point_stream(s.velocity_gradient.c[1][0]), point_stream(s.velocity_gradient.c[1][1]),
+        point_stream(a.liquid_divergence.c)};
+    prefetch_streams<2>(rates, q0, q1);
+  }
   if constexpr (WithStress) {
     const lsi::mpm::detail::PointStream stress[] = {
         point_stream(s.stress.c[0]), point_stream(s.stress.c[1]),
@@ -318,7 +314,9 @@ struct TwoPhaseG2PSums {
 // (prefetch_block_points):
 //  1. the grids' velocities at each point's 3 x 3 stencil into the block's arrays (without
 //     ghosts, in registers 8 points at a time where host_transpose.hpp is compiled in);
-//  2. the transfer (two_phase_g2p_point, reading those arrays);
+//  2. the transfer (two_phase_g2p_point, reading those arrays; the velocity gradient and the
+//     liquid divergence stored only for a later pass: without the stress update, or without
+//     the pore pressure's, Pore);
 //  3. the mixture's volumetric rate (Pore) and the trial effective stress, and whether the point
 //     needs the return mapping;
 //  4. the return mappings where needed (block_return_mappings, stress_update.hpp);
@@ -340,10 +338,11 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_block(
     const int q0, const int q1, TwoPhaseG2PSums& sums) {
   constexpr bool with_stress = Stress != G2PStress::None;
   constexpr bool plastic = Stress == G2PStress::Plastic;
+  constexpr bool store_rates = !(with_stress && Pore);
   constexpr int B = kTwoPhaseG2PBlock;
   const int count = q1 - q0;
   alignas(64) double gs[3][6][B], gso[3][6][B], gl[3][6][B], glo[Apic ? 1 : 3][6][B];
-  prefetch_block_points<with_stress, plastic, Pore>(a, q1, q1 + count);
+  prefetch_block_points<with_stress, plastic, Pore, store_rates>(a, q1, q1 + count);
   int k0 = 0;
 #if LSI_MPM_HOST_TRANSPOSE
   // Without ghosts, 8 points at a time: each stencil row's 6 doubles of the 8 points transposed
@@ -408,7 +407,8 @@ KOKKOS_FORCEINLINE_FUNCTION void two_phase_g2p_block(
   for (int q = q0; q < q1; ++q) {
     const int k = q - q0;
     double LS[2][2], divL, vSm[2], vS[2], vL[2];
-    two_phase_g2p_point<Apic>(a, q, TwoPhaseBlockStencil<B, !Apic>{gs, gso, gl, glo, k}, ox, oy, dx,
+    two_phase_g2p_point<Apic>(a, q, store_rates,
+                              TwoPhaseBlockStencil<B, !Apic>{gs, gso, gl, glo, k}, ox, oy, dx,
                               inv_dx, apic_scale, r_flip, r_pic, dt, LS, divL, vSm, vS, vL);
     Lb[0][k] = LS[0][0];
     Lb[1][k] = LS[0][1];
@@ -570,8 +570,9 @@ TwoPhaseG2PReport two_phase_g2p_impl(
           [[maybe_unused]] const auto& solid = s;
           const auto& points = p;
           double LS[2][2], divL, vSm[2], vS[2], vL[2];
-          detail::two_phase_g2p_point<Apic>(points, q, grid, ox, oy, dx, inv_dx, apic, flip, pic,
-                                            dt, LS, divL, vSm, vS, vL);
+          const bool store_rates = Stress == G2PStress::None || !fuse_pore;
+          detail::two_phase_g2p_point<Apic>(points, q, store_rates, grid, ox, oy, dx, inv_dx, apic,
+                                            flip, pic, dt, LS, divL, vSm, vS, vL);
           wk += dt * (points.traction(q, 0) * vSm[0] + points.traction(q, 1) * vSm[1]);
           if constexpr (Stress != G2PStress::None) {
             const PreparedMaterial& m = mats(solid.material(q));
@@ -656,7 +657,8 @@ TwoPhaseG2PReport two_phase_g2p(const TwoPhaseParticles<MemorySpace>& p,
 
 // G2P of both phases and the point updates that follow it (see the file comment): the effective
 // stress always, the pore pressure, porosity and next step's limits when work.pore_pressure
-// (then r.viscous_work and r.limits are set).
+// (then r.viscous_work and r.limits are set, and the points' velocity gradient and liquid
+// divergence fields are left as they were: nothing after the pass reads them).
 template <class ExecSpace, class MemorySpace>
 TwoPhaseG2PReport two_phase_g2p_update(
     const TwoPhaseParticles<MemorySpace>& p, const TwoPhaseGrid<MemorySpace>& g, double dt,

@@ -20,12 +20,14 @@ struct TwoPhaseParticles {
   Particles<MemorySpace> solid;                                         // skeleton (see above)
   Kokkos::View<double* [2], PointLayout, MemorySpace> liquid_velocity;  // m/s
   Kokkos::View<double* [2][2], PointLayout, MemorySpace>
-      liquid_affine;                                     // APIC C of the liquid, 1/s
-  Kokkos::View<double*, MemorySpace> liquid_divergence;  // div v_L of the last step, 1/s
-  Kokkos::View<double*, MemorySpace> liquid_mass;        // kg/m, m_L = n0 rho_L V0 (constant)
-  Kokkos::View<double*, MemorySpace> porosity;           // n, current
-  Kokkos::View<double*, MemorySpace> pore_pressure;      // Pa, compression positive
-  Kokkos::View<double*, MemorySpace> conductivity;       // hydraulic conductivity k, m/s
+      liquid_affine;  // APIC C of the liquid, 1/s
+  // div v_L, 1/s: of the last step where a pass after the G2P reads it (as the solid's
+  // velocity gradient, particles.hpp: the separate pore pressure update).
+  Kokkos::View<double*, MemorySpace> liquid_divergence;
+  Kokkos::View<double*, MemorySpace> liquid_mass;    // kg/m, m_L = n0 rho_L V0 (constant)
+  Kokkos::View<double*, MemorySpace> porosity;       // n, current
+  Kokkos::View<double*, MemorySpace> pore_pressure;  // Pa, compression positive
+  Kokkos::View<double*, MemorySpace> conductivity;   // hydraulic conductivity k, m/s
   Kokkos::View<double* [2], PointLayout, MemorySpace> traction;  // N/m, surface load on the point
                                                                  // (applied to the mixture)
   // Artificial bulk viscosity (pore_pressure_update.hpp): the mixture's volumetric strain rate
