@@ -6,6 +6,7 @@
 #pragma once
 #include <Kokkos_Core.hpp>
 #include <cstdint>
+#include <vector>
 
 #include "kernels/closed_form/batch.hpp"
 #include "sweeps/huge_pages.hpp"
@@ -58,6 +59,88 @@ enum ChunkColumn : int {
   analytical_tau_column,
   analytical_lambda_column
 };
+
+// Whether the checks of a sweep's samples are of single fields, each against its own range: no
+// face check and no top width against the base width (the host's block path below).
+inline bool checks_of_single_fields(const SampleChecks& c) {
+  if (c.face) return false;
+  for (int k = 0; k < c.field_count; ++k)
+    if (c.fields[k] == top_width_m) return false;
+  return true;
+}
+
+// The host's block path (evaluate_closed_form_chunk): first[k] = f for the samples k < count
+// whose value v[k] of field f fails its check (value_invalid, sampled_scene.hpp). A function of
+// its own, its loop reading only its parameters: GCC vectorises it.
+inline void mark_invalid(const int count, const double* __restrict v, const FieldRange r,
+                         const bool positive_invalid, const int f, int* __restrict first) {
+  const FieldRange range = r;
+  for (int k = 0; k < count; ++k)
+    first[k] = value_invalid(v[k], range, positive_invalid) ? f : first[k];
+}
+
+// The models' inputs of a block of samples: one column each (ClosedFormChunkColumns).
+struct BlockModelInputs {
+  double *thickness, *velocity, *density, *landslide_mass, *equivalent_length, *barrier_mass,
+      *base_friction, *face_angle, *empirical_tau, *analytical_tau, *analytical_lambda;
+};
+
+// model_inputs (sampled_scene.hpp), term for term, of the samples k < count <= B of a block
+// whose scene field f is col[f][k]; the scene's kind from `base`. The kind's choices are made
+// before the loops (a selection on a bool in the loop keeps GCC from vectorising it), each
+// value that depends on the kind into a column of its own; then one loop over the samples.
+template <int B>
+void block_model_inputs(const int count, const double* const* col, const SceneValues& base,
+                        const TwoBodyCoefficients defaults, const BlockModelInputs out) {
+  const double* const h = col[thickness_m];
+  double length[B], barrier_mass[B], tau[B], lambda[B];
+  const double* L = col[length_m];
+  if (!base.rectangle) {
+    const double* const squares = col[body_squares];
+    for (int k = 0; k < count; ++k) length[k] = (2.0 + squares[k]) * h[k];
+    L = length;
+  }
+  const double* m2 = col[barrier_mass_kg_per_m];
+  if (base.fixed) {
+    for (int k = 0; k < count; ++k) barrier_mass[k] = unbounded;
+    m2 = barrier_mass;
+  } else if (!base.barrier_given_by_mass) {
+    const double *const bw = col[base_width_m], *const tw = col[top_width_m],
+                        *const height = col[height_m], *const rho2 = col[barrier_density_kg_m3];
+    for (int k = 0; k < count; ++k) {
+      const double area = 0.5 * (bw[k] + tw[k]) * height[k];
+      barrier_mass[k] = rho2[k] * area;
+    }
+    m2 = barrier_mass;
+  }
+  const double* a_tau = col[sweeps::analytical_tau];
+  if (!base.analytical_tau_given) {
+    for (int k = 0; k < count; ++k) tau[k] = defaults.tau;
+    a_tau = tau;
+  }
+  const double* a_lambda = col[sweeps::analytical_lambda];
+  if (!base.analytical_lambda_given) {
+    for (int k = 0; k < count; ++k) lambda[k] = defaults.lambda;
+    a_lambda = lambda;
+  }
+  const double *const v = col[velocity_m_s], *const rho = col[density_kg_m3],
+                      *const mu = col[base_friction], *const beta = col[face_angle_deg],
+                      *const e_tau = col[sweeps::empirical_tau];
+#pragma GCC ivdep
+  for (int k = 0; k < count; ++k) {
+    out.thickness[k] = h[k];
+    out.velocity[k] = v[k];
+    out.density[k] = rho[k];
+    out.landslide_mass[k] = rho[k] * L[k] * h[k];
+    out.equivalent_length[k] = L[k];
+    out.barrier_mass[k] = m2[k];
+    out.base_friction[k] = mu[k];
+    out.face_angle[k] = math::degrees_to_radians(beta[k]);
+    out.empirical_tau[k] = e_tau[k];
+    out.analytical_tau[k] = a_tau[k];
+    out.analytical_lambda[k] = a_lambda[k];
+  }
+}
 
 // Whether a method runs batched: the paper's barrier model (the momentum-consistent one runs a
 // sample at a time), and for the empirical model its a1, a2 and kappa not sampled (the batch
@@ -151,10 +234,59 @@ void evaluate_closed_form_chunk(
     }
   };
   if constexpr (runs_on_host<ExecSpace>) {
-    // Not for_each_block_on_host: its `flatten` inlines the momentum variants' scalar models
-    // into the block, and GCC's code there gives other last bits than the same models called on
-    // their own (which the kernel's test compares bit for bit).
-    draw_blocks_on_host(space, sweep.sampler, first, n, sweep.base, one_sample);
+    if (batch && !empirical_one && !analytical_one && checks_of_single_fields(checks)) {
+      // What one_sample does, a block of samples at a time in loops over the block's samples
+      // that the compiler vectorises: each scene field a column of the block (a sampled field's
+      // the sampler's, the others the base value repeated), the checks field by field from the
+      // last (the first invalid field overwrites the later ones), the models' inputs. The same
+      // operations on the same values as one_sample: the same bits.
+      constexpr int B = Sampler<MemorySpace>::block_size;
+      std::vector<double> repeated(std::size_t(scene_field_count) * B);
+      for (int f = 0; f < scene_field_count; ++f)
+        for (int k = 0; k < B; ++k) repeated[std::size_t(f) * B + k] = sweep.base.value[f];
+      const double* const base_columns = repeated.data();
+      const SceneValues& base = sweep.base;
+      const TwoBodyCoefficients defaults = default_two_body_coefficients(base.fixed);
+      const auto each_block = [&](const std::size_t i0, const int count, const double* x) {
+        const double* col[scene_field_count];
+        for (int f = 0; f < scene_field_count; ++f) col[f] = base_columns + f * B;
+        for (int d = 0; d < dims; ++d) {
+          double* const in = &inputs(i0, d);
+#pragma GCC ivdep
+          for (int k = 0; k < count; ++k) in[k] = x[d * B + k];
+          if (sweep.target[d] >= 0) col[sweep.target[d]] = x + d * B;
+        }
+        int bad[B];
+        for (int k = 0; k < count; ++k) bad[k] = -1;
+        for (int c = checks.field_count - 1; c >= 0; --c) {
+          const int f = checks.fields[c];
+          if (!field_unused(base, f))
+            mark_invalid(count, col[f], scene_field_range(f),
+                         f == empirical_kappa && base.empirical_momentum, f, bad);
+        }
+        int* const invalid = &invalid_field(i0);
+        for (int k = 0; k < count; ++k) invalid[k] = bad[k];
+        BlockModelInputs out;
+        out.thickness = &thickness(i0);
+        out.velocity = &velocity(i0);
+        out.density = &density(i0);
+        out.landslide_mass = &landslide_mass(i0);
+        out.equivalent_length = &equivalent_length(i0);
+        out.barrier_mass = &barrier_mass(i0);
+        out.base_friction = &friction(i0);
+        out.face_angle = &face_angle(i0);
+        out.empirical_tau = &empirical_tau(i0);
+        out.analytical_tau = &analytical_tau(i0);
+        out.analytical_lambda = &analytical_lambda(i0);
+        block_model_inputs<B>(count, col, base, defaults, out);
+      };
+      draw_sample_blocks_on_host(space, sweep.sampler, first, n, each_block);
+    } else {
+      // Not for_each_block_on_host: its `flatten` inlines the momentum variants' scalar models
+      // into the block, and GCC's code there gives other last bits than the same models called
+      // on their own (which the kernel's test compares bit for bit).
+      draw_blocks_on_host(space, sweep.sampler, first, n, sweep.base, one_sample);
+    }
   } else {
     Kokkos::parallel_for(
         "lsi::closed_form_sweep", Kokkos::RangePolicy<ExecSpace>(space, 0, n),

@@ -216,29 +216,43 @@ KOKKOS_INLINE_FUNCTION double flow_friction_deceleration(double base_friction, d
   return base_friction * gravity * (share > 0.0 ? share : 0.0);
 }
 
+// One expression without branches (NaN and +-inf are never valid), so that a loop of checks over
+// a block of samples vectorises (closed_form_sweep.hpp). A finite v is an integer where it equals
+// its nearest integer: nearbyint, which GCC vectorises (floor it does not, under the default
+// -ftrapping-math).
 KOKKOS_INLINE_FUNCTION bool in_range(double v, const FieldRange& r) {
-  if (!(v == v) || v == unbounded || v == -unbounded) return false;  // NaN, inf: never valid
-  if (r.lo_closed ? v < r.lo : v <= r.lo) return false;
-  if (r.hi_closed ? v > r.hi : v >= r.hi) return false;
-  return !r.integer || v == math::floor(v);
+  const bool finite = (v == v) & (v != unbounded) & (v != -unbounded);
+  const bool above = r.lo_closed ? v >= r.lo : v > r.lo;
+  const bool below = r.hi_closed ? v <= r.hi : v < r.hi;
+  return finite & above & below & (!r.integer | (v == math::nearbyint(v)));
+}
+
+// Whether a scene of s's kind leaves field f unchecked: the fields it does not use (e.g.
+// length_m, used only by a rectangle).
+KOKKOS_INLINE_FUNCTION bool field_unused(const SceneValues& s, int f) {
+  return (f == body_squares && s.rectangle) || (f == length_m && !s.rectangle) ||
+         (f == barrier_density_kg_m3 && s.barrier_given_by_mass) ||
+         (f == barrier_mass_kg_per_m && !s.barrier_given_by_mass);
+}
+
+// Whether value v of a used field f other than top_width_m fails its check, r its range:
+// positive_invalid = f == empirical_kappa with the momentum-consistent empirical variant, which
+// has no static load after the pulse (the parser: methods.empirical.kappa must be 0 with it).
+KOKKOS_INLINE_FUNCTION bool value_invalid(double v, const FieldRange& r, bool positive_invalid) {
+  return (!in_range(v, r)) | (positive_invalid & (v > 0.0));
 }
 
 // Whether field f of a sample fails its check: its range, and the checks between fields that
 // name f (the top width against the base width; kappa with the momentum-consistent empirical
-// variant). Only the fields the scene uses are checked (e.g. length_m only for a rectangle).
+// variant). Only the fields the scene uses are checked.
 KOKKOS_INLINE_FUNCTION bool field_invalid(const SceneValues& s, int f) {
-  if (f == body_squares && s.rectangle) return false;
-  if (f == length_m && !s.rectangle) return false;
-  if (f == barrier_density_kg_m3 && s.barrier_given_by_mass) return false;
-  if (f == barrier_mass_kg_per_m && !s.barrier_given_by_mass) return false;
+  if (field_unused(s, f)) return false;
   if (f == top_width_m) {
     const double b = s.value[top_width_m];
     return !(b >= 0.0 && b <= s.value[base_width_m] && math::isfinite(b));
   }
-  if (!in_range(s.value[f], scene_field_range(f))) return true;
-  // The momentum-consistent empirical variant has no static load after the pulse (the parser:
-  // methods.empirical.kappa must be 0 with it).
-  return f == empirical_kappa && s.empirical_momentum && s.value[f] > 0.0;
+  return value_invalid(s.value[f], scene_field_range(f),
+                       f == empirical_kappa && s.empirical_momentum);
 }
 
 // Whether the upstream face, which runs out H / tan(beta) horizontally, does not fit in B - b.

@@ -482,6 +482,40 @@ void draw_blocks_on_host(const ExecSpace& space, const Sampler<MemorySpace>& s, 
                        });
 }
 
+// On a host execution space: each_block(i0, count, x) for the blocks of samples [i0, i0 + count)
+// of [0, n), with x[d * block_size + k] the inputs of sample first + i0 + k (k < count): a whole
+// block drawn by Sampler::sample_block, the last, partial block one sample at a time
+// (Sampler::sample) into the same layout; the blocks in parallel on `space`. For the callers
+// whose work over a block's samples is itself a loop the compiler vectorises.
+template <class ExecSpace, class MemorySpace, class EachBlock>
+void draw_sample_blocks_on_host(const ExecSpace& space, const Sampler<MemorySpace>& s,
+                                std::uint64_t first, std::size_t n, const EachBlock& each_block) {
+  static_assert(Kokkos::SpaceAccessibility<ExecSpace, Kokkos::HostSpace>::accessible,
+                "draw_sample_blocks_on_host: sample_block is host code");
+  constexpr int B = Sampler<MemorySpace>::block_size;
+  constexpr int capacity = Sampler<MemorySpace>::max_dimensions * B;
+  const Sampler<MemorySpace> sampler = s;
+  const int dims = s.dimensions();
+  Kokkos::parallel_for("lsi::sweeps::draw_sample_blocks",
+                       Kokkos::RangePolicy<ExecSpace>(space, 0, (n + B - 1) / B),
+                       [=](const std::size_t block) {
+                         const std::size_t begin = block * B;
+                         alignas(64) double x[capacity];
+                         int count = B;
+                         if (begin + B <= n) {
+                           sampler.sample_block(first + begin, x);
+                         } else {
+                           count = static_cast<int>(n - begin);
+                           for (int k = 0; k < count; ++k) {
+                             double one[Sampler<MemorySpace>::max_dimensions];
+                             sampler.sample(first + begin + k, one);
+                             for (int d = 0; d < dims; ++d) x[d * B + k] = one[d];
+                           }
+                         }
+                         each_block(begin, count, static_cast<const double*>(x));
+                       });
+}
+
 // The same without a scratch: each(i, x, stride).
 template <class ExecSpace, class MemorySpace, class Each>
 void draw_blocks_on_host(const ExecSpace& space, const Sampler<MemorySpace>& s, std::uint64_t first,

@@ -175,6 +175,9 @@ std::vector<double> points_of(const std::vector<int>& targets, std::size_t n, un
         case sw::analytical_tau:
           v = 0.1 + 0.5 * u(g);
           break;
+        case sw::body_squares:  // an integer, but one sample in 31 (an invalid one)
+          v = i % 31 == 5 ? 4.5 : double(4 + i % 5);
+          break;
         default:
           v = 1.0;
       }
@@ -253,6 +256,28 @@ TYPED_TEST(ClosedFormSweepKernel, BatchedModelsGiveTheScalarModelsOutputs) {
   expect_scalar_outputs<TypeParam>(base, targets, points_of(targets, n, 1), n);
   base.fixed = true;  // an infinitely heavy barrier
   expect_scalar_outputs<TypeParam>(base, targets, points_of(targets, n, 2), n);
+}
+
+TYPED_TEST(ClosedFormSweepKernel, BlocksOfSingleFieldChecksGiveTheScalarModelsOutputs) {
+  // No face dimension sampled: each check is of one field against its own range, which the host
+  // makes a block of samples at a time, as it writes the models' inputs (the shipped study's
+  // case). Every kind of scene those inputs depend on: front-body-tail (the integer body squares
+  // checked) or rectangle, a barrier given by its density, its mass or fixed, the analytical
+  // coefficients given or the defaults.
+  const std::size_t n = 1037;
+  const std::vector<int> targets = {sw::thickness_m, sw::velocity_m_s, sw::body_squares,
+                                    sw::barrier_density_kg_m3, sw::base_friction};
+  sw::SceneValues base = valid_base();
+  expect_scalar_outputs<TypeParam>(base, targets, points_of(targets, n, 3), n);
+  base.fixed = true;
+  expect_scalar_outputs<TypeParam>(base, targets, points_of(targets, n, 4), n);
+  base.fixed = false;
+  base.barrier_given_by_mass = true;
+  base.analytical_tau_given = base.analytical_lambda_given = true;
+  expect_scalar_outputs<TypeParam>(base, targets, points_of(targets, n, 5), n);
+  base.rectangle = true;  // the body squares unused: their invalid values pass
+  const std::vector<int> with_length = {sw::thickness_m, sw::length_m, sw::base_friction};
+  expect_scalar_outputs<TypeParam>(base, with_length, points_of(with_length, n, 6), n);
 }
 
 TYPED_TEST(ClosedFormSweepKernel, SampledCoefficientsAndMomentumVariantsRunOneSampleAtATime) {
