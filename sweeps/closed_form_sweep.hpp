@@ -74,9 +74,8 @@ inline bool checks_of_single_fields(const SampleChecks& c) {
 // its own, its loop reading only its parameters: GCC vectorises it.
 inline void mark_invalid(const int count, const double* __restrict v, const FieldRange r,
                          const bool positive_invalid, const int f, int* __restrict first) {
-  const FieldRange range = r;
   for (int k = 0; k < count; ++k)
-    first[k] = value_invalid(v[k], range, positive_invalid) ? f : first[k];
+    first[k] = value_invalid(v[k], r, positive_invalid) ? f : first[k];
 }
 
 // The models' inputs of a block of samples: one column each (ClosedFormChunkColumns).

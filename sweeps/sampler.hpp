@@ -451,37 +451,6 @@ class Sampler {
   Kokkos::View<double**, Kokkos::LayoutLeft, MemorySpace> points_;  // Points: sample x input
 };
 
-// On a host execution space: each(scratch, i, x, stride) for the samples i in [0, n), with
-// x[d * stride] the inputs of sample first + i: drawn a block at a time (Sampler::sample_block,
-// stride block_size), the last, partial block one sample at a time (Sampler::sample, stride 1);
-// the blocks in parallel on `space`. `scratch` is a copy of `scratch0` made once a block, for
-// state that each() sets anew for every sample: copied once a block rather than once a sample.
-template <class ExecSpace, class MemorySpace, class Scratch, class Each>
-void draw_blocks_on_host(const ExecSpace& space, const Sampler<MemorySpace>& s, std::uint64_t first,
-                         std::size_t n, const Scratch& scratch0, const Each& each) {
-  static_assert(Kokkos::SpaceAccessibility<ExecSpace, Kokkos::HostSpace>::accessible,
-                "draw_blocks_on_host: sample_block is host code");
-  constexpr int B = Sampler<MemorySpace>::block_size;
-  constexpr int capacity = Sampler<MemorySpace>::max_dimensions * B;
-  const Sampler<MemorySpace> sampler = s;
-  Kokkos::parallel_for("lsi::sweeps::draw_blocks",
-                       Kokkos::RangePolicy<ExecSpace>(space, 0, (n + B - 1) / B),
-                       [=](const std::size_t block) {
-                         const std::size_t begin = block * B;
-                         double x[capacity];
-                         Scratch scratch = scratch0;
-                         if (begin + B <= n) {
-                           sampler.sample_block(first + begin, x);
-                           for (int k = 0; k < B; ++k) each(scratch, begin + k, x + k, B);
-                         } else {
-                           for (std::size_t i = begin; i < n; ++i) {
-                             sampler.sample(first + i, x);
-                             each(scratch, i, x, 1);
-                           }
-                         }
-                       });
-}
-
 // On a host execution space: each_block(i0, count, x) for the blocks of samples [i0, i0 + count)
 // of [0, n), with x[d * block_size + k] the inputs of sample first + i0 + k (k < count): a whole
 // block drawn by Sampler::sample_block, the last, partial block one sample at a time
@@ -514,6 +483,21 @@ void draw_sample_blocks_on_host(const ExecSpace& space, const Sampler<MemorySpac
                          }
                          each_block(begin, count, static_cast<const double*>(x));
                        });
+}
+
+// On a host execution space: each(scratch, i, x, stride) for the samples i in [0, n), with
+// x[d * stride] the inputs of sample first + i, a block at a time (draw_sample_blocks_on_host).
+// `scratch` is a copy of `scratch0` made once a block, for state that each() sets anew for every
+// sample: copied once a block rather than once a sample.
+template <class ExecSpace, class MemorySpace, class Scratch, class Each>
+void draw_blocks_on_host(const ExecSpace& space, const Sampler<MemorySpace>& s, std::uint64_t first,
+                         std::size_t n, const Scratch& scratch0, const Each& each) {
+  constexpr int B = Sampler<MemorySpace>::block_size;
+  draw_sample_blocks_on_host(space, s, first, n,
+                             [=](const std::size_t i0, const int count, const double* x) {
+                               Scratch scratch = scratch0;
+                               for (int k = 0; k < count; ++k) each(scratch, i0 + k, x + k, B);
+                             });
 }
 
 // The same without a scratch: each(i, x, stride).
