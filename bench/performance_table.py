@@ -19,11 +19,13 @@ A figure's roof is what bounds it: for the sweep, the models alone on the same s
 "models-only ceiling": the sweep cannot be faster than evaluating its models); for the empirical
 model, the analytical model's rate (the same kind of arithmetic, one pow apart); for the models,
 the memory roof (bench_bandwidth's triad with write-allocate over the bytes a sample moves).
-A group is a function returning rows (figure, measured, roof, what the roof is): add one to GROUPS
-for new figures.
+A figure may have a goal, a lower bound on the figure itself or on its fraction of the roof (the
+performance goals the code is held to); the table says whether the run met it. A group is a
+function returning rows (figure, measured, roof, what the roof is, goal): add one to GROUPS for
+new figures.
 
   --print        print the tables, do not touch the page
-  --only GROUP   that group only (repeatable): closed_forms, sweep
+  --only GROUP   that group only (repeatable): closed_forms, sweep, mpm
 
 Python 3 standard library only. The programs run with OMP_NUM_THREADS=2 OMP_PROC_BIND=false
 OMP_WAIT_POLICY=passive unless they are set.
@@ -69,6 +71,16 @@ def rate(record):
     return record["items_per_second"]
 
 
+def at_least(value):
+    """A goal on the figure itself: at least value."""
+    return ("figure", value)
+
+
+def fraction_at_least(value):
+    """A goal on the fraction of the roof reached: at least value (0..1)."""
+    return ("fraction", value)
+
+
 def group_closed_forms(build, repetitions):
     runs_models, runs_memory = [], []
     for _ in range(repetitions):
@@ -83,11 +95,11 @@ def group_closed_forms(build, repetitions):
     memory_roof = bandwidth / 128.0
     return [
         ("analytical model, samples/s (2^20 samples)", analytical, memory_roof,
-         "memory: triad bandwidth %.3g GB/s / 128 B a sample" % (bandwidth / 1e9)),
+         "memory: triad bandwidth %.3g GB/s / 128 B a sample" % (bandwidth / 1e9), None),
         ("empirical model, samples/s (2^20 samples)", empirical, analytical,
-         "the analytical model's rate"),
+         "the analytical model's rate", fraction_at_least(0.5)),
         ("empirical model against the memory roof", empirical, memory_roof,
-         "memory, as above"),
+         "memory, as above", None),
     ], "closed_forms", "bench_closed_form, bench_bandwidth"
 
 
@@ -129,25 +141,26 @@ def group_sweep(build, repetitions):
     sample_and_models = 1.0 / (1.0 / sampler + 1.0 / models)
     rows = [
         ("lsi sweep %s (%.3g samples), end to end, s" % (os.path.basename(STUDY), samples), wall,
-         models_time, "models-only ceiling: the samples / the models' rate"),
+         models_time, "models-only ceiling: the samples / the models' rate",
+         fraction_at_least(0.3)),
         ("the same, against drawing the samples and running the models alone, s", wall,
-         samples / sample_and_models, "the sampler alone + the models alone"),
+         samples / sample_and_models, "the sampler alone + the models alone", None),
         ("stage evaluate (sample, check, both models), s", stage["evaluate"],
-         samples / sample_and_models, "the sampler alone + the models alone"),
+         samples / sample_and_models, "the sampler alone + the models alone", None),
     ]
     for s in sorted(stage):
         if s in ("evaluate",) or stage[s] < 1e-3:
             continue
-        rows.append(("stage %s, s" % s, stage[s], None, ""))
+        rows.append(("stage %s, s" % s, stage[s], None, "", None))
     rows += [
         ("sweep kernel (sample, check, both models), samples/s", kernel, sample_and_models,
-         "the sampler alone + the models alone"),
-        ("sampler alone, samples/s", sampler, None, ""),
-        ("both models alone, samples/s", models, None, ""),
+         "the sampler alone + the models alone", None),
+        ("sampler alone, samples/s", sampler, None, "", None),
+        ("both models alone, samples/s", models, None, "", None),
         ("result table written compressed (2^20 rows; the file %.1f %% of the table's bytes), "
-         "samples/s" % (100.0 * stored), table_write, None, ""),
+         "samples/s" % (100.0 * stored), table_write, None, "", None),
         ("one output column's statistics taken a chunk at a time (2^23 values, one thread; "
-         "%.1f %% of them kept), values/s" % (100.0 * kept), column, None, ""),
+         "%.1f %% of them kept), values/s" % (100.0 * kept), column, None, "", None),
     ]
     return rows, "sweep", "bench_sweep, lsi sweep " + STUDY
 
@@ -159,6 +172,11 @@ DRY_STEP_BYTES = {20000: 459.0, 199712: 453.0}
 # column_step/OpenMP/saturated/duplicated: docs/notes/performance.md, "Bytes per update of the
 # saturated step".
 SATURATED_STEP_BYTES = {20000: 829.0, 199712: 817.0}
+# Goals at 200 k points, 2 threads, particle-updates/s.
+DRY_STEP_GOAL = 3.4e7
+SATURATED_STEP_GOAL = 2.5e7
+# Goal of a campaign of small scenes: side by side at least this many times one after another.
+CAMPAIGN_GOAL = 1.5
 
 
 def group_mpm(build, repetitions):
@@ -182,21 +200,24 @@ def group_mpm(build, repetitions):
         rows.append(("dry Mohr-Coulomb step, %d points, particle-updates/s" % points, measured,
                      bandwidth / DRY_STEP_BYTES[points],
                      "memory (%s): triad %.3g GB/s / %.0f B an update" %
-                     (memory, bandwidth / 1e9, DRY_STEP_BYTES[points])))
+                     (memory, bandwidth / 1e9, DRY_STEP_BYTES[points]),
+                     at_least(DRY_STEP_GOAL) if points == 199712 else None))
     for points, bandwidth, memory in ((199712, dram, "DRAM"), (20000, l3, "L3")):
         saturated = next(v for n, v in impact_rate.items()
                          if n.startswith("column_step") and "particles:%d/" % points in n)
         rows.append(("saturated column step, %d points, particle-updates/s" % points, saturated,
                      bandwidth / SATURATED_STEP_BYTES[points],
                      "memory (%s): triad %.3g GB/s / %.0f B an update" %
-                     (memory, bandwidth / 1e9, SATURATED_STEP_BYTES[points])))
+                     (memory, bandwidth / 1e9, SATURATED_STEP_BYTES[points]),
+                     at_least(SATURATED_STEP_GOAL) if points == 199712 else None))
     for cells in (8, 16):
         one = next(v for n, v in impact.items() if "cells:%d/one_after_another" % cells in n)
         side = next(v for n, v in impact.items() if "cells:%d/side_by_side" % cells in n)
         # No roof: on a busy machine the runs one after another also lose their threads'
         # barriers to other work, so the ratio can exceed the thread count.
         rows.append(("campaign of 8 impact runs (%d cells through the thickness): time one "
-                     "after another / side by side" % cells, one / side, None, ""))
+                     "after another / side by side" % cells, one / side, None, "",
+                     at_least(CAMPAIGN_GOAL)))
     return rows, "mpm", "bench_mpm, bench_bandwidth, bench_impact"
 
 
@@ -207,18 +228,34 @@ def number(x):
     return "-" if x is None else "%.3g" % x
 
 
+def goal_cell(goal, measured, fraction):
+    """The goal column: the goal and whether this run met it."""
+    if goal is None:
+        return "-"
+    on, value = goal
+    if on == "fraction":
+        met = fraction is not None and fraction >= value
+        text = "at least %.0f %% of the roof" % (100.0 * value)
+    else:
+        met = measured >= value
+        text = "at least %s" % number(value)
+    return "%s: %s" % (text, "met" if met else "**not met**")
+
+
 def table(rows, group, programs, repetitions):
-    lines = ["| figure | measured | roof | the roof is | fraction of the roof |",
-             "|---|---:|---:|---|---:|"]
-    for figure, measured, roof, what in rows:
+    lines = ["| figure | measured | roof | the roof is | fraction of the roof | goal |",
+             "|---|---:|---:|---|---:|---|"]
+    for figure, measured, roof, what, goal in rows:
         if roof is None:
-            fraction = "-"
+            fraction = None
         elif figure.endswith(", s"):  # a time: the roof is the shortest possible
-            fraction = "%.1f %%" % (100.0 * roof / measured)
+            fraction = roof / measured
         else:
-            fraction = "%.1f %%" % (100.0 * measured / roof)
-        lines.append("| %s | %s | %s | %s | %s |" % (figure, number(measured), number(roof),
-                                                      what or "-", fraction))
+            fraction = measured / roof
+        lines.append("| %s | %s | %s | %s | %s | %s |" % (
+            figure, number(measured), number(roof), what or "-",
+            "-" if fraction is None else "%.1f %%" % (100.0 * fraction),
+            goal_cell(goal, measured, fraction)))
     machine = "%s, %d CPUs, OMP_NUM_THREADS=%s" % (
         platform.processor() or platform.machine(), os.cpu_count(), environment()["OMP_NUM_THREADS"])
     lines += ["", "Medians of %d runs (%s); %s. Command: `/usr/bin/python3 "

@@ -12,22 +12,15 @@ import shutil
 import subprocess
 import sys
 
+from checks import check, finish  # tests/tools/checks.py, beside this script
+
 LSI, SOURCE, WORK = (os.path.abspath(a) for a in sys.argv[1:4])
 DRIVER = os.path.join(SOURCE, "tools", "dakota_driver.py")
 SCENE = os.path.join(SOURCE, "scenes", "former-reference", "L1-B1.json")
 # The driver's values go through the same batched kernel as `lsi sweep`, `lsi run` through the
 # scalar methods: the same formulas, whose multiply-adds the compiler may contract differently.
 REL = 1e-12
-failures = []
-checks = 0
 
-
-def check(ok, what):
-    global checks
-    checks += 1
-    if not ok:
-        failures.append(what)
-        print("FAIL:", what)
 
 
 def lsi_run(velocity, friction):
@@ -150,5 +143,4 @@ r = driver(grad, os.path.join(WORK, "grad.out"))
 check(r.returncode == 2 and "gradients" in r.stderr, f"gradient request: {r.returncode} {r.stderr}")
 check(lsi_runs() == runs, "gradient request: lsi ran")
 
-print(f"{checks - len(failures)} passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+finish()

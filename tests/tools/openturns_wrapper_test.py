@@ -12,6 +12,8 @@ import shutil
 import subprocess
 import sys
 
+from checks import check, finish  # tests/tools/checks.py, beside this script
+
 try:
     import openturns as ot
 except ImportError:
@@ -27,16 +29,7 @@ SCENE = os.path.join(SOURCE, "scenes", "former-reference", "L1-B1.json")
 # methods: the same formulas, whose multiply-adds the compiler may contract differently.
 REL = 1e-12
 N = 100000
-failures = []
-checks = 0
 
-
-def check(ok, what):
-    global checks
-    checks += 1
-    if not ok:
-        failures.append(what)
-        print("FAIL:", what)
 
 
 shutil.rmtree(WORK, ignore_errors=True)
@@ -85,5 +78,4 @@ check(sliding > 0, "the compared points include a sliding barrier")
 y0 = f(X[0])
 check(list(y0) == list(Y[0]), f"f(X[0]) = {list(y0)}, f(X)[0] = {list(Y[0])}")
 
-print(f"{checks - len(failures)} passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+finish()
