@@ -184,7 +184,8 @@ class ChunkEvaluator {
   static constexpr std::uint64_t kBlockSamples = 16384;
 
   // A block's rows [offset, offset + m) of the chunk's table from the kernel's columns (`in`,
-  // `out`, host views of the block), by the host's threads; the MPM columns NaN (filled later).
+  // `out`, host views of the block), by the host's threads a column each (a copy of contiguous
+  // values; the rows' index generated); the MPM columns NaN (filled later).
   template <class HostMatrix>
   void copy_block(SweepTable& t, std::uint64_t first, std::uint64_t offset, std::uint64_t m,
                   const HostMatrix& in, const HostMatrix& out) const {
@@ -205,11 +206,15 @@ class ChunkEvaluator {
     const std::uint64_t start = first + offset;
     Kokkos::parallel_for(
         "lsi::sweep_chunk_table",
-        Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, static_cast<std::int64_t>(m)),
-        [&](const std::int64_t i) {
-          for (std::size_t c = 0; c < n; ++c)
-            copies[c].to[i] = copies[c].from ? copies[c].from[i] : NAN;
-          index[i] = start + static_cast<std::uint64_t>(i);
+        Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, static_cast<std::int64_t>(n + 1)),
+        [&](const std::int64_t c) {
+          if (c == static_cast<std::int64_t>(n)) {
+            for (std::uint64_t i = 0; i < m; ++i) index[i] = start + i;
+          } else if (copies[c].from != nullptr) {
+            std::copy(copies[c].from, copies[c].from + m, copies[c].to);
+          } else {
+            std::fill(copies[c].to, copies[c].to + m, NAN);
+          }
         });
     Kokkos::DefaultHostExecutionSpace().fence();  // `copies` is captured by reference
   }
