@@ -14,13 +14,16 @@ using nlohmann::json;
 
 void write_journal_entry(const std::string& path, SweepHeader header, const SweepJournalEntry& e) {
   json chunks = json::array(), failures = json::array();
-  for (const StoredChunk& k : e.chunks) chunks.push_back({k.dataset, k.chunk, k.address, k.size});
+  for (const StoredChunk& k : e.chunks)
+    chunks.push_back({k.dataset, k.chunk, k.address, k.size, k.column});
   for (std::size_t i = 0; i < e.failure_index.size(); ++i)
     failures.push_back({e.failure_index[i], e.failure_reason[i]});
   header.complete = true;  // the chunk itself
-  header.journal = {{"format", kJournalFormat},   {"table_file", e.table_file},
-                    {"chunk_rows", e.chunk_rows}, {"stored_rows", e.stored_rows},
-                    {"chunks", chunks},           {"failures", failures}};
+  header.journal = {
+      {"format", kJournalFormat},     {"table_file", e.table_file},
+      {"chunk_rows", e.chunk_rows},   {"input_chunks", e.whole_input_rows ? "rows" : "columns"},
+      {"stored_rows", e.stored_rows}, {"chunks", chunks},
+      {"failures", failures}};
   write_sweep_file(path, header, e.pending, nullptr, SweepStorage::Plain);
 }
 
@@ -45,10 +48,21 @@ SweepJournalEntry read_journal_entry(const std::string& path, const std::string&
     // Entries without it were written with the chunks of 256 KiB, whatever the chunk_samples
     // (SweepTableStream::chunk_rows_for with rows_at_once = 1).
     e.chunk_rows = j.value("chunk_rows", std::uint64_t(0));
+    // Formats 1 and 2 chunked the inputs by whole rows, and their chunks have no column.
+    if (format.get<long long>() >= 3) {
+      const std::string input_chunks = j.at("input_chunks").get<std::string>();
+      if (input_chunks != "columns" && input_chunks != "rows")
+        throw InputError(path + ": attribute journal: input_chunks \"" + input_chunks +
+                         "\" is neither \"columns\" nor \"rows\"");
+      e.whole_input_rows = input_chunks == "rows";
+    } else {
+      e.whole_input_rows = true;
+    }
     e.stored_rows = j.at("stored_rows").get<std::uint64_t>();
     for (const auto& k : j.at("chunks"))
       e.chunks.push_back({k.at(0).get<std::uint64_t>(), k.at(1).get<std::uint64_t>(),
-                          k.at(2).get<std::uint64_t>(), k.at(3).get<std::uint64_t>()});
+                          k.at(2).get<std::uint64_t>(), k.at(3).get<std::uint64_t>(),
+                          k.size() > 4 ? k.at(4).get<std::uint64_t>() : 0});
     for (const auto& k : j.at("failures")) {
       e.failure_index.push_back(k.at(0).get<std::uint64_t>());
       e.failure_reason.push_back(k.at(1).get<std::string>());

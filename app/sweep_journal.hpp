@@ -18,6 +18,7 @@ struct SweepJournalEntry {
   std::string table_file;                    // the table file's name in the parts directory
   std::vector<StoredChunk> chunks;           // the compressed chunks the chunk completed there
   std::uint64_t chunk_rows = 0;              // the table's rows per compressed chunk
+  bool whole_input_rows = false;             // the inputs' chunks hold whole rows (formats 1, 2)
   std::uint64_t stored_rows = 0;             // rows in whole compressed chunks after the chunk
   SweepTable pending;                        // the rows after those (not compressed yet)
   std::vector<std::uint64_t> failure_index;  // the chunk's failed samples ...
@@ -25,10 +26,13 @@ struct SweepJournalEntry {
 };
 
 // The layout of an entry's `journal` attribute, written as its "format". Format 1 (entries
-// without the key) may lack chunk_rows; format 2 always has it. A reader refuses a format newer
+// without the key) may lack chunk_rows; format 2 always has it. Formats 1 and 2 journal tables
+// whose inputs' chunks hold whole rows; format 3 records how the inputs are chunked
+// ("input_chunks": "columns" or "rows") and each chunk's column. A reader refuses a format newer
 // than its own: a newer lsi may record what this one would not know to follow (the table's
-// chunk rows were such a record), and resuming would then write a wrong table.
-constexpr int kJournalFormat = 2;
+// chunk rows and its inputs' chunks were such records), and resuming would then write a wrong
+// table.
+constexpr int kJournalFormat = 3;
 
 // Writes the entry atomically, with the sweep's header (its fingerprint identifies the study).
 void write_journal_entry(const std::string& path, SweepHeader header,

@@ -547,25 +547,31 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     }
   }
   const std::string table_name = "table-" + std::to_string(generation) + ".h5";
-  // A resumed run goes on with the chunk rows its predecessors journalled (entries that do not
-  // say were written with the rule's chunks for rows arriving one at a time).
+  // A resumed run goes on with the chunk rows and the inputs' chunks its predecessors journalled
+  // (entries that do not say were written with the rule's chunks for rows arriving one at a
+  // time).
   std::uint64_t chunk_rows =
       SweepTableStream::chunk_rows_for(paths.size(), my_samples, study.chunk_samples);
+  bool whole_input_rows = false;
   if (!earlier.empty()) {
     for (auto& e : earlier)
       if (e.chunk_rows == 0)
         e.chunk_rows = SweepTableStream::chunk_rows_for(paths.size(), my_samples, 1);
-    const std::uint64_t recorded = earlier.front().chunk_rows;
-    chunk_rows = recorded;
+    chunk_rows = earlier.front().chunk_rows;
+    whole_input_rows = earlier.front().whole_input_rows;
+    auto chunks_of = [](const SweepJournalEntry& e) {
+      return std::to_string(e.chunk_rows) + " rows" +
+             (e.whole_input_rows ? " (the inputs' whole rows)" : " (the inputs' columns)");
+    };
     for (std::size_t m = 0; m < earlier.size(); ++m)
-      if (earlier[m].chunk_rows != recorded)
+      if (earlier[m].chunk_rows != chunk_rows || earlier[m].whole_input_rows != whole_input_rows)
         throw InputError(chunk_file(parts, mine[m]) + ": journals chunks of " +
-                         std::to_string(earlier[m].chunk_rows) + " rows, " +
-                         chunk_file(parts, mine[0]) + " of " + std::to_string(recorded) +
+                         chunks_of(earlier[m]) + ", " + chunk_file(parts, mine[0]) + " of " +
+                         chunks_of(earlier.front()) +
                          "; delete the parts directory to start the sweep again");
   }
   SweepTableStream table((parts / table_name).string(), paths, study.output_columns(), my_samples,
-                         chunk_rows);
+                         chunk_rows, whole_input_rows);
   const SweepHeader chunk_header = header_of(study, opt.shard, opt.shard_count);
   std::vector<StoredChunk> stored;  // every compressed chunk of the table, where it lies
   // The rows go into the statistics as they finish (model/sweep_statistics.hpp), and are not
@@ -597,6 +603,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
       e.chunks = table.adopt((parts / e.table_file).string(), e.chunks);
       e.table_file = table_name;
       e.chunk_rows = chunk_rows;
+      e.whole_input_rows = whole_input_rows;
       stored.insert(stored.end(), e.chunks.begin(), e.chunks.end());
       failure_index.insert(failure_index.end(), e.failure_index.begin(), e.failure_index.end());
       failure_reason.insert(failure_reason.end(), e.failure_reason.begin(), e.failure_reason.end());
@@ -637,6 +644,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     SweepJournalEntry entry;
     entry.table_file = table_name;
     entry.chunk_rows = chunk_rows;
+    entry.whole_input_rows = whole_input_rows;
     entry.chunks = table.append(t);
     entry.stored_rows = table.stored_rows();
     entry.pending = table.pending();
@@ -721,7 +729,8 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     // Stopped before the end: `out` holds the rows so far, copied (still compressed) from the
     // table file, which the journal keeps for --resume.
     hdf5::write_atomically(opt.out, "lsi sweep", [&](const std::string& tmp) {
-      SweepTableStream copy(tmp, paths, study.output_columns(), table.rows(), chunk_rows);
+      SweepTableStream copy(tmp, paths, study.output_columns(), table.rows(), chunk_rows,
+                            whole_input_rows);
       copy.adopt(table.path(), stored);
       copy.restore(table.stored_rows(), table.pending());
       copy.finish(h, failure_index, failure_reason, statistics);

@@ -266,33 +266,35 @@ void ChunkCompression::compress_each(
     if (e) std::rethrow_exception(e);
 }
 
-bool write_compressed_chunks(hid_t dataset, hid_t dcpl, const void* data, std::size_t rows,
-                             std::size_t row_elements, std::size_t element_size) {
+bool write_compressed_chunks(hid_t dataset, hid_t dcpl, const std::vector<const void*>& columns,
+                             std::size_t rows, std::size_t element_size) {
   const int level = shuffle_deflate_level(dcpl);
-  if (level < 0 || rows == 0) return false;
+  if (level < 0 || rows == 0 || columns.empty()) return false;
   hsize_t chunk_dims[2] = {0, 0};
   const int rank = H5Pget_chunk(dcpl, 2, chunk_dims);
-  if (rank < 1 || rank > 2 || (rank == 2 && chunk_dims[1] != row_elements)) return false;
+  if (rank < 1 || rank > 2 || (rank == 1 && columns.size() != 1) ||
+      (rank == 2 && chunk_dims[1] != 1))
+    return false;
   const std::size_t chunk_rows = chunk_dims[0];
-  const std::size_t row_bytes = row_elements * element_size;
-  const std::size_t chunk_bytes = chunk_rows * row_bytes;
+  const std::size_t chunk_bytes = chunk_rows * element_size;
   const std::size_t chunks = (rows + chunk_rows - 1) / chunk_rows;
-  const auto* bytes = static_cast<const unsigned char*>(data);
   const Handle type(H5Dget_type(dataset), H5Tclose, "cannot get the type of a dataset");
   const bool floating = floating_type(type);
   std::vector<ChunkRows> rows_of;
-  for (std::size_t c = 0; c < chunks; ++c) {
-    const std::size_t begin = c * chunk_rows, end = std::min(rows, begin + chunk_rows);
-    rows_of.push_back({bytes + begin * row_bytes, (end - begin) * row_bytes, chunk_bytes,
-                       element_size, floating});
-  }
+  for (const void* column : columns)
+    for (std::size_t c = 0; c < chunks; ++c) {
+      const std::size_t begin = c * chunk_rows, end = std::min(rows, begin + chunk_rows);
+      rows_of.push_back({static_cast<const unsigned char*>(column) + begin * element_size,
+                         (end - begin) * element_size, chunk_bytes, element_size, floating});
+    }
   ChunkCompression compression(level);
-  compression.compress_each(rows_of,
-                            [&](std::size_t c, const unsigned char* out, std::size_t size) {
-                              const hsize_t offset[2] = {static_cast<hsize_t>(c * chunk_rows), 0};
-                              check(H5Dwrite_chunk(dataset, H5P_DEFAULT, 0, offset, size, out),
-                                    "cannot write a compressed chunk");
-                            });
+  compression.compress_each(
+      rows_of, [&](std::size_t k, const unsigned char* out, std::size_t size) {
+        const hsize_t offset[2] = {static_cast<hsize_t>(k % chunks * chunk_rows),
+                                   static_cast<hsize_t>(k / chunks)};
+        check(H5Dwrite_chunk(dataset, H5P_DEFAULT, 0, offset, size, out),
+              "cannot write a compressed chunk");
+      });
   return true;
 }
 

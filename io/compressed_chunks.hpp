@@ -67,12 +67,14 @@ bool floating_type(hid_t type);
 // The deflate level of a dataset's filters when they are exactly shuffle then deflate; else -1.
 int shuffle_deflate_level(hid_t creation_properties);
 
-// Writes `data` (the whole dataset, row-major, in the file's element layout: native numbers of
-// `element_size` bytes, `rows` rows of `row_elements` elements) into `dataset`, created with
-// compressed_table_properties (hdf5_io.hpp). Returns false, having written nothing, when the
-// dataset is not chunked along its rows with shuffle + deflate and nothing else (the caller then
-// writes it with H5Dwrite). Threads: the host's (model/host_threads.hpp).
-bool write_compressed_chunks(hid_t dataset, hid_t creation_properties, const void* data,
-                             std::size_t rows, std::size_t row_elements, std::size_t element_size);
+// Writes the whole of `dataset`, created with compressed_table_properties (hdf5_io.hpp) in
+// chunks of one column: `columns` holds each of its columns (one for a 1-D dataset), `rows`
+// native numbers of `element_size` bytes each, in the file's element layout. Returns false,
+// having written nothing, when the dataset is not chunked so (along its rows, a column a chunk)
+// with shuffle + deflate and nothing else (the caller then writes it with H5Dwrite). Threads:
+// the host's (model/host_threads.hpp).
+bool write_compressed_chunks(hid_t dataset, hid_t creation_properties,
+                             const std::vector<const void*>& columns, std::size_t rows,
+                             std::size_t element_size);
 
 }  // namespace lsi::hdf5

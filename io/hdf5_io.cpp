@@ -219,20 +219,22 @@ void write_double_array(hid_t group, const std::string& name, const std::vector<
 }
 
 Handle compressed_table_properties(int rank, const hsize_t* dims, std::size_t element_size,
-                                   hsize_t chunk_rows) {
+                                   hsize_t chunk_rows, hsize_t chunk_columns) {
   Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose,
               "cannot create a dataset-creation property list");
   hsize_t row = 1;
   for (int k = 1; k < rank; ++k) row *= dims[k];
   if (dims[0] == 0 || row == 0) return dcpl;
-  // Chunks of about 256 KiB (whole rows): large enough for the filters, small enough that
-  // reading a few rows does not inflate much.
-  constexpr hsize_t kChunkBytes = hsize_t(1) << 18;
-  const hsize_t rows = chunk_rows > 0
-                           ? chunk_rows
-                           : std::clamp<hsize_t>(kChunkBytes / (row * element_size), 1, dims[0]);
   std::vector<hsize_t> chunk(dims, dims + rank);
-  chunk[0] = rows;
+  if (rank == 2) chunk[1] = std::clamp<hsize_t>(chunk_columns, 1, dims[1]);
+  hsize_t chunk_row = 1;
+  for (int k = 1; k < rank; ++k) chunk_row *= chunk[k];
+  // Chunks of about 256 KiB: large enough for the filters, small enough that reading a few rows
+  // does not inflate much.
+  constexpr hsize_t kChunkBytes = hsize_t(1) << 18;
+  chunk[0] = chunk_rows > 0
+                 ? chunk_rows
+                 : std::clamp<hsize_t>(kChunkBytes / (chunk_row * element_size), 1, dims[0]);
   check(H5Pset_chunk(dcpl, rank, chunk.data()), "cannot set the chunk size");
   if (H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
     check(H5Pset_shuffle(dcpl), "cannot set the shuffle filter");

@@ -121,10 +121,12 @@ void write_double_array(hid_t group, const std::string& name, const std::vector<
 
 // Dataset-creation properties for a table that may be large: chunked along its first dimension
 // and compressed (shuffle, then deflate at level 1) where the library has deflate; the default
-// (contiguous) layout for an empty dataset. Chunks of `chunk_rows` rows where given (> 0), else of
-// about 256 KiB.
+// (contiguous) layout for an empty dataset. A chunk of a 2-D table holds `chunk_columns` of its
+// columns (one by default: the shuffle then puts each column's bytes in planes of their own,
+// which compress as that column's numbers allow; a chunk across columns of different kinds
+// mixes them), of `chunk_rows` rows where given (> 0), else of about 256 KiB.
 Handle compressed_table_properties(int rank, const hsize_t* dims, std::size_t element_size,
-                                   hsize_t chunk_rows = 0);
+                                   hsize_t chunk_rows = 0, hsize_t chunk_columns = 1);
 
 // Dimension scales (HDF5's H5DS): makes `scale` a scale named `name`, and attaches it to
 // dimension `dim` of `dataset`, labelling that dimension with the scale's name, so that h5py

@@ -61,13 +61,14 @@ Handle intermediate_groups() {
   return lcpl;
 }
 
-// Writes a 1-D (rank 1) or 2-D dataset; returns it open, to be described.
+// Writes a dataset of `columns` (each of the same length n): 1-D of n values (rank 1, one
+// column) or 2-D of n rows; returns it open, to be described.
 template <class T>
-Handle write_array(hid_t file, const std::string& name, hid_t file_type, hid_t mem_type,
-                   const std::vector<T>& data, SweepStorage storage, int rank = 1,
-                   hsize_t columns = 1) {
-  const hsize_t dims[2] = {static_cast<hsize_t>(rank == 1 ? data.size() : data.size() / columns),
-                           columns};
+Handle write_columns(hid_t file, const std::string& name, hid_t file_type, hid_t mem_type,
+                     const std::vector<const std::vector<T>*>& columns, SweepStorage storage,
+                     int rank) {
+  const std::size_t n = columns.empty() ? 0 : columns.front()->size();
+  const hsize_t dims[2] = {static_cast<hsize_t>(n), static_cast<hsize_t>(columns.size())};
   Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose,
                "cannot create dataspace for '" + name + "'");
   Handle lcpl = intermediate_groups();
@@ -77,15 +78,32 @@ Handle write_array(hid_t file, const std::string& name, hid_t file_type, hid_t m
                              "cannot create a dataset-creation property list");
   Handle dset(H5Dcreate2(file, name.c_str(), file_type, space, lcpl, dcpl, H5P_DEFAULT), H5Dclose,
               "cannot create dataset '" + name + "'");
-  if (data.empty()) return dset;
-  // Compressed tables: their chunks compressed on several threads (the same bytes in the file).
+  if (n == 0) return dset;
+  // Compressed tables: their chunks (a column's rows each) compressed on several threads.
   const bool same_layout = H5Tequal(file_type, mem_type) > 0;
-  if (storage == SweepStorage::Compressed && same_layout &&
-      write_compressed_chunks(dset, dcpl, data.data(), dims[0], dims[1], H5Tget_size(file_type)))
-    return dset;
-  check(H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
+  if (storage == SweepStorage::Compressed && same_layout) {
+    std::vector<const void*> data;
+    for (const auto* c : columns) data.push_back(c->data());
+    if (write_compressed_chunks(dset, dcpl, data, n, H5Tget_size(file_type))) return dset;
+  }
+  std::vector<T> rows;  // row-major, as H5Dwrite takes a 2-D dataset
+  if (rank == 2) {
+    const std::size_t d = columns.size();
+    rows.resize(n * d);
+    for (std::size_t k = 0; k < d; ++k)
+      for (std::size_t i = 0; i < n; ++i) rows[i * d + k] = (*columns[k])[i];
+  }
+  check(H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                 rank == 2 ? rows.data() : columns.front()->data()),
         "cannot write dataset '" + name + "'");
   return dset;
+}
+
+// A 1-D dataset; returns it open, to be described.
+template <class T>
+Handle write_array(hid_t file, const std::string& name, hid_t file_type, hid_t mem_type,
+                   const std::vector<T>& data, SweepStorage storage) {
+  return write_columns<T>(file, name, file_type, mem_type, {&data}, storage, 1);
 }
 
 // A 1-D dataset with its units and description.
@@ -346,11 +364,9 @@ void write_file(const std::string& file, const SweepHeader& h, const SweepTable&
   write_array(f, "/samples/index", H5T_STD_U64LE, H5T_NATIVE_UINT64, t.index, storage);
   write_array(f, "/samples/status", H5T_STD_I8LE, H5T_NATIVE_INT8, t.status, storage);
   write_array(f, "/samples/wall_time", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, t.wall_time, storage);
-  const std::size_t n = t.rows(), d = t.input_paths.size();
-  std::vector<double> rows(n * d);
-  for (std::size_t k = 0; k < d; ++k)
-    for (std::size_t i = 0; i < n; ++i) rows[i * d + k] = t.inputs[k][i];
-  write_array(f, "/samples/inputs", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows, storage, 2, d);
+  std::vector<const std::vector<double>*> inputs;
+  for (const auto& c : t.inputs) inputs.push_back(&c);
+  write_columns(f, "/samples/inputs", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, inputs, storage, 2);
   for (std::size_t c = 0; c < t.output_columns.size(); ++c)
     write_array(f, "/samples/" + t.output_columns[c], H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
                 t.outputs[c], storage);

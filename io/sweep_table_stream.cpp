@@ -42,13 +42,14 @@ std::uint64_t SweepTableStream::chunk_rows_for(std::size_t inputs, std::uint64_t
 
 SweepTableStream::SweepTableStream(const std::string& path, std::vector<std::string> input_paths,
                                    std::vector<std::string> output_columns, std::uint64_t rows,
-                                   std::uint64_t chunk_rows)
+                                   std::uint64_t chunk_rows, bool whole_input_rows)
     : path_(path),
       input_paths_(std::move(input_paths)),
       output_columns_(std::move(output_columns)),
       layout_(sweep_layout::sample_datasets(input_paths_.size(), output_columns_)),
       planned_rows_(rows),
       chunk_rows_(chunk_rows),
+      whole_input_rows_(whole_input_rows),
       pending_(SweepTable::with_columns(input_paths_, output_columns_)) {
   if (rows == 0 || chunk_rows == 0 || input_paths_.empty())
     throw std::invalid_argument("SweepTableStream: no rows, no chunk rows or no inputs");
@@ -62,7 +63,8 @@ SweepTableStream::SweepTableStream(const std::string& path, std::vector<std::str
     const hsize_t most[2] = {H5S_UNLIMITED, d.columns};
     Handle space(H5Screate_simple(rank, dims, most), H5Sclose,
                  "cannot create the dataspace of '" + d.name + "'");
-    Handle dcpl = compressed_table_properties(rank, dims, d.element_size, chunk_rows);
+    Handle dcpl = compressed_table_properties(rank, dims, d.element_size, chunk_rows,
+                                              whole_input_rows ? d.columns : 1);
     const int level = shuffle_deflate_level(dcpl);
     if (level < 0)
       throw std::runtime_error(path + ": '" + d.name +
@@ -77,25 +79,34 @@ SweepTableStream::SweepTableStream(const std::string& path, std::vector<std::str
 std::vector<StoredChunk> SweepTableStream::write_chunks(const SweepTable& t, std::uint64_t rows) {
   std::vector<StoredChunk> stored;
   if (rows == 0) return stored;
-  const std::size_t d = input_paths_.size();
-  std::vector<double>& inputs = row_major_inputs_;  // the inputs row by row, as the file holds them
-  sweeps::reserve_on_huge_pages(inputs, rows * d);
-  inputs.resize(rows * d);
-  for (std::size_t k = 0; k < d; ++k)
-    for (std::uint64_t i = 0; i < rows; ++i) inputs[i * d + k] = t.inputs[k][i];
-  std::vector<const void*> data = {t.index.data(), t.status.data(), t.wall_time.data(),
-                                   inputs.data()};
-  for (const auto& c : t.outputs) data.push_back(c.data());
+  // Each dataset's columns as its chunks hold them (sweep_layout::sample_datasets' order): a
+  // column each, or the inputs' whole rows (row by row, as the file holds them).
+  std::vector<std::vector<const void*>> columns = {
+      {t.index.data()}, {t.status.data()}, {t.wall_time.data()}, {}};
+  for (const auto& c : t.inputs) columns[3].push_back(c.data());
+  if (whole_input_rows_) {
+    const std::size_t d = input_paths_.size();
+    std::vector<double>& inputs = row_major_inputs_;
+    sweeps::reserve_on_huge_pages(inputs, rows * d);
+    inputs.resize(rows * d);
+    for (std::size_t k = 0; k < d; ++k)
+      for (std::uint64_t i = 0; i < rows; ++i) inputs[i * d + k] = t.inputs[k][i];
+    columns[3] = {inputs.data()};
+  }
+  for (const auto& c : t.outputs) columns.push_back({c.data()});
   std::vector<ChunkRows> chunks;
   for (std::size_t s = 0; s < layout_.size(); ++s) {
-    const std::size_t row_bytes = layout_[s].columns * layout_[s].element_size;
-    const auto* bytes = static_cast<const unsigned char*>(data[s]);
-    for (std::uint64_t begin = 0; begin < rows; begin += chunk_rows_) {
-      const std::uint64_t end = std::min(rows, begin + chunk_rows_);
-      chunks.push_back({bytes + begin * row_bytes, (end - begin) * row_bytes,
-                        chunk_rows_ * row_bytes, layout_[s].element_size,
-                        floating_type(layout_[s].file_type)});
-      stored.push_back({s, (stored_rows_ + begin) / chunk_rows_, 0, 0});
+    const bool whole_rows = layout_[s].name == "/samples/inputs" && whole_input_rows_;
+    const std::size_t row_bytes = (whole_rows ? layout_[s].columns : 1) * layout_[s].element_size;
+    for (std::size_t col = 0; col < columns[s].size(); ++col) {
+      const auto* bytes = static_cast<const unsigned char*>(columns[s][col]);
+      for (std::uint64_t begin = 0; begin < rows; begin += chunk_rows_) {
+        const std::uint64_t end = std::min(rows, begin + chunk_rows_);
+        chunks.push_back({bytes + begin * row_bytes, (end - begin) * row_bytes,
+                          chunk_rows_ * row_bytes, layout_[s].element_size,
+                          floating_type(layout_[s].file_type)});
+        stored.push_back({s, (stored_rows_ + begin) / chunk_rows_, 0, 0, col});
+      }
     }
   }
   compression_->compress_each(chunks,
@@ -106,7 +117,7 @@ std::vector<StoredChunk> SweepTableStream::write_chunks(const SweepTable& t, std
 }
 
 void SweepTableStream::write_chunk(StoredChunk& k, const void* bytes, const std::size_t size) {
-  const hsize_t offset[2] = {k.chunk * chunk_rows_, 0};
+  const hsize_t offset[2] = {k.chunk * chunk_rows_, k.column};
   const hid_t ds = datasets_[k.dataset];
   addresses_->before_write(file_);
   check(H5Dwrite_chunk(ds, H5P_DEFAULT, 0, offset, size, bytes),
@@ -136,6 +147,14 @@ std::vector<StoredChunk> SweepTableStream::adopt(const std::string& from,
     if (k.dataset >= datasets_.size())
       throw std::runtime_error(from + ": a chunk of dataset " + std::to_string(k.dataset) +
                                ", the table has " + std::to_string(datasets_.size()));
+    const std::uint64_t chunk_columns =
+        layout_[k.dataset].name == "/samples/inputs" && !whole_input_rows_
+            ? layout_[k.dataset].columns
+            : 1;
+    if (k.column >= chunk_columns)
+      throw std::runtime_error(from + ": a chunk of dataset " + std::to_string(k.dataset) +
+                               " at column " + std::to_string(k.column) + ", its chunks have " +
+                               std::to_string(chunk_columns) + " column(s)");
     bytes.resize(k.size);
     in.seekg(static_cast<std::streamoff>(k.address));
     if (!in.read(bytes.data(), static_cast<std::streamsize>(k.size)))

@@ -23,9 +23,10 @@
 namespace lsi {
 
 // One compressed chunk of a /samples dataset in a file: the dataset (its place in
-// sweep_layout::sample_datasets), the chunk's index along the rows, its bytes' address and size.
+// sweep_layout::sample_datasets), the chunk's index along the rows, its bytes' address and size,
+// and its first column (the inputs' chunks of one column each; 0 for the others).
 struct StoredChunk {
-  std::uint64_t dataset, chunk, address, size;
+  std::uint64_t dataset, chunk, address, size, column = 0;
 };
 
 class SweepTableStream {
@@ -41,10 +42,13 @@ class SweepTableStream {
                                       std::uint64_t rows_at_once);
 
   // Creates `path` (truncating it) with the /samples datasets of a table of `rows` rows (at
-  // most; finish() may end it shorter), in chunks of `chunk_rows` rows.
+  // most; finish() may end it shorter), in chunks of `chunk_rows` rows. A chunk of the inputs
+  // holds one of their columns (`whole_input_rows` false: each column's bytes compress as its
+  // numbers allow) or whole rows, as tables of earlier versions of lsi did, which a resumed run
+  // goes on with.
   SweepTableStream(const std::string& path, std::vector<std::string> input_paths,
                    std::vector<std::string> output_columns, std::uint64_t rows,
-                   std::uint64_t chunk_rows);
+                   std::uint64_t chunk_rows, bool whole_input_rows = false);
 
   // Appends rows (failures are the caller's): the chunks they complete are compressed and
   // written; returns where they lie.
@@ -56,6 +60,7 @@ class SweepTableStream {
   void restore(std::uint64_t stored_rows, SweepTable pending);
 
   std::uint64_t stored_rows() const { return stored_rows_; }
+  bool whole_input_rows() const { return whole_input_rows_; }
   const SweepTable& pending() const { return pending_; }
   std::uint64_t rows() const { return stored_rows_ + pending_.rows(); }
   const std::string& path() const { return path_; }
@@ -80,9 +85,10 @@ class SweepTableStream {
   hdf5::Handle file_;
   std::vector<hdf5::Handle> datasets_;
   std::uint64_t planned_rows_, chunk_rows_, stored_rows_ = 0;
+  bool whole_input_rows_;
   std::unique_ptr<hdf5::ChunkCompression> compression_;  // every dataset has the same filters
   SweepTable pending_;
-  std::vector<double> row_major_inputs_;  // write_chunks' buffer, kept from chunk to chunk
+  std::vector<double> row_major_inputs_;  // whole input rows: write_chunks' buffer, kept
   std::unique_ptr<hdf5::WrittenChunkAddress> addresses_;  // where each chunk went
 };
 

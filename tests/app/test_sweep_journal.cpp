@@ -1,7 +1,8 @@
 // The sweep's journal (app/sweep_journal.hpp): each entry written on the journal's thread after
 // the table file's fsync returned, in chunk order (the next add waits for it), none lost at the
 // end of a run and none written after a failed fsync; each entry written with its format, and an
-// entry of a format the reader does not know refused.
+// entry of a format the reader does not know refused; each chunk's column and the inputs'
+// chunking recorded, older formats read as whole input rows.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -146,5 +147,66 @@ TEST(SweepJournal, WritesItsFormatAndRefusesAFormatItDoesNotKnow) {
                 std::string::npos)
           << what;
     }
+  }
+}
+
+// An entry whose journal attribute is `journal` as it stands.
+static void write_entry_with_journal(const fs::path& path, const nlohmann::json& journal) {
+  lsi::SweepHeader h = header();
+  h.complete = true;
+  h.journal = journal;
+  lsi::write_sweep_file(path.string(), h, entry(0).pending, nullptr, lsi::SweepStorage::Plain);
+}
+
+TEST(SweepJournal, RecordsEachChunksColumnAndReadsOlderFormatsAsWholeInputRows) {
+  const fs::path dir = fresh_dir("input_chunks");
+  // Written and read back: each chunk's column, and how the inputs are chunked.
+  for (const bool whole_rows : {false, true}) {
+    const fs::path written = dir / (whole_rows ? "chunk-rows.h5" : "chunk-columns.h5");
+    lsi::SweepJournalEntry e = entry(0);
+    e.whole_input_rows = whole_rows;
+    e.chunks = {{3, 2, 4096, 512, whole_rows ? 0u : 4u}, {4, 2, 8192, 256, 0}};
+    {
+      lsi::SweepJournal journal(table_file(dir).string(), header());
+      journal.add(written.string(), e);
+    }
+    const lsi::SweepJournalEntry back = lsi::read_journal_entry(written.string(), "journal-test");
+    EXPECT_EQ(back.whole_input_rows, whole_rows);
+    ASSERT_EQ(back.chunks.size(), 2u);
+    EXPECT_EQ(back.chunks[0].dataset, 3u);
+    EXPECT_EQ(back.chunks[0].chunk, 2u);
+    EXPECT_EQ(back.chunks[0].address, 4096u);
+    EXPECT_EQ(back.chunks[0].size, 512u);
+    EXPECT_EQ(back.chunks[0].column, whole_rows ? 0u : 4u);
+    EXPECT_EQ(back.chunks[1].column, 0u);
+  }
+  // Format 2 knew whole input rows alone, and its chunks no column.
+  const fs::path older = dir / "chunk-2.h5";
+  write_entry_with_journal(older, {{"format", 2},
+                                   {"table_file", "table-0.h5"},
+                                   {"chunk_rows", 4096},
+                                   {"stored_rows", 1000},
+                                   {"chunks", {{3, 1, 4096, 512}}},
+                                   {"failures", nlohmann::json::array()}});
+  const lsi::SweepJournalEntry e = lsi::read_journal_entry(older.string(), "journal-test");
+  EXPECT_TRUE(e.whole_input_rows);
+  ASSERT_EQ(e.chunks.size(), 1u);
+  EXPECT_EQ(e.chunks[0].column, 0u);
+  // Format 3 names its inputs' chunks: a name it does not know is refused, named.
+  const fs::path odd = dir / "chunk-3.h5";
+  write_entry_with_journal(odd, {{"format", 3},
+                                 {"table_file", "table-0.h5"},
+                                 {"chunk_rows", 4096},
+                                 {"input_chunks", "diagonal"},
+                                 {"stored_rows", 1000},
+                                 {"chunks", nlohmann::json::array()},
+                                 {"failures", nlohmann::json::array()}});
+  try {
+    lsi::read_journal_entry(odd.string(), "journal-test");
+    FAIL() << "input_chunks \"diagonal\" read";
+  } catch (const lsi::InputError& x) {
+    const std::string what = x.what();
+    EXPECT_NE(what.find(odd.string()), std::string::npos) << what;
+    EXPECT_NE(what.find("input_chunks \"diagonal\""), std::string::npos) << what;
   }
 }

@@ -422,17 +422,20 @@ TEST(SweepCli, IntervalRuleStopsEarlyAndWallTimeStopsResumably) {
 }
 
 // The rows of a chunk of /samples/inputs in a result file.
-hsize_t input_chunk_rows(const fs::path& file) {
+// The chunk of a result file's /samples/inputs: rows and columns ({0, 0} unless 2-D chunks).
+std::array<hsize_t, 2> input_chunk_dims(const fs::path& file) {
   const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   const hid_t d = H5Dopen2(f, "/samples/inputs", H5P_DEFAULT);
   const hid_t plist = H5Dget_create_plist(d);
-  hsize_t dims[2] = {0, 0};
-  const int rank = H5Pget_chunk(plist, 2, dims);
+  std::array<hsize_t, 2> dims = {0, 0};
+  const int rank = H5Pget_chunk(plist, 2, dims.data());
   H5Pclose(plist);
   H5Dclose(d);
   H5Fclose(f);
-  return rank == 2 ? dims[0] : 0;
+  return rank == 2 ? dims : std::array<hsize_t, 2>{0, 0};
 }
+
+hsize_t input_chunk_rows(const fs::path& file) { return input_chunk_dims(file)[0]; }
 
 // Edits the journal of each entry in `parts` (the attribute `journal` of chunk-*.h5).
 template <class Edit>
@@ -534,6 +537,73 @@ TEST(SweepCli, TableChunksFollowChunkSamplesAndTheJournalNamesThem) {
   EXPECT_NE(mixed.out.find("chunk-000000000001.h5: journals chunks of 4096 rows"),
             std::string::npos)
       << mixed.out;
+}
+
+// The inputs' chunks hold one column each; a parts directory journalled by an earlier lsi, whose
+// inputs' chunks hold whole rows (journal format 2), resumes in whole rows to the same rows.
+TEST(SweepCli, InputChunksHoldAColumnAndOlderPartsResumeInWholeRows) {
+  // Three chunks of 4096 samples; the table's chunks of 8192 rows (4 inputs).
+  const json small = {{"samples", 10000}};
+  const fs::path whole = temp_dir() / "inputcolumns-whole.h5";
+  ASSERT_EQ(
+      run("sweep " + write_study("inputcolumns", small).string() + " --out " + whole.string()).code,
+      0);
+  EXPECT_EQ(input_chunk_dims(whole)[1], 1u);
+  json timed_small = small;
+  timed_small["stop"] = {{"wall_time_s", 1e-6}};  // a chunk an invocation
+  const fs::path study = write_study("inputcolumns-timed", timed_small);
+  const fs::path o = temp_dir() / "inputcolumns-timed.h5";
+  ASSERT_EQ(run("sweep " + study.string() + " --out " + o.string()).code, 0);
+  ASSERT_EQ(run("sweep " + study.string() + " --out " + o.string() + " --resume").code, 0);
+  // The parts as format 2 wrote them after two chunks: their rows in a table of whole input rows
+  // (one compressed chunk, written with the second chunk), the entries' chunks without columns.
+  const fs::path parts = o.string() + ".parts";
+  const lsi::SweepTable so_far = lsi::read_sweep_file(o.string()).table;
+  ASSERT_EQ(so_far.rows(), 8192u);
+  const std::uint64_t chunk_rows = 8192;
+  std::size_t written_chunks = 0;
+  {
+    lsi::SweepTableStream old((parts / "table-7.h5").string(), so_far.input_paths,
+                              so_far.output_columns, 10000, chunk_rows, true);
+    for (std::uint64_t m = 0; m < 2; ++m) {
+      const fs::path entry = parts / ("chunk-00000000000" + std::to_string(m) + ".h5");
+      lsi::SweepFile journalled = lsi::read_sweep_file(entry.string());
+      ASSERT_EQ(journalled.header.journal.at("chunk_rows"), chunk_rows);
+      lsi::SweepTable rows =
+          lsi::SweepTable::with_columns(so_far.input_paths, so_far.output_columns);
+      auto take = [&](auto& into, const auto& v) {
+        into.assign(v.begin() + 4096 * m, v.begin() + 4096 * (m + 1));
+      };
+      take(rows.index, so_far.index);
+      take(rows.status, so_far.status);
+      take(rows.wall_time, so_far.wall_time);
+      for (std::size_t k = 0; k < rows.inputs.size(); ++k) take(rows.inputs[k], so_far.inputs[k]);
+      for (std::size_t c = 0; c < rows.outputs.size(); ++c)
+        take(rows.outputs[c], so_far.outputs[c]);
+      json chunks = json::array();
+      for (const lsi::StoredChunk& k : old.append(rows)) {
+        chunks.push_back({k.dataset, k.chunk, k.address, k.size});
+        ++written_chunks;
+      }
+      journalled.header.journal = {{"format", 2},
+                                   {"table_file", "table-7.h5"},
+                                   {"chunk_rows", chunk_rows},
+                                   {"stored_rows", old.stored_rows()},
+                                   {"chunks", chunks},
+                                   {"failures", journalled.header.journal.at("failures")}};
+      lsi::write_sweep_file(entry.string(), journalled.header, old.pending(), nullptr,
+                            lsi::SweepStorage::Plain);
+    }
+  }
+  ASSERT_GT(written_chunks, 0u);
+  for (int k = 0; k < 3 && fs::exists(parts); ++k)
+    ASSERT_EQ(run("sweep " + study.string() + " --out " + o.string() + " --resume").code, 0);
+  EXPECT_FALSE(fs::exists(parts));
+  const std::array<hsize_t, 2> row_chunk = input_chunk_dims(o);
+  EXPECT_EQ(row_chunk[0], chunk_rows);
+  EXPECT_EQ(row_chunk[1], so_far.input_paths.size());
+  expect_same_rows(lsi::read_sweep_file(o.string()).table,
+                   lsi::read_sweep_file(whole.string()).table);
 }
 
 TEST(SweepCli, AChunkOfSeveralKernelBlocksHoldsTheRowsOfSmallChunks) {
