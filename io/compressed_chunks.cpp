@@ -66,7 +66,8 @@ void shuffle(const unsigned char* rows, std::size_t n, std::size_t count, std::s
 // histogram is the cheap test that spares the random planes a histogram and a code:
 // h = log2(N) - sum(c log2 c) / N over the N sampled bytes and their counts c, c log2 c from a
 // table for the counts of planes up to 32 KiB (a call to log2 per count cost more than the
-// sampling).
+// sampling). The sampled bytes go into four tallies in turn, added at the end: a plane of one
+// byte (a run) would otherwise make each count wait for the one before it.
 PlaneCoding plane_coding(const unsigned char* bytes, std::size_t n) {
   constexpr std::size_t stride = 4, tabulated = 8192;
   static const std::vector<double> c_log2_c = [] {
@@ -74,12 +75,21 @@ PlaneCoding plane_coding(const unsigned char* bytes, std::size_t n) {
     for (std::size_t c = 1; c <= tabulated; ++c) t[c] = double(c) * std::log2(double(c));
     return t;
   }();
-  std::uint32_t count[256] = {};
-  std::size_t sampled = 0;
-  for (std::size_t i = 0; i < n; i += stride, ++sampled) ++count[bytes[i]];
+  std::uint32_t tally[4][256] = {};
+  std::size_t i = 0;
+  for (; i + 3 * stride < n; i += 4 * stride) {
+    ++tally[0][bytes[i]];
+    ++tally[1][bytes[i + stride]];
+    ++tally[2][bytes[i + 2 * stride]];
+    ++tally[3][bytes[i + 3 * stride]];
+  }
+  for (; i < n; i += stride) ++tally[0][bytes[i]];
+  const std::size_t sampled = (n + stride - 1) / stride;
   double sum = 0.0;
-  for (std::uint32_t c : count)
+  for (std::size_t b = 0; b < 256; ++b) {
+    const std::uint32_t c = tally[0][b] + tally[1][b] + tally[2][b] + tally[3][b];
     sum += c <= tabulated ? c_log2_c[c] : double(c) * std::log2(double(c));
+  }
   const double h = std::log2(double(sampled)) - sum / double(sampled);
   return h > 7.5 ? PlaneCoding::stored : h > 4.0 ? PlaneCoding::huffman : PlaneCoding::runs;
 }
