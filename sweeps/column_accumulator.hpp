@@ -232,6 +232,8 @@ class ColumnAccumulator {
     }
     std::size_t below[3] = {0, 0, 0}, at_lo[3] = {0, 0, 0}, at_hi[3] = {0, 0, 0},
                 inner[3] = {0, 0, 0};
+    inside_.resize(n);  // whether each value lies inside a range, for the stores below
+    unsigned char* const inside = inside_.data();
     {
       const std::uint64_t lo0 = lo[0], lo1 = lo[1], lo2 = lo[2];
       const std::uint64_t hi0 = hi[0], hi1 = hi[1], hi2 = hi[2];
@@ -248,9 +250,12 @@ class ColumnAccumulator {
         h0 += key == hi0;
         h1 += key == hi1;
         h2 += key == hi2;
-        i0 += (key > lo0) & (key < hi0);
-        i1 += (key > lo1) & (key < hi1);
-        i2 += (key > lo2) & (key < hi2);
+        const bool in0 = (key > lo0) & (key < hi0), in1 = (key > lo1) & (key < hi1),
+                   in2 = (key > lo2) & (key < hi2);
+        i0 += in0;
+        i1 += in1;
+        i2 += in2;
+        inside[i] = static_cast<unsigned char>(in0 | in1 | in2);
       }
       const std::size_t b[3] = {b0, b1, b2}, l[3] = {l0, l1, l2}, h[3] = {h0, h1, h2},
                         k[3] = {i0, i1, i2};
@@ -290,31 +295,18 @@ class ColumnAccumulator {
       to2[m2] = key;
       m2 += (key > lo[2]) & (key < hi[2]);
     };
-    // Whether each value lies inside a range, a tile at a time (a vectorised pass), then the
-    // stores of the groups of eight that hold one. A few per cent of the values are kept, so
-    // most groups hold none, and the stores, each waiting for the count before it, were the
-    // loop's cost.
-    constexpr std::size_t T = 2048, G = 8;
-    unsigned char inside[T];
-    for (std::size_t t0 = 0; t0 < n; t0 += T) {
-      const std::size_t t1 = std::min(n, t0 + T);
-      const std::uint64_t lo0 = lo[0], lo1 = lo[1], lo2 = lo[2];
-      const std::uint64_t hi0 = hi[0], hi1 = hi[1], hi2 = hi[2];
-      for (std::size_t i = t0; i < t1; ++i) {
-        const std::uint64_t key = detail::order_key(v[i]);
-        inside[i - t0] =
-            static_cast<unsigned char>(((key > lo0) & (key < hi0)) | ((key > lo1) & (key < hi1)) |
-                                       ((key > lo2) & (key < hi2)));
-      }
-      std::size_t i = t0;
-      for (; i + G <= t1; i += G) {
-        std::uint64_t group;
-        std::memcpy(&group, inside + (i - t0), G);
-        if (group != 0)
-          for (std::size_t j = i; j < i + G; ++j) store(j);
-      }
-      for (; i < t1; ++i) store(i);
+    // The stores of the groups of eight values that hold one inside a range (marked by the
+    // counting pass): a few per cent of the values are kept, so most groups hold none, and the
+    // stores, each waiting for the count before it, were the loop's cost.
+    constexpr std::size_t G = 8;
+    std::size_t i = 0;
+    for (; i + G <= n; i += G) {
+      std::uint64_t group;
+      std::memcpy(&group, inside + i, G);
+      if (group != 0)
+        for (std::size_t j = i; j < i + G; ++j) store(j);
     }
+    for (; i < n; ++i) store(i);
     for (std::size_t g = 0; g < ranges_.size(); ++g)
       if (inner[g] > 0) ranges_[g].inner.resize(was[g] + inner[g]);
   }
@@ -326,8 +318,9 @@ class ColumnAccumulator {
   std::uint64_t least_ = ~std::uint64_t{0}, greatest_ = 0;
   stats::LaneSum sum_, ss_, c_;
   double shift_ = 0.0;
-  std::vector<double> first_;  // the first values, until first_values_ of them are in
-  std::vector<Range> ranges_;  // ascending, disjoint
+  std::vector<double> first_;          // the first values, until first_values_ of them are in
+  std::vector<Range> ranges_;          // ascending, disjoint
+  std::vector<unsigned char> inside_;  // take()'s marks, kept from call to call
   bool ranged_ = false;
 };
 
