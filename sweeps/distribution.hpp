@@ -320,7 +320,7 @@ KOKKOS_INLINE_FUNCTION double marginal_quantile(const Marginal& m, double u, dou
 // marginal_quantile for n uniforms u[0..n) (scores z[0..n) when has_z) into out[0..n) (host code),
 // the same bits for each: the kind chosen once, and each step a loop over the n values, which
 // GCC vectorises where it calls no library function (the Uniform, Normal and truncated normal
-// arithmetic, the central region of Phi^-1: normal_quantile_each). out may be u or z.
+// arithmetic, Phi^-1 but its tails' logarithms: normal_quantile_each). out may be u or z.
 inline void marginal_quantile_each(const Marginal& m, const double* u, const double* z, bool has_z,
                                    const double* values, const double* cdf, double* out, int n) {
   switch (m.kind) {

@@ -377,10 +377,11 @@ class Sampler {
   // Host code: the inputs of samples first .. first + block_size - 1 into
   // out[d * block_size + k] (input d of sample first + k), the same bits as sample(first + k).
   // sample() runs every stage for one sample; this runs each stage for the whole block, in loops
-  // that GCC vectorises: the Monte Carlo uniforms (Philox), the central region of Phi^-1, the
+  // that GCC vectorises: the Monte Carlo uniforms (Philox), Phi^-1 (normal_quantile_each), the
   // Cholesky rows and the marginals' arithmetic (marginal_quantile_each). What stays a call per
-  // sample is the same scalar code: the tails of Phi^-1, erfc, exp, a long discrete table's
-  // search, and the other designs' uniforms (the Grid and Points designs run sample() for each).
+  // value is the same scalar code: the logarithms of Phi^-1's tails, erfc, exp, a long discrete
+  // table's search, and the other designs' uniforms (the Grid and Points designs run sample()
+  // for each).
   void sample_block(std::uint64_t first, double* out) const {
     constexpr int B = block_size;
     if (design_ == Design::Points || design_ == Design::Grid) {

@@ -281,10 +281,23 @@ TEST(NormalDistribution, QuantileRoundTrip) {
   }
 }
 
+TEST(NormalDistribution, QuantileOfAConstantIsItsRunTimeValue) {
+  // Where the compiler sees the probability (a confidence level written in the code) it folds
+  // Phi^-1 at compile time; the value must be the bits the same call gives at run time, or the
+  // statistics of a default confidence would differ from those of the same confidence read in.
+  volatile double p[] = {0.975, 0.9, 0.995, 0.025, 1e-12};
+  EXPECT_EQ(normal_quantile(0.975), normal_quantile(p[0]));
+  EXPECT_EQ(normal_quantile(0.9), normal_quantile(p[1]));
+  EXPECT_EQ(normal_quantile(0.995), normal_quantile(p[2]));
+  EXPECT_EQ(normal_quantile(0.025), normal_quantile(p[3]));
+  EXPECT_EQ(normal_quantile(1e-12), normal_quantile(p[4]));
+}
+
 TEST(NormalDistribution, QuantileEachIsQuantileBitForBit) {
-  // normal_quantile_each evaluates the central region for all values and the rest one at a time:
-  // each value must be normal_quantile's bits, across the region's edges, in the tails, at the
-  // edges of [0, 1], outside it, and for counts that do not fill its internal block of 64.
+  // normal_quantile_each evaluates the central region for all values and the tails' approximations
+  // for the values outside it, both vectorised: each value must be normal_quantile's bits, across
+  // the region's edges, in both tails' approximations and across their edge, at the edges of
+  // [0, 1], outside it, and for counts that do not fill its internal block of 64.
   std::vector<double> p = {0.0,
                            1.0,
                            0.5,
@@ -298,8 +311,14 @@ TEST(NormalDistribution, QuantileEachIsQuantileBitForBit) {
                            -0.1,
                            1.1,
                            std::nan("")};
-  for (std::uint64_t i = 0; p.size() < 131; ++i) p.push_back(uniform_open01(7, i, 0));
-  for (int n : {1, 13, 64, 65, 131}) {
+  // Both tails' approximations (r <= 5 and beyond, r = 5 at p = 1.4e-11) from both ends.
+  for (int e = 2; e <= 320; e += 3) p.push_back(std::pow(10.0, -e));
+  for (int e = 2; e <= 16; ++e) p.push_back(1.0 - std::pow(10.0, -e));
+  p.push_back(std::exp(-25.0));
+  p.push_back(std::nextafter(std::exp(-25.0), 0.0));
+  p.push_back(std::nextafter(std::exp(-25.0), 1.0));
+  for (std::uint64_t i = 0; p.size() < 331; ++i) p.push_back(uniform_open01(7, i, 0));
+  for (int n : {1, 13, 64, 65, 131, 331}) {
     std::vector<double> out(n), in_place(p.begin(), p.begin() + n);
     normal_quantile_each(p.data(), out.data(), n);
     normal_quantile_each(in_place.data(), in_place.data(), n);
