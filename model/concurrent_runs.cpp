@@ -14,6 +14,7 @@
 #endif
 
 #include "kernels/common/own_stream.hpp"
+#include "model/mpm_runner.hpp"  // ensure_kokkos
 #include "model/progress.hpp"
 
 namespace lsi {
@@ -36,6 +37,7 @@ int runs_at_once() { return g_runs_at_once; }
 
 int concurrent_runs(std::size_t tasks, int runs) {
   if (!kPartitions || tasks < 2) return 1;
+  ensure_kokkos();  // the partitions are Kokkos'; its threads, how many there are
   const int threads = Kokkos::DefaultHostExecutionSpace().concurrency();
   int n = runs > 0 ? std::min(runs, threads) : threads;
   if (g_runs_at_once > 0) n = std::min(n, g_runs_at_once);

@@ -19,7 +19,9 @@
 namespace lsi {
 
 // How many runs of a campaign of `tasks` would run at once: at most runs_at_once (0: as many as
-// the host backend has threads), at most tasks, 1 where partitions are not available.
+// the host backend has threads), at most tasks, 1 where partitions are not available. Starts
+// Kokkos (ensure_kokkos) where partitions are available and tasks >= 2: the count is that of its
+// threads, and the partitions are its own.
 int concurrent_runs(std::size_t tasks, int runs_at_once = 0);
 
 // Calls task(k) for k = 0 .. tasks - 1, concurrent_runs(tasks, runs_at_once) at a time. Every
