@@ -1,8 +1,9 @@
 // Inverse use of a model (the paper's section 4.3): the minimum barrier mass per metre for which
 // the final displacement stays within a tolerable value. `displacement_of_mass(m)` is any model's
 // final displacement (m) as a function of the barrier mass (kg/m). The mass range is scanned on a
-// logarithmic grid and the last crossing is refined by bisection, so the answer is the smallest
-// mass above which every scanned mass is acceptable, even if the model is not monotone.
+// logarithmic grid, from the heaviest mass down to the first that fails, and that crossing is
+// refined by bisection, so the answer is the smallest mass above which every scanned mass is
+// acceptable, even if the model is not monotone.
 #pragma once
 #include <cmath>
 
@@ -27,11 +28,16 @@ MassForDisplacement minimum_barrier_mass(DisplacementOfMass&& displacement_of_ma
     return displacement_of_mass(m) <= max_displacement;
   };
   const double l0 = std::log(mass_low), l1 = std::log(mass_high);
-  // Last scanned mass that fails.
+  // Last scanned mass that fails: the scan from the heaviest down to the first failure, which
+  // never evaluates the lighter masses (the lightest barriers slide longest, their models cost
+  // most).
   int last_fail = -1;
-  for (int k = 0; k < scan_points; ++k) {
+  for (int k = scan_points - 1; k >= 0; --k) {
     const double m = std::exp(l0 + (l1 - l0) * k / (scan_points - 1));
-    if (!ok(m)) last_fail = k;
+    if (!ok(m)) {
+      last_fail = k;
+      break;
+    }
   }
   if (last_fail == scan_points - 1) {
     out.mass = mass_high;

@@ -2,6 +2,7 @@
 // (kernels/closed_form/inverse_design.hpp), on a known function and on the two-body model.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "kernels/closed_form/barrier_sliding.hpp"
@@ -25,6 +26,22 @@ TEST(InverseDesign, RecoversTheMassOfAKnownDecreasingFunction) {
   EXPECT_EQ(r.status, MassForDisplacement::Status::Found);
   // Bisection in log(m) to 1e-10: relative mass error ~1e-10.
   EXPECT_NEAR(r.mass, 2e4, 1e-8 * 2e4);
+}
+
+TEST(InverseDesign, TakesTheHeaviestFailingMassWhereTheModelIsNotMonotone) {
+  // Two windows of masses fail; the answer lies above the heavier one, at its upper edge
+  // (2e5 kg/m: the displacement steps there), and the scan from the heaviest mass down stops at
+  // that window: the masses below it, where a model's barrier slides longest, are never run.
+  double lightest = 1e300;
+  const auto r = minimum_barrier_mass(
+      [&](double m) {
+        lightest = std::min(lightest, m);
+        return (m >= 10.0 && m <= 100.0) || (m >= 1e5 && m <= 2e5) ? 1.0 : 0.0;
+      },
+      0.5);
+  ASSERT_EQ(r.status, MassForDisplacement::Status::Found);
+  EXPECT_NEAR(r.mass, 2e5, 1e-8 * 2e5);  // the bisection's resolution in log(m), as above
+  EXPECT_GT(lightest, 1e5);
 }
 
 TEST(InverseDesign, TwoBodyMassGivesTheTolerableDisplacement) {
