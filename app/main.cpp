@@ -10,8 +10,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <sstream>
 
@@ -34,6 +36,7 @@
 #include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 #include "io/scene_overrides.hpp"
 #include "model/concurrent_runs.hpp"
+#include "model/design_verify.hpp"
 #include "model/run_threads.hpp"
 #include "model/progress.hpp"
 #include "io/scene_parser.hpp"
@@ -353,35 +356,78 @@ int main(int argc, char** argv) {
           throw lsi::InputError("--verify-design " + m + ": allowed: empirical, analytical");
         checked_methods.push_back(m);
       }
-      for (size_t k = 0; k < compare_scenes.size(); ++k) {
-        const std::string& path = compare_scenes[k];
-        const lsi::Scene& scene = scenes[k];
-        std::string mpm_status;
+      // What the checks need, before any run.
+      const std::size_t n = compare_scenes.size();
+      rows.resize(n);
+      for (std::size_t k = 0; k < n; ++k) {
+        rows[k].scene = scenes[k].name;
+        if (!scenes[k].barrier.fixed && !checked_methods.empty())  // refuses no methods.mpm
+          with_path(compare_scenes[k], [&] {
+            return lsi::verify_designs(scenes[k], {}, max_displacement, checked_methods);
+          });
+      }
+      // Where an MPM runs, the work goes side by side (model/concurrent_runs.hpp:
+      // --runs-at-once): the designs' masses (closed forms, a search each), then every scene's
+      // methods and the MPM of each design checked, each scene's file written as its run ends.
+      // The closed forms alone run one after the other, without Kokkos.
+      const bool mpm = std::any_of(scenes.begin(), scenes.end(), [&](const lsi::Scene& s) {
+        return lsi::scene_runs_mpm(s, only) || (!checked_methods.empty() && !s.barrier.fixed);
+      });
+      const auto each = [&](std::size_t tasks, const std::function<void(std::size_t)>& task) {
+        if (mpm) return lsi::run_concurrently(tasks, task);
+        for (std::size_t k = 0; k < tasks; ++k) task(k);
+      };
+      each(n, [&](std::size_t k) {
+        if (!scenes[k].barrier.fixed)
+          rows[k].designs = lsi::design_barrier_mass(scenes[k], max_displacement, only);
+      });
+      struct Check {
+        std::size_t scene, design;
+        std::vector<lsi::DesignCheck> result;  // none, or the design's check
+      };
+      std::vector<Check> checks;
+      for (std::size_t k = 0; k < n && !checked_methods.empty(); ++k)
+        for (std::size_t d = 0; d < rows[k].designs.size(); ++d)
+          if (rows[k].designs[d].status == "found" &&
+              std::find(checked_methods.begin(), checked_methods.end(),
+                        rows[k].designs[d].method) != checked_methods.end())
+            checks.push_back({k, d, {}});
+      std::vector<std::string> mpm_status(n), no_error_bars(n);
+      std::mutex files;  // HDF5 calls one at a time
+      const auto run_task = [&](std::size_t task) {
+        if (task >= n) {
+          Check& c = checks[task - n];
+          const lsi::Scene& scene = scenes[c.scene];
+          c.result = with_path(compare_scenes[c.scene], [&] {
+            return lsi::verify_designs(scene, {rows[c.scene].designs[c.design]}, max_displacement,
+                                       checked_methods);
+          });
+          return;
+        }
         nlohmann::json resolved;
-        lsi::ComparisonRow row{
-            scene.name, run_scene(path, scene, only, mpm_status, resolved), {}, {}};
-        if (!mpm_status.empty()) {
-          std::cerr << "lsi: " << path << ": the MPM run stopped: " << mpm_status << "\n";
+        rows[task].results =
+            run_scene(compare_scenes[task], scenes[task], only, mpm_status[task], resolved);
+        for (auto& r : rows[task].results)
+          if (convergence && r.method == "mpm")
+            no_error_bars[task] = lsi::attach_convergence(*convergence, scenes[task], r);
+        if (!out_dir.empty()) {
+          const auto file = std::filesystem::path(out_dir) / (scenes[task].name + ".h5");
+          const std::lock_guard<std::mutex> lock(files);
+          lsi::write_results(file.string(), scenes[task].source, rows[task].results, {}, resolved);
+        }
+      };
+      each(n + checks.size(), run_task);
+      for (Check& c : checks)
+        for (auto& r : c.result) rows[c.scene].checks.push_back(std::move(r));
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::string& path = compare_scenes[k];
+        if (!mpm_status[k].empty()) {
+          std::cerr << "lsi: " << path << ": the MPM run stopped: " << mpm_status[k] << "\n";
           unstable = true;
         }
-        for (auto& r : row.results)
-          if (convergence && r.method == "mpm") {
-            const std::string why = lsi::attach_convergence(*convergence, scene, r);
-            if (!why.empty())
-              std::cerr << "lsi: " << path << ": no error bars from " << convergence_path << ": "
-                        << why << "\n";
-          }
-        if (!scene.barrier.fixed)
-          row.designs = lsi::design_barrier_mass(scene, max_displacement, only);
-        if (!checked_methods.empty() && !scene.barrier.fixed)
-          row.checks = with_path(path, [&] {
-            return lsi::verify_designs(scene, row.designs, max_displacement, checked_methods);
-          });
-        if (!out_dir.empty()) {
-          const auto file = std::filesystem::path(out_dir) / (scene.name + ".h5");
-          lsi::write_results(file.string(), scene.source, row.results, {}, resolved);
-        }
-        rows.push_back(std::move(row));
+        if (!no_error_bars[k].empty())
+          std::cerr << "lsi: " << path << ": no error bars from " << convergence_path << ": "
+                    << no_error_bars[k] << "\n";
       }
       if (format == "json")
         std::cout << lsi::comparison_json(rows, max_displacement).dump(2) << "\n";

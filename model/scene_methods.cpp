@@ -9,16 +9,19 @@
 
 namespace lsi {
 
+bool scene_runs_mpm(const Scene& scene, const std::vector<std::string>& only) {
+  return only.empty() ? scene.methods.mpm.has_value()
+                      : std::find(only.begin(), only.end(), "mpm") != only.end();
+}
+
 SceneRun run_scene_methods(const Scene& scene, const std::vector<std::string>& only,
                            const std::string& option) {
   SceneRun out;
-  const bool named_mpm = std::find(only.begin(), only.end(), "mpm") != only.end();
   std::vector<std::string> closed;
   for (const auto& m : only)
     if (m != "mpm") closed.push_back(m);
   if (only.empty() || !closed.empty()) out.results = run_closed_form_methods(scene, closed);
-  const bool want_mpm = only.empty() ? scene.methods.mpm.has_value() : named_mpm;
-  if (!want_mpm) return out;
+  if (!scene_runs_mpm(scene, only)) return out;
   if (!scene.methods.mpm)
     throw InputError(option +
                      " mpm: the scene has no methods.mpm block (cell_size_m, ...; "

@@ -22,6 +22,10 @@ struct SceneRun {
   std::vector<MpmSnapshot> snapshots;
 };
 
+// Whether run_scene_methods runs the MPM: `only` names it, or names nothing and the scene has
+// methods.mpm.
+bool scene_runs_mpm(const Scene& scene, const std::vector<std::string>& only);
+
 // `option` names the choice of methods in the message when `only` asks for the MPM of a scene
 // without methods.mpm (InputError), e.g. "--methods" or "methods".
 SceneRun run_scene_methods(const Scene& scene, const std::vector<std::string>& only,
