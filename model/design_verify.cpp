@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/concurrent_runs.hpp"
 #include "model/input_error.hpp"
 #include "model/messages.hpp"
 #include "model/mpm_impact.hpp"
@@ -38,6 +39,7 @@ std::vector<DesignCheck> verify_designs(const Scene& scene, const std::vector<Ma
     throw InputError(
         "methods.mpm: missing: checking a design runs the MPM (docs/reference/scene_schema.md)");
   std::vector<DesignCheck> out;
+  std::vector<std::size_t> to_run;  // the checks whose barrier exists: their MPM runs
   for (const MassDesign& d : designs) {
     if (d.status != "found") continue;
     if (!methods.empty() && std::find(methods.begin(), methods.end(), d.method) == methods.end())
@@ -47,20 +49,23 @@ std::vector<DesignCheck> verify_designs(const Scene& scene, const std::vector<Ma
     c.mass_kg_per_m = d.mass_kg_per_m;
     try {
       c.barrier = barrier_with_mass(scene.barrier, d.mass_kg_per_m);
+      to_run.push_back(out.size());
     } catch (const InputError& e) {
       c.skipped = e.what();
-      out.push_back(std::move(c));
-      continue;
     }
+    out.push_back(std::move(c));
+  }
+  // The runs side by side (model/concurrent_runs.hpp).
+  run_concurrently(to_run.size(), [&](std::size_t k) {
+    DesignCheck& c = out[to_run[k]];
     Scene s = scene;
     s.barrier = c.barrier;
-    s.name = scene.name + "-" + d.method + "-design";
+    s.name = scene.name + "-" + c.method + "-design";
     MpmOutcome o = run_mpm_case(impact_case(s));
     c.mpm = std::move(o.result);
     c.within =
         has_final_displacement(c.mpm.end_state) && c.mpm.final_displacement <= max_displacement_m;
-    out.push_back(std::move(c));
-  }
+  });
   return out;
 }
 

@@ -27,7 +27,8 @@ struct DesignCheck {
 SceneBarrier barrier_with_mass(const SceneBarrier& b, double m);
 
 // Runs the MPM (the scene's methods.mpm; InputError without it) on the designed barrier of each
-// design found among `methods` (all found designs when empty).
+// design found among `methods` (all found designs when empty), the runs side by side
+// (model/concurrent_runs.hpp); the checks in the designs' order.
 std::vector<DesignCheck> verify_designs(const Scene& scene, const std::vector<MassDesign>& designs,
                                         double max_displacement_m,
                                         const std::vector<std::string>& methods = {});
