@@ -699,9 +699,12 @@ int run_calibrate(const Options& opt) {
   std::vector<std::size_t> to_run;
   for (std::size_t k = 0; k < loaded.size(); ++k)
     if (source[k] == MpmSource::ToRun) to_run.push_back(k);
-  run_concurrently(to_run.size(), [&](std::size_t k) {
-    source[to_run[k]] = run_mpm(loaded[to_run[k]]) ? MpmSource::Stored : MpmSource::Skipped;
-  });
+  run_concurrently(
+      to_run.size(),
+      [&](std::size_t k) {
+        source[to_run[k]] = run_mpm(loaded[to_run[k]]) ? MpmSource::Stored : MpmSource::Skipped;
+      },
+      0, "calibrate, the MPM runs");
   std::vector<Case> cases;
   bool skipped = false;
   for (std::size_t k = 0; k < loaded.size(); ++k) {

@@ -373,14 +373,18 @@ int main(int argc, char** argv) {
       const bool mpm = std::any_of(scenes.begin(), scenes.end(), [&](const lsi::Scene& s) {
         return lsi::scene_runs_mpm(s, only) || (!checked_methods.empty() && !s.barrier.fixed);
       });
-      const auto each = [&](std::size_t tasks, const std::function<void(std::size_t)>& task) {
-        if (mpm) return lsi::run_concurrently(tasks, task);
+      const auto each = [&](std::size_t tasks, const std::function<void(std::size_t)>& task,
+                            const std::string& label) {
+        if (mpm) return lsi::run_concurrently(tasks, task, 0, label);
         for (std::size_t k = 0; k < tasks; ++k) task(k);
       };
-      each(n, [&](std::size_t k) {
-        if (!scenes[k].barrier.fixed)
-          rows[k].designs = lsi::design_barrier_mass(scenes[k], max_displacement, only);
-      });
+      each(
+          n,
+          [&](std::size_t k) {
+            if (!scenes[k].barrier.fixed)
+              rows[k].designs = lsi::design_barrier_mass(scenes[k], max_displacement, only);
+          },
+          "compare, the mass searches");
       struct Check {
         std::size_t scene, design;
         std::vector<lsi::DesignCheck> result;  // none, or the design's check
@@ -416,7 +420,7 @@ int main(int argc, char** argv) {
           lsi::write_results(file.string(), scenes[task].source, rows[task].results, {}, resolved);
         }
       };
-      each(n + checks.size(), run_task);
+      each(n + checks.size(), run_task, "compare");
       for (Check& c : checks)
         for (auto& r : c.result) rows[c.scene].checks.push_back(std::move(r));
       for (std::size_t k = 0; k < n; ++k) {

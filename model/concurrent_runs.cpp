@@ -44,7 +44,9 @@ int concurrent_runs(std::size_t tasks, int runs) {
   return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(std::max(n, 1)), tasks));
 }
 
-void run_concurrently(std::size_t tasks, const std::function<void(std::size_t)>& task, int runs) {
+void run_concurrently(std::size_t tasks, const std::function<void(std::size_t)>& task, int runs,
+                      const std::string& progress_label) {
+  (void)progress_label;  // where no partitions exist: the runs' own progress lines
   const int partitions = concurrent_runs(tasks, runs);
   std::vector<std::exception_ptr> errors(tasks);
   auto guarded = [&](std::size_t k) {
@@ -62,11 +64,19 @@ void run_concurrently(std::size_t tasks, const std::function<void(std::size_t)>&
     omp_set_max_active_levels(std::max(levels, 2));
     std::atomic<std::size_t> next{0};
     const QuietProgress quiet;
+    SampleProgress progress(progress_label, tasks, !progress_label.empty(), "runs");
+    std::mutex progress_lock;
+    std::size_t done = 0;
     Kokkos::OpenMP::partition_master(
         [&](int, int) {
           // On a device, the partition's runs on a stream of its own (own_stream.hpp).
           const OwnStream<Kokkos::DefaultExecutionSpace> stream;
-          for (std::size_t k = next++; k < tasks; k = next++) guarded(k);
+          for (std::size_t k = next++; k < tasks; k = next++) {
+            guarded(k);
+            const std::lock_guard<std::mutex> lock(progress_lock);
+            ++done;
+            progress.update(done, done);
+          }
         },
         partitions, 1);
     omp_set_max_active_levels(levels);

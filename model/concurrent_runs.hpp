@@ -15,6 +15,7 @@
 #pragma once
 #include <cstddef>
 #include <functional>
+#include <string>
 
 namespace lsi {
 
@@ -26,9 +27,11 @@ int concurrent_runs(std::size_t tasks, int runs_at_once = 0);
 
 // Calls task(k) for k = 0 .. tasks - 1, concurrent_runs(tasks, runs_at_once) at a time. Every
 // task runs even when another throws; then the first exception (by task index) is rethrown.
-// While tasks share the machine, MPM progress lines are off (model/progress.hpp).
+// While tasks share the machine, MPM progress lines are off (model/progress.hpp); with a
+// `progress_label` the campaign shows its own instead: the runs done of the tasks
+// (SampleProgress, in the --progress mode).
 void run_concurrently(std::size_t tasks, const std::function<void(std::size_t)>& task,
-                      int runs_at_once = 0);
+                      int runs_at_once = 0, const std::string& progress_label = {});
 
 // The largest number of runs at once any campaign may use, set from the command line
 // (--runs-at-once; 0: as many as threads). 1 runs every campaign one run after the other.

@@ -56,16 +56,19 @@ std::vector<DesignCheck> verify_designs(const Scene& scene, const std::vector<Ma
     out.push_back(std::move(c));
   }
   // The runs side by side (model/concurrent_runs.hpp).
-  run_concurrently(to_run.size(), [&](std::size_t k) {
-    DesignCheck& c = out[to_run[k]];
-    Scene s = scene;
-    s.barrier = c.barrier;
-    s.name = scene.name + "-" + c.method + "-design";
-    MpmOutcome o = run_mpm_case(impact_case(s));
-    c.mpm = std::move(o.result);
-    c.within =
-        has_final_displacement(c.mpm.end_state) && c.mpm.final_displacement <= max_displacement_m;
-  });
+  run_concurrently(
+      to_run.size(),
+      [&](std::size_t k) {
+        DesignCheck& c = out[to_run[k]];
+        Scene s = scene;
+        s.barrier = c.barrier;
+        s.name = scene.name + "-" + c.method + "-design";
+        MpmOutcome o = run_mpm_case(impact_case(s));
+        c.mpm = std::move(o.result);
+        c.within = has_final_displacement(c.mpm.end_state) &&
+                   c.mpm.final_displacement <= max_displacement_m;
+      },
+      0, "the MPM on the designed barriers");
   return out;
 }
 

@@ -163,22 +163,25 @@ void Progress::update(double time, long steps) {
 
 void Progress::finish() { status_.clear(); }
 
-SampleProgress::SampleProgress(std::string label, std::uint64_t total, bool enabled)
+SampleProgress::SampleProgress(std::string label, std::uint64_t total, bool enabled,
+                               std::string unit)
     : label_(std::move(label)),
+      unit_(std::move(unit)),
       total_(total),
       status_(enabled),
       start_(std::chrono::steady_clock::now()) {}
 
 std::string SampleProgress::line(const std::string& label, std::uint64_t done, std::uint64_t total,
-                                 std::uint64_t done_here, double seconds, double left) {
+                                 std::uint64_t done_here, double seconds, double left,
+                                 const std::string& unit) {
   const double rate = seconds > 0 ? double(done_here) / seconds : 0.0;
   if (left < 0.0) left = rate > 0 ? double(total - std::min(done, total)) / rate : 0.0;
   char buf[256];
-  std::snprintf(buf, sizeof buf,
-                "%s: %llu of %llu samples (%.0f %%), %.3g samples/s, %.0f s elapsed, ETA %.0f s",
-                label.c_str(), static_cast<unsigned long long>(done),
-                static_cast<unsigned long long>(total),
-                total > 0 ? 100.0 * double(done) / double(total) : 100.0, rate, seconds, left);
+  std::snprintf(
+      buf, sizeof buf, "%s: %llu of %llu %s (%.0f %%), %.3g %s/s, %.0f s elapsed, ETA %.0f s",
+      label.c_str(), static_cast<unsigned long long>(done), static_cast<unsigned long long>(total),
+      unit.c_str(), total > 0 ? 100.0 * double(done) / double(total) : 100.0, rate, unit.c_str(),
+      seconds, left);
   return buf;
 }
 
@@ -188,7 +191,7 @@ void SampleProgress::update(std::uint64_t done, std::uint64_t done_here) {
   const double seconds = seconds_between(start_, std::chrono::steady_clock::now());
   rate_.add(seconds, double(done_here));
   const double here_total = double(done_here) + double(total_ - std::min(done, total_));
-  status_.show(line(label_, done, total_, done_here, seconds, rate_.time_left(here_total)));
+  status_.show(line(label_, done, total_, done_here, seconds, rate_.time_left(here_total), unit_));
 }
 
 std::string SampleProgress::finishing_line(const std::string& label, std::uint64_t done,

@@ -13,6 +13,7 @@
 //                   states the run time to the end time at the rate so far.
 //   SampleProgress  a sweep: samples done of the total, samples per second, the time left at the
 //                   recent rate; then what follows the samples (the result file being written).
+//                   Also a campaign's runs side by side (model/concurrent_runs.hpp), in runs.
 #pragma once
 #include <chrono>
 #include <cstdint>
@@ -112,7 +113,9 @@ class Progress {
 
 class SampleProgress {
  public:
-  SampleProgress(std::string label, std::uint64_t total, bool enabled);
+  // unit: what is counted, in the plural ("samples", "runs").
+  SampleProgress(std::string label, std::uint64_t total, bool enabled,
+                 std::string unit = "samples");
   // done: samples complete of the total (with earlier runs'); done_here: by this run.
   void update(std::uint64_t done, std::uint64_t done_here);
   // The samples are run and `what` (e.g. writing the result file) follows: says so at once, in
@@ -121,13 +124,14 @@ class SampleProgress {
   // The line update() prints, for the given state (exposed for tests); `left`, the time left at
   // the recent rate (RecentRate), or < 0 for the average rate of this run.
   static std::string line(const std::string& label, std::uint64_t done, std::uint64_t total,
-                          std::uint64_t done_here, double seconds, double left = -1.0);
+                          std::uint64_t done_here, double seconds, double left = -1.0,
+                          const std::string& unit = "samples");
   // The line finishing() prints.
   static std::string finishing_line(const std::string& label, std::uint64_t done,
                                     std::uint64_t total, double seconds, const std::string& what);
 
  private:
-  std::string label_;
+  std::string label_, unit_;
   std::uint64_t total_, done_ = 0;
   StatusLine status_;
   RecentRate rate_;

@@ -82,6 +82,9 @@ TEST(SampleProgress, LineShowsTheSamplesRateAndTimeLeft) {
             "s: 0 of 10 samples (0 %), 0 samples/s, 0 s elapsed, ETA 0 s");
   EXPECT_EQ(lsi::SampleProgress::line("s", 0, 0, 0, 1.0),
             "s: 0 of 0 samples (100 %), 0 samples/s, 1 s elapsed, ETA 0 s");
+  // A campaign's runs side by side (model/concurrent_runs.hpp) count runs.
+  EXPECT_EQ(lsi::SampleProgress::line("compare", 3, 27, 3, 6.0, -1.0, "runs"),
+            "compare: 3 of 27 runs (11 %), 0.5 runs/s, 6 s elapsed, ETA 48 s");
 }
 
 // The heartbeat of logs: the text as a line of its own, at most once per interval (none before the
