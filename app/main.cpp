@@ -392,9 +392,7 @@ int main(int argc, char** argv) {
       std::vector<Check> checks;
       for (std::size_t k = 0; k < n && !checked_methods.empty(); ++k)
         for (std::size_t d = 0; d < rows[k].designs.size(); ++d)
-          if (rows[k].designs[d].status == "found" &&
-              std::find(checked_methods.begin(), checked_methods.end(),
-                        rows[k].designs[d].method) != checked_methods.end())
+          if (lsi::design_checked(rows[k].designs[d], checked_methods))
             checks.push_back({k, d, {}});
       std::vector<std::string> mpm_status(n), no_error_bars(n);
       std::mutex files;  // HDF5 calls one at a time

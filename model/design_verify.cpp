@@ -32,6 +32,11 @@ SceneBarrier barrier_with_mass(const SceneBarrier& b, double m) {
                    " kg/m at a height of 0.5 to 2 times " + format_number(b.height_m) + " m");
 }
 
+bool design_checked(const MassDesign& d, const std::vector<std::string>& methods) {
+  return d.status == "found" &&
+         (methods.empty() || std::find(methods.begin(), methods.end(), d.method) != methods.end());
+}
+
 std::vector<DesignCheck> verify_designs(const Scene& scene, const std::vector<MassDesign>& designs,
                                         double max_displacement_m,
                                         const std::vector<std::string>& methods) {
@@ -41,9 +46,7 @@ std::vector<DesignCheck> verify_designs(const Scene& scene, const std::vector<Ma
   std::vector<DesignCheck> out;
   std::vector<std::size_t> to_run;  // the checks whose barrier exists: their MPM runs
   for (const MassDesign& d : designs) {
-    if (d.status != "found") continue;
-    if (!methods.empty() && std::find(methods.begin(), methods.end(), d.method) == methods.end())
-      continue;
+    if (!design_checked(d, methods)) continue;
     DesignCheck c;
     c.method = d.method;
     c.mass_kg_per_m = d.mass_kg_per_m;

@@ -26,6 +26,10 @@ struct DesignCheck {
 // that mass. Throws InputError when no such trapezoid exists.
 SceneBarrier barrier_with_mass(const SceneBarrier& b, double m);
 
+// Whether verify_designs checks design `d`: one found, by a method among `methods` (any when
+// empty).
+bool design_checked(const MassDesign& d, const std::vector<std::string>& methods);
+
 // Runs the MPM (the scene's methods.mpm; InputError without it) on the designed barrier of each
 // design found among `methods` (all found designs when empty), the runs side by side
 // (model/concurrent_runs.hpp); the checks in the designs' order.
