@@ -7,6 +7,11 @@
 #include <hdf5.h>
 #include <algorithm>
 #include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
 #include <cmath>
 #include <cerrno>
 #include <cstdio>
@@ -56,13 +61,36 @@ std::string chunk_file(const fs::path& parts, std::uint64_t k) {
   return (parts / buf).string();
 }
 
-// Evaluates chunks of a study: the closed forms in one kernel on the default execution space,
-// the MPM sample after sample on the host.
+// Evaluates chunks of a study in three steps: the closed forms of a chunk's samples in one kernel
+// on the default execution space (closed_forms), the chunk's MPM samples, each on its own
+// (run_mpm: safe to call for several samples at once), and the rows the MPM and the range check
+// fill in sample order (finish).
 class ChunkEvaluator {
  public:
   using Exec = Kokkos::DefaultExecutionSpace;
   using Mem = Exec::memory_space;
   using Matrix = Kokkos::View<double**, Kokkos::LayoutLeft, Mem>;
+
+  // One MPM sample's run: its four summaries, and how it ended where it did not end well.
+  struct MpmSample {
+    double summaries[sweeps::closed_form_output_count] = {NAN, NAN, NAN, NAN};
+    SampleStatus status = SampleStatus::ok;
+    std::string reason;
+    double seconds = 0.0;
+  };
+
+  // A chunk's rows on their way through the three steps; kept (and reused) from chunk to chunk.
+  struct Chunk {
+    std::uint64_t k = 0;
+    SweepTable table;
+    // Per row: the scene field the kernel's range check rejected, or -1 (`bad`, on the host).
+    Kokkos::View<int*, Mem> invalid_store;
+    decltype(Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(),
+                                                 std::declval<Kokkos::View<int*, Mem>>())) bad;
+    bool any_invalid = false;
+    std::vector<std::uint64_t> mpm_rows;  // the rows whose MPM runs, in order
+    std::vector<MpmSample> runs;          // their runs
+  };
 
   explicit ChunkEvaluator(const Study& s) : study_(s), sweep_(s.sampler<Mem>()) {
     sweep_.base = s.base_values;
@@ -80,15 +108,23 @@ class ChunkEvaluator {
         source_.push_back({m, out, column});
       }
     for (const auto& in : s.inputs) paths_.push_back(in.path);
-    table_ = SweepTable::with_columns(paths_, s.output_columns());
   }
 
-  // The table of chunk k; it stays valid (and is reused) until the next call.
-  const SweepTable& run(std::uint64_t k) {
+  // A chunk with the study's columns, for closed_forms to fill.
+  Chunk new_chunk() const {
+    Chunk c;
+    c.table = SweepTable::with_columns(paths_, study_.output_columns());
+    return c;
+  }
+
+  // Chunk k's closed forms (and its inputs, index and range check) into c; the MPM columns NaN,
+  // c.mpm_rows the rows whose MPM is to run (run_mpm), the rest of the rows final.
+  void closed_forms(std::uint64_t k, Chunk& c) {
     const std::uint64_t first = k * study_.chunk_samples;
     const std::uint64_t count = std::min(study_.chunk_samples, study_.samples - first);
     const int dims = static_cast<int>(study_.inputs.size());
     const int columns = 2 * sweeps::closed_form_output_count;
+    c.k = k;
     // On the host the kernel runs a block of samples at a time, each block's working columns
     // (its inputs, the models' inputs and outputs: a few MB) reused by the next, so that the
     // only memory a chunk touches for the first time is its table's; on a device, the chunk in
@@ -105,14 +141,14 @@ class ChunkEvaluator {
       sweeps::advise_huge_pages(input_store_);
       sweeps::advise_huge_pages(output_store_);
     }
-    if (invalid_store_.extent(0) < count) {
-      invalid_store_ = Kokkos::View<int*, Mem>(
+    if (c.invalid_store.extent(0) < count) {
+      c.invalid_store = Kokkos::View<int*, Mem>(
           Kokkos::view_alloc(Kokkos::WithoutInitializing, "sweep invalid field"), count);
-      sweeps::advise_huge_pages(invalid_store_);
+      sweeps::advise_huge_pages(c.invalid_store);
     }
 
     // Columns kept from chunk to chunk: resized, not allocated anew, and every row overwritten.
-    SweepTable& t = table_;
+    SweepTable& t = c.table;
     t.reserve(count);  // on huge pages, before the first chunk's columns are written
     t.failure_index.clear();
     t.failure_reason.clear();
@@ -126,7 +162,7 @@ class ChunkEvaluator {
       // A shorter block (the last) takes the front of the buffers, as views of its own extents.
       const Matrix inputs(input_store_.data(), m, dims);
       const Matrix outputs(output_store_.data(), m, columns);
-      const Kokkos::View<int*, Mem> invalid(invalid_store_.data() + offset, m);
+      const Kokkos::View<int*, Mem> invalid(c.invalid_store.data() + offset, m);
       const auto t0 = Clock::now();
       sweeps::evaluate_closed_form_chunk(Exec(), sweep_, first + offset, inputs, outputs, invalid,
                                          columns_);
@@ -136,40 +172,48 @@ class ChunkEvaluator {
       kernel_seconds += seconds_since(t0);
       copy_block(t, first, offset, m, in, out);
     }
-    const Kokkos::View<int*, Mem> invalid(invalid_store_.data(), count);
-    const auto bad = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), invalid);
+    const Kokkos::View<int*, Mem> invalid(c.invalid_store.data(), count);
+    c.bad = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), invalid);
     t.wall_time.assign(count, static_cast<float>(kernel_seconds / double(count)));
-    const bool mpm = study_.runs("mpm");
-    bool any_invalid = false;
-    for (std::uint64_t i = 0; i < count && !any_invalid; ++i) any_invalid = bad(i) >= 0;
-    if (!any_invalid && !mpm) return t;  // the common case: nothing more per sample
-    // The MPM samples run side by side (model/concurrent_runs.hpp), each into its own record;
-    // the table takes them in sample order.
-    std::vector<std::uint64_t> to_run;
-    if (mpm)
+    c.any_invalid = false;
+    for (std::uint64_t i = 0; i < count && !c.any_invalid; ++i) c.any_invalid = c.bad(i) >= 0;
+    c.mpm_rows.clear();
+    if (study_.runs("mpm"))
       for (std::uint64_t i = 0; i < count; ++i)
-        if (bad(i) < 0) to_run.push_back(i);
-    std::vector<MpmSample> runs(to_run.size());
-    run_concurrently(to_run.size(), [&](std::size_t r) {
-      std::vector<double> xr(dims);
-      for (int d = 0; d < dims; ++d) xr[d] = t.inputs[d][to_run[r]];
-      runs[r] = run_mpm_sample(t.index[to_run[r]], xr.data());
-    });
+        if (c.bad(i) < 0) c.mpm_rows.push_back(i);
+    c.runs.assign(c.mpm_rows.size(), MpmSample{});
+  }
+
+  // Runs the MPM of c's r-th MPM row (c.mpm_rows[r]) into c.runs[r]; safe to call for several
+  // rows (of one chunk or several) at once.
+  void run_mpm(Chunk& c, std::size_t r) const {
+    const int dims = static_cast<int>(study_.inputs.size());
+    const std::uint64_t i = c.mpm_rows[r];
+    std::vector<double> x(dims);
+    for (int d = 0; d < dims; ++d) x[d] = c.table.inputs[d][i];
+    c.runs[r] = run_mpm_sample(c.table.index[i], x.data());
+  }
+
+  // c's rows complete once its MPM rows have run: the MPM columns and the failures, in row order.
+  void finish(Chunk& c) const {
+    if (!c.any_invalid && c.mpm_rows.empty()) return;  // the common case: nothing per sample
+    SweepTable& t = c.table;
+    const int dims = static_cast<int>(study_.inputs.size());
     std::vector<double> x(dims);
     std::size_t next_run = 0;
-    for (std::uint64_t i = 0; i < count; ++i) {
-      if (bad(i) < 0) {
-        if (mpm) take_mpm_sample(t, i, runs[next_run++]);
+    for (std::uint64_t i = 0; i < t.rows(); ++i) {
+      if (c.bad(i) < 0) {
+        if (next_run < c.mpm_rows.size() && c.mpm_rows[next_run] == i)
+          take_mpm_sample(t, i, c.runs[next_run++]);
         continue;
       }
       for (int d = 0; d < dims; ++d) x[d] = t.inputs[d][i];
       std::string reason = invalid_sample_reason(study_, x.data());
       if (reason.empty())  // the kernel's range check and the scene parser disagree: a bug
         reason = std::string("rejected by the sweep's range check at ") +
-                 sweeps::scene_field_pointer[bad(i)] + " but accepted by the scene parser";
+                 sweeps::scene_field_pointer[c.bad(i)] + " but accepted by the scene parser";
       fail_sample(t, i, SampleStatus::invalid_input, reason);
     }
-    return t;
   }
 
  private:
@@ -225,14 +269,6 @@ class ChunkEvaluator {
     t.failure_reason.push_back(why);
   }
 
-  // One MPM sample's run: its four summaries, and how it ended where it did not end well.
-  struct MpmSample {
-    double summaries[sweeps::closed_form_output_count] = {NAN, NAN, NAN, NAN};
-    SampleStatus status = SampleStatus::ok;
-    std::string reason;
-    double seconds = 0.0;
-  };
-
   // Runs sample `index` (its inputs x); safe to call for several samples at once.
   MpmSample run_mpm_sample(std::uint64_t index, const double* x) const {
     MpmSample r;
@@ -282,11 +318,117 @@ class ChunkEvaluator {
   std::vector<std::string> paths_;
   Matrix input_store_, output_store_;
   sweeps::ClosedFormChunkColumns<Mem> columns_;  // the models' inputs, batched
-  Kokkos::View<int*, Mem> invalid_store_;
-  SweepTable table_;
 };
 
-// Progress on a terminal: samples done, rate, ETA; silent otherwise.
+// What the sweep does after a chunk is committed: go on, finish the chunks already started (a
+// wall-time stop: their runs are finished and kept) or drop them (the interval rule was met: a
+// sequential run would not have run them).
+enum class AfterChunk { go_on, finish_started, drop_started };
+
+// How many MPM samples of a study run at once: one per thread (model/concurrent_runs.hpp) for a
+// study of several samples, each on a thread of its own however few are left, so that a
+// sample's numbers are the same in a resumed, a sharded and an uninterrupted run; a study of one
+// sample runs it with every thread.
+int sweep_runs_at_once(const Study& s) {
+  return s.runs("mpm") ? concurrent_runs(static_cast<std::size_t>(s.samples)) : 1;
+}
+
+// Rows a run holds at most in chunks started but not yet committed (evaluate_in_order).
+std::uint64_t rows_in_flight(const Study& s, int runs_at_once) {
+  return runs_at_once > 1 ? 4 * std::uint64_t(runs_at_once) + s.chunk_samples : s.chunk_samples;
+}
+
+// Evaluates chunks ks (in order) and hands each, complete, to commit(k, rows) in order. The MPM
+// samples run side by side (sweep_runs_at_once) across chunk boundaries: each thread takes the
+// next sample, evaluating the next chunk's closed forms when none is waiting, so that a slow
+// sample holds back the commits, not the other threads. Chunks are started while fewer than
+// rows_in_flight rows wait for their commit: at most that many finished runs are lost to a kill.
+// With one run at a time, one chunk after the other on the calling thread.
+void evaluate_in_order(ChunkEvaluator& evaluator, const Study& study,
+                       const std::vector<std::uint64_t>& ks,
+                       const std::function<AfterChunk(std::uint64_t, const SweepTable&)>& commit) {
+  // A chunk and how many of its MPM runs have not finished.
+  struct Slot {
+    ChunkEvaluator::Chunk chunk;
+    std::size_t runs_left = 0;
+  };
+  const int runs = sweep_runs_at_once(study);
+  const std::uint64_t most_rows = rows_in_flight(study, runs) - study.chunk_samples;
+  std::mutex lock;
+  std::condition_variable changed;
+  std::vector<std::unique_ptr<Slot>> slots;  // every chunk's storage, reused
+  std::vector<Slot*> free_slots;
+  std::deque<Slot*> started;                               // in order, not yet committed
+  std::deque<std::pair<Slot*, std::size_t>> waiting_runs;  // (chunk, its MPM run)
+  std::size_t next = 0, running = 0;
+  std::uint64_t started_rows = 0;
+  bool committing = false, failed = false;
+  AfterChunk after = AfterChunk::go_on;
+  // Commits the complete chunks at the front of `started`, one thread at a time, the lock
+  // released while the commit writes.
+  auto commit_ready = [&](std::unique_lock<std::mutex>& l) {
+    while (!failed && !committing && !started.empty() && started.front()->runs_left == 0) {
+      Slot* c = started.front();
+      started.pop_front();
+      started_rows -= c->chunk.table.rows();
+      if (after != AfterChunk::drop_started) {
+        committing = true;
+        l.unlock();
+        evaluator.finish(c->chunk);
+        const AfterChunk a = commit(c->chunk.k, c->chunk.table);
+        l.lock();
+        committing = false;
+        if (a != AfterChunk::go_on && after != AfterChunk::drop_started) after = a;
+        if (after == AfterChunk::drop_started) waiting_runs.clear();
+      }
+      free_slots.push_back(c);
+    }
+    changed.notify_all();
+  };
+  auto worker = [&](std::size_t) {
+    std::unique_lock<std::mutex> l(lock);
+    try {
+      while (!failed) {
+        if (!waiting_runs.empty()) {
+          const auto [c, r] = waiting_runs.front();
+          waiting_runs.pop_front();
+          ++running;
+          l.unlock();
+          evaluator.run_mpm(c->chunk, r);
+          l.lock();
+          --running;
+          --c->runs_left;
+          commit_ready(l);
+        } else if (after == AfterChunk::go_on && next < ks.size() &&
+                   (started.empty() || started_rows < most_rows)) {
+          if (free_slots.empty()) {
+            slots.push_back(std::make_unique<Slot>(Slot{evaluator.new_chunk(), 0}));
+            free_slots.push_back(slots.back().get());
+          }
+          Slot* c = free_slots.back();
+          free_slots.pop_back();
+          // The closed forms under the lock: one chunk at a time (the evaluator's buffers).
+          evaluator.closed_forms(ks[next++], c->chunk);
+          c->runs_left = c->chunk.mpm_rows.size();
+          for (std::size_t r = 0; r < c->runs_left; ++r) waiting_runs.emplace_back(c, r);
+          started.push_back(c);
+          started_rows += c->chunk.table.rows();
+          commit_ready(l);
+        } else if (running == 0 && !committing) {
+          return;  // nothing to run, to start or to commit
+        } else {
+          changed.wait(l);
+        }
+      }
+    } catch (...) {
+      if (!l.owns_lock()) l.lock();
+      failed = true;
+      changed.notify_all();
+      throw;
+    }
+  };
+  run_concurrently(static_cast<std::size_t>(runs), worker, runs);
+}
 
 // The column of the interval rule among the table's outputs (or -1).
 int rule_column(const Study& s, const SweepTable& t) {
@@ -375,12 +517,13 @@ void check_shard_rows(const Study& study, const std::string& file, const SweepHe
 
 // Refuses, before anything is written, a run whose rows cannot be held in memory or whose files
 // cannot fit beside `out` (the result's table, and its copy when the run stops early: at most
-// twice the table). In memory: a chunk's rows, twice (the table's, and the kernel's on a device;
-// on the host the kernel's blocks take a few MB, so that this bounds it from above), and the
-// values the statistics keep (sweeps/column_accumulator.hpp: the first values of each output
-// column and a few per cent of the rest; 4 % is counted). The whole table is held instead (twice,
-// plus a column) where the MPM runs again at the quantiles, and once more beside the chunks where
-// the statistics may read it back (designs whose samples do not come in random order).
+// twice the table). In memory: the rows of the chunks under way (rows_in_flight) and a chunk's
+// rows again (the kernel's on a device; on the host its blocks take a few MB, so that this
+// bounds it from above), and the values the statistics keep (sweeps/column_accumulator.hpp: the
+// first values of each output column and a few per cent of the rest; 4 % is counted). The whole
+// table is held instead (twice, plus a column) where the MPM runs again at the quantiles, and
+// once more beside the chunks where the statistics may read it back (designs whose samples do
+// not come in random order).
 void check_sweep_fits(const Study& s, const SweepOptions& opt) {
   const std::uint64_t chunks = (s.samples + s.chunk_samples - 1) / s.chunk_samples;
   const std::uint64_t n = static_cast<std::uint64_t>(opt.shard_count);
@@ -396,7 +539,9 @@ void check_sweep_fits(const Study& s, const SweepOptions& opt) {
   const bool keep_rows = describe_here && s.mpm_at_quantiles.has_value();
   const bool may_read_back =
       describe_here && (s.design == sweeps::Design::Grid || s.design == sweeps::Design::Points);
-  const double chunk = 2.0 * std::min(rows, double(s.chunk_samples)) * row_bytes;
+  const double in_flight = double(rows_in_flight(s, sweep_runs_at_once(s)));
+  const double chunk =
+      (std::min(rows, in_flight) + std::min(rows, double(s.chunk_samples))) * row_bytes;
   double memory = chunk;
   std::string what = "a chunk's rows (" + json_fields::format_number(row_bytes) + " bytes each)";
   if (keep_rows) {
@@ -634,12 +779,16 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   // returned, while the chunk's rows are described and the next chunk is evaluated; the journal
   // is waited for before the table file takes the next rows (HDF5 from one thread at a time).
   SweepJournal journal(table.path(), chunk_header);
-  for (std::size_t m = 0; m < mine.size() && !rule_met && stopped_by.empty(); ++m) {
-    if (done[m]) continue;
-    auto ts = Clock::now();
-    const SweepTable& t = evaluator.run(mine[m]);
-    evaluate_s += seconds_since(ts);
-    ts = Clock::now();
+  std::vector<std::uint64_t> to_do;
+  std::size_t m = 0;  // the next chunk to commit, in `mine`
+  while (m < mine.size() && done[m]) ++m;
+  for (std::size_t i = m; i < mine.size(); ++i) to_do.push_back(mine[i]);
+  bool out_of_time = false;
+  double commit_s = 0.0;
+  const auto pipeline_start = Clock::now();
+  evaluate_in_order(evaluator, study, to_do, [&](std::uint64_t k, const SweepTable& t) {
+    const auto tc = Clock::now();
+    auto ts = tc;
     journal.flush();
     SweepJournalEntry entry;
     entry.table_file = table_name;
@@ -651,9 +800,9 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     entry.failure_index = t.failure_index;
     entry.failure_reason = t.failure_reason;
     stored.insert(stored.end(), entry.chunks.begin(), entry.chunks.end());
-    journal.add(chunk_file(parts, mine[m]), std::move(entry));
+    journal.add(chunk_file(parts, k), std::move(entry));
     write_s += seconds_since(ts);
-    done[m] = true;
+    done[m++] = true;  // chunks come in order: k is mine[m]
     done_samples += t.rows();
     run_here += t.rows();
     progress.update(done_samples, run_here);
@@ -662,15 +811,22 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
     gather(t);
     gather_s += seconds_since(ts);
     std::string why;
+    AfterChunk after = AfterChunk::go_on;
     if (interval_rule_met(study, rule_values, why)) {
       rule_met = true;
       stopped_by = why;
-    } else if (seconds_since(t0) > study.stop.wall_time_s &&
-               std::find(done.begin(), done.end(), false) != done.end()) {
-      stopped_by = "wall time: stop.wall_time_s = " + json(study.stop.wall_time_s).dump() +
-                   " s reached; --resume continues";
+      after = AfterChunk::drop_started;
+    } else if (seconds_since(t0) > study.stop.wall_time_s) {
+      out_of_time = true;
+      after = AfterChunk::finish_started;
     }
-  }
+    commit_s += seconds_since(tc);
+    return after;
+  });
+  evaluate_s = seconds_since(pipeline_start) - commit_s;
+  if (out_of_time && !rule_met && std::find(done.begin(), done.end(), false) != done.end())
+    stopped_by = "wall time: stop.wall_time_s = " + json(study.stop.wall_time_s).dump() +
+                 " s reached; --resume continues";
 
   auto ts = Clock::now();
   journal.flush();

@@ -1,17 +1,21 @@
 // Runs a study (model/study.hpp) chunk by chunk and gathers the results into one HDF5 file
 // (model/sweep_table.hpp).
 //
-// Nothing finished is lost. Samples are processed in chunks of study.chunk_samples. The result's
-// table is written as the chunks finish, each chunk of its datasets compressed once, into
-// `<out>.parts/table-<g>.h5` (io/sweep_table_stream.hpp); after each chunk
-// `<out>.parts/chunk-<k>.h5` journals what it added (app/sweep_journal.hpp). A run killed at any
-// moment (SIGKILL included) leaves whole journal entries, and `resume` copies the compressed
-// chunks they name into a new table file and recomputes just the missing chunks: sample i always
-// gets the same inputs (counter-based sampling), so the file is the one an uninterrupted run
-// writes (wall times aside). When every chunk of the run is done the table file, finished with
-// the statistics, is renamed onto `out` and the parts directory is removed. A run stopped by its
-// wall-time limit also writes `out` (marked incomplete, a copy of the table so far) and keeps
-// the parts for `resume`.
+// Samples are processed in chunks of study.chunk_samples, the MPM samples side by side across
+// chunks (one a thread, model/concurrent_runs.hpp) while the chunks are committed in order.
+//
+// Nothing finished is lost. The result's table is written as the chunks finish, each chunk of
+// its datasets compressed once, into `<out>.parts/table-<g>.h5` (io/sweep_table_stream.hpp);
+// after each chunk `<out>.parts/chunk-<k>.h5` journals what it added (app/sweep_journal.hpp). A
+// run killed at any moment (SIGKILL included) leaves whole journal entries (and loses its MPM
+// runs finished beyond the first chunk not yet complete: at most four a thread), and `resume`
+// copies the compressed chunks they name into a new table file and recomputes just the missing
+// chunks: sample i always gets the same inputs (counter-based sampling) and its MPM the same
+// threads, so the file is the one an uninterrupted run writes (wall times aside). When every
+// chunk of the run is done the table file, finished with the statistics, is renamed onto `out`
+// and the parts directory is removed. A run stopped by its wall-time limit finishes the chunks
+// it started, writes `out` (marked incomplete, a copy of the table so far) and keeps the parts
+// for `resume`.
 //
 // Sharding: shard i of N runs the chunks k with k mod N = i; merge_sweeps joins the shard files
 // into the file a single run writes.

@@ -757,6 +757,107 @@ TEST(SweepCli, MpmSamplesRunBesideTheClosedForms) {
   }
 }
 
+// A study of coarse MPM runs (cell h/4, one particle per cell: a few hundred points, tens of
+// milliseconds each): velocity and base friction sampled, the friction below zero (invalid: the
+// range check refuses it) for about a fifth of the samples, so that failures and MPM rows mix.
+fs::path write_mpm_study(const std::string& name, json extra) {
+  json scene;
+  std::ifstream(source_dir / "scenes/former-reference/L1-B1.json") >> scene;
+  scene["methods"]["mpm"] = {
+      {"cell_size_m", 0.5}, {"phases", "dry"}, {"transfer", "pic"}, {"particles_per_cell", 1}};
+  json study = {
+      {"scene", scene},
+      {"samples", 16},
+      {"chunk_samples", nullptr},  // the default: 1 for a study that runs the MPM
+      {"correlation", nullptr},
+      {"thresholds", nullptr},
+      {"methods", {"analytical", "mpm"}},
+      {"outputs", {"peak_force", "final_displacement"}},
+      {"inputs",
+       {{{"path", "/landslide/velocity_m_s"}, {"distribution", "uniform"}, {"min", 5}, {"max", 7}},
+        {{"path", "/barrier/base_friction"},
+         {"distribution", "uniform"},
+         {"min", -0.2},
+         {"max", 0.7}}}}};
+  if (!extra.is_null()) study.merge_patch(extra);  // `{}` is a null json: nothing to merge
+  return write_study(name, study);
+}
+
+// The rows and failures of two result files of one study's samples (their chunks may differ).
+void expect_same_samples(const lsi::SweepFile& a, const lsi::SweepFile& b) {
+  expect_same_rows(a.table, b.table);
+  EXPECT_EQ(a.table.failure_index, b.table.failure_index);
+  EXPECT_EQ(a.table.failure_reason, b.table.failure_reason);
+}
+
+TEST(SweepCli, MpmSamplesOfSmallChunksRunSideBySideWithTheSameNumbers) {
+  // Every run on every thread it is given (--points-per-thread 0): alone, that is every thread;
+  // side by side, one. A sweep's MPM samples run one thread each however the chunks cut them
+  // (model/concurrent_runs.hpp), so that a chunk a sample, one chunk of every sample, and a run
+  // stopped by its wall-time limit and resumed give the same numbers, bit for bit.
+  const std::string opts = "--points-per-thread 0 sweep ";
+  const fs::path small = write_mpm_study("mpm-small-chunks", {});
+  const fs::path one = write_mpm_study("mpm-one-chunk", {{"chunk_samples", 16}});
+  const fs::path timed = write_mpm_study("mpm-timed", {{"stop", {{"wall_time_s", 1e-6}}}});
+  const fs::path a = temp_dir() / "mpm-small.h5", b = temp_dir() / "mpm-one.h5",
+                 c = temp_dir() / "mpm-timed.h5";
+  const Outcome ra = run(opts + small.string() + " --out " + a.string());
+  ASSERT_EQ(ra.code, 0) << ra.out;
+  const Outcome rb = run(opts + one.string() + " --out " + b.string());
+  ASSERT_EQ(rb.code, 0) << rb.out;
+  const lsi::SweepFile fa = lsi::read_sweep_file(a.string());
+  ASSERT_EQ(fa.table.rows(), 16u);
+  std::size_t invalid = 0;
+  for (const auto s : fa.table.status)
+    invalid += s == std::int8_t(lsi::SampleStatus::invalid_input);
+  EXPECT_GT(invalid, 0u) << "some samples must be refused, between MPM rows";
+  EXPECT_LT(invalid, 12u) << "most samples must run the MPM";
+  expect_same_samples(fa, lsi::read_sweep_file(b.string()));
+
+  // Stopped after its first chunk's commit: the chunks already started finish (nothing run is
+  // lost), no more start; --resume goes on until the study is complete.
+  const Outcome first = run(opts + timed.string() + " --out " + c.string() + " --format json");
+  ASSERT_EQ(first.code, 0) << first.out;
+  const std::size_t n = json::parse(first.out)["samples_done"].get<std::size_t>();
+  EXPECT_GE(n, 1u);
+  EXPECT_LT(n, 16u) << "a wall-time stop starts no chunk after the first commit";
+  for (int k = 0; k < 16 && !lsi::read_sweep_file(c.string()).header.complete; ++k)
+    ASSERT_EQ(run(opts + timed.string() + " --out " + c.string() + " --resume").code, 0);
+  const lsi::SweepFile fc = lsi::read_sweep_file(c.string());
+  ASSERT_TRUE(fc.header.complete);
+  expect_same_samples(fa, fc);
+}
+
+TEST(SweepCli, AnIntervalRuleMetAmongMpmSamplesSideBySideStopsWhereOneAtATimeStops) {
+  // The analytical peak force's mean to +-8 %: its coefficient of variation is about 0.2 here,
+  // so (1.96 * 0.2 / 0.08)^2 = 24 or so ok samples (of some 40: refused samples and MPM runs
+  // ended with the barrier sliding are not ok); chunks started after the chunk that meets the
+  // rule are dropped, as a run one sample at a time never starts them.
+  const fs::path study = write_mpm_study("mpm-interval", {{"samples", 200},
+                                                          {"stop",
+                                                           {{"interval",
+                                                             {{"method", "analytical"},
+                                                              {"output", "peak_force"},
+                                                              {"statistic", "mean"},
+                                                              {"relative_half_width", 0.08},
+                                                              {"min_samples", 5}}}}}});
+  const fs::path a = temp_dir() / "mpm-interval-a.h5", b = temp_dir() / "mpm-interval-b.h5";
+  const Outcome side = run("sweep " + study.string() + " --out " + a.string() + " --format json");
+  ASSERT_EQ(side.code, 0) << side.out;
+  const Outcome alone =
+      run("--runs-at-once 1 sweep " + study.string() + " --out " + b.string() + " --format json");
+  ASSERT_EQ(alone.code, 0) << alone.out;
+  const json ja = json::parse(side.out), jb = json::parse(alone.out);
+  EXPECT_NE(ja["stopped_by"].get<std::string>().find("confidence interval"), std::string::npos);
+  EXPECT_EQ(ja["stopped_by"], jb["stopped_by"]);
+  const std::size_t n = ja["samples_done"].get<std::size_t>();
+  EXPECT_EQ(n, jb["samples_done"].get<std::size_t>());
+  EXPECT_GE(n, 10u);
+  EXPECT_LT(n, 100u);
+  // A run of a few hundred points runs on one thread alone too (model/run_threads.hpp).
+  expect_same_samples(lsi::read_sweep_file(a.string()), lsi::read_sweep_file(b.string()));
+}
+
 TEST(SweepCli, MpmRunsAtQuantilesOfAClosedFormOutput) {
   json scene;
   std::ifstream(source_dir / "scenes/former-reference/L1-B1.json") >> scene;
