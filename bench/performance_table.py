@@ -179,15 +179,47 @@ SATURATED_STEP_GOAL = 2.5e7
 CAMPAIGN_GOAL = 1.5
 
 
+# The MPM sweep of the mpm group: samples of a reference scene (saturated, small enough that a
+# run takes one thread: model/run_threads.hpp), each cut to this simulated time.
+MPM_SWEEP_SCENE = "scenes/reference/L1-B1.json"
+MPM_SWEEP_SAMPLES = 16
+MPM_SWEEP_END_TIME_S = 1.0
+
+
+def mpm_sweep_once(build, study, out_dir, runs_at_once):
+    """Wall time (s) of one `lsi sweep` of the MPM sweep study with --runs-at-once N."""
+    out = os.path.join(out_dir, "mpm-sweep.h5")
+    result = subprocess.run([os.path.join(build, "app", "lsi"), "--progress", "none",
+                             "--runs-at-once", str(runs_at_once), "sweep", study, "--out", out,
+                             "--format", "json"],
+                            capture_output=True, text=True, env=environment(), check=True)
+    os.remove(out)
+    return json.loads(result.stdout)["wall_seconds"]
+
+
 def group_mpm(build, repetitions):
     mpm_runs, bandwidth_runs, impact_runs = [], [], []
-    for _ in range(repetitions):
-        mpm_runs.append(benchmark(build, "bench_mpm",
-                                  "^step/OpenMP/mohr_coulomb/duplicated/particles:(20000|199712)/"))
-        bandwidth_runs.append(benchmark(build, "bench_bandwidth",
-                                        "stream/OpenMP/triad/elements:(16777216|262144)/"))
-        impact_runs.append(benchmark(build, "bench_impact",
-                                     "^column_step/OpenMP/saturated/duplicated/|^campaign/"))
+    sweep_one, sweep_side = [], []
+    with open(os.path.join(ROOT, MPM_SWEEP_SCENE), encoding="utf-8") as f:
+        scene = json.load(f)
+    scene["methods"]["mpm"]["end_time_s"] = MPM_SWEEP_END_TIME_S
+    study = {"name": "mpm-sweep", "scene": scene, "samples": MPM_SWEEP_SAMPLES, "seed": 3,
+             "methods": ["mpm"], "outputs": ["peak_force"],
+             "inputs": [{"path": "/landslide/velocity_m_s", "distribution": "uniform",
+                         "min": 5, "max": 7}]}
+    with tempfile.TemporaryDirectory(prefix="lsi-performance-") as tmp:
+        study_file = os.path.join(tmp, "mpm-sweep.json")
+        with open(study_file, "w", encoding="utf-8") as f:
+            json.dump(study, f)
+        for _ in range(repetitions):
+            mpm_runs.append(benchmark(
+                build, "bench_mpm", "^step/OpenMP/mohr_coulomb/duplicated/particles:(20000|199712)/"))
+            bandwidth_runs.append(benchmark(build, "bench_bandwidth",
+                                            "stream/OpenMP/triad/elements:(16777216|262144)/"))
+            impact_runs.append(benchmark(build, "bench_impact",
+                                         "^column_step/OpenMP/saturated/duplicated/|^campaign/"))
+            sweep_one.append(mpm_sweep_once(build, study_file, tmp, 1))
+            sweep_side.append(mpm_sweep_once(build, study_file, tmp, 0))
     step = medians(mpm_runs, rate)
     band = medians(bandwidth_runs, lambda r: r["bytes_per_second_with_write_allocate"])
     dram = next(v for n, v in band.items() if "16777216" in n)
@@ -218,7 +250,14 @@ def group_mpm(build, repetitions):
         rows.append(("campaign of 8 impact runs (%d cells through the thickness): time one "
                      "after another / side by side" % cells, one / side, None, "",
                      at_least(CAMPAIGN_GOAL)))
-    return rows, "mpm", "bench_mpm, bench_bandwidth, bench_impact"
+    # The sweep's MPM samples side by side across its chunks (app/sweep_runner.cpp) against
+    # --runs-at-once 1, which runs them one after the other.
+    rows.append(("lsi sweep of %d MPM samples of %s (%g s simulated each): time one after "
+                 "another (--runs-at-once 1) / side by side" %
+                 (MPM_SWEEP_SAMPLES, MPM_SWEEP_SCENE, MPM_SWEEP_END_TIME_S),
+                 statistics.median(sweep_one) / statistics.median(sweep_side), None, "",
+                 at_least(CAMPAIGN_GOAL)))
+    return rows, "mpm", "bench_mpm, bench_bandwidth, bench_impact, lsi sweep"
 
 
 GROUPS = {"closed_forms": group_closed_forms, "sweep": group_sweep, "mpm": group_mpm}
