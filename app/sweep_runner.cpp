@@ -320,9 +320,10 @@ class ChunkEvaluator {
   sweeps::ClosedFormChunkColumns<Mem> columns_;  // the models' inputs, batched
 };
 
-// What the sweep does after a chunk is committed: go on, finish the chunks already started (a
-// wall-time stop: their runs are finished and kept) or drop them (the interval rule was met: a
-// sequential run would not have run them).
+// What the sweep does after a chunk is committed: go on, finish the runs already under way (a
+// wall-time stop: the chunks whose runs have all started are committed, the later ones dropped)
+// or drop every chunk started (the interval rule was met: a sequential run would not have run
+// them).
 enum class AfterChunk { go_on, finish_started, drop_started };
 
 // How many MPM samples of a study run at once: one per thread (model/concurrent_runs.hpp) for a
@@ -347,10 +348,10 @@ std::uint64_t rows_in_flight(const Study& s, int runs_at_once) {
 void evaluate_in_order(ChunkEvaluator& evaluator, const Study& study,
                        const std::vector<std::uint64_t>& ks,
                        const std::function<AfterChunk(std::uint64_t, const SweepTable&)>& commit) {
-  // A chunk and how many of its MPM runs have not finished.
+  // A chunk, how many of its MPM runs have not finished and how many have not started.
   struct Slot {
     ChunkEvaluator::Chunk chunk;
-    std::size_t runs_left = 0;
+    std::size_t runs_left = 0, runs_waiting = 0;
   };
   const int runs = sweep_runs_at_once(study);
   const std::uint64_t most_rows = rows_in_flight(study, runs) - study.chunk_samples;
@@ -361,26 +362,37 @@ void evaluate_in_order(ChunkEvaluator& evaluator, const Study& study,
   std::deque<Slot*> started;                               // in order, not yet committed
   std::deque<std::pair<Slot*, std::size_t>> waiting_runs;  // (chunk, its MPM run)
   std::size_t next = 0, running = 0;
+  std::size_t to_commit = 0;  // after finish_started: the chunks of `started` still committed
   std::uint64_t started_rows = 0;
   bool committing = false, failed = false;
   AfterChunk after = AfterChunk::go_on;
   // Commits the complete chunks at the front of `started`, one thread at a time, the lock
-  // released while the commit writes.
+  // released while the commit writes (the chunk still counted in started_rows).
   auto commit_ready = [&](std::unique_lock<std::mutex>& l) {
     while (!failed && !committing && !started.empty() && started.front()->runs_left == 0) {
       Slot* c = started.front();
       started.pop_front();
-      started_rows -= c->chunk.table.rows();
+      if (after == AfterChunk::finish_started && to_commit == 0) after = AfterChunk::drop_started;
       if (after != AfterChunk::drop_started) {
+        if (after == AfterChunk::finish_started) --to_commit;
         committing = true;
         l.unlock();
         evaluator.finish(c->chunk);
         const AfterChunk a = commit(c->chunk.k, c->chunk.table);
         l.lock();
         committing = false;
-        if (a != AfterChunk::go_on && after != AfterChunk::drop_started) after = a;
-        if (after == AfterChunk::drop_started) waiting_runs.clear();
+        if (a == AfterChunk::drop_started) {
+          after = a;
+        } else if (a == AfterChunk::finish_started && after == AfterChunk::go_on) {
+          // No run starts any more: the chunks before the first with a run not yet started are
+          // committed once their runs end, the others dropped.
+          after = a;
+          to_commit = 0;
+          while (to_commit < started.size() && started[to_commit]->runs_waiting == 0) ++to_commit;
+        }
+        if (after != AfterChunk::go_on) waiting_runs.clear();
       }
+      started_rows -= c->chunk.table.rows();
       free_slots.push_back(c);
     }
     changed.notify_all();
@@ -392,6 +404,7 @@ void evaluate_in_order(ChunkEvaluator& evaluator, const Study& study,
         if (!waiting_runs.empty()) {
           const auto [c, r] = waiting_runs.front();
           waiting_runs.pop_front();
+          --c->runs_waiting;
           ++running;
           l.unlock();
           evaluator.run_mpm(c->chunk, r);
@@ -409,7 +422,7 @@ void evaluate_in_order(ChunkEvaluator& evaluator, const Study& study,
           free_slots.pop_back();
           // The closed forms under the lock: one chunk at a time (the evaluator's buffers).
           evaluator.closed_forms(ks[next++], c->chunk);
-          c->runs_left = c->chunk.mpm_rows.size();
+          c->runs_left = c->runs_waiting = c->chunk.mpm_rows.size();
           for (std::size_t r = 0; r < c->runs_left; ++r) waiting_runs.emplace_back(c, r);
           started.push_back(c);
           started_rows += c->chunk.table.rows();

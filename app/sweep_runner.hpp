@@ -13,9 +13,9 @@
 // chunks: sample i always gets the same inputs (counter-based sampling) and its MPM the same
 // threads, so the file is the one an uninterrupted run writes (wall times aside). When every
 // chunk of the run is done the table file, finished with the statistics, is renamed onto `out`
-// and the parts directory is removed. A run stopped by its wall-time limit finishes the chunks
-// it started, writes `out` (marked incomplete, a copy of the table so far) and keeps the parts
-// for `resume`.
+// and the parts directory is removed. A run stopped by its wall-time limit starts no more MPM
+// runs, commits the chunks of the runs under way, writes `out` (marked incomplete, a copy of the
+// table so far) and keeps the parts for `resume`.
 //
 // Sharding: shard i of N runs the chunks k with k mod N = i; merge_sweeps joins the shard files
 // into the file a single run writes.
