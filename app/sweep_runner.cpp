@@ -24,6 +24,7 @@
 
 #include "io/json_fields.hpp"
 #include "model/concurrent_runs.hpp"
+#include "model/mpm_footprint.hpp"
 #include "model/mpm_impact.hpp"
 #include "io/text_file.hpp"
 #include "model/mpm_runner.hpp"
@@ -329,9 +330,21 @@ enum class AfterChunk { go_on, finish_started, drop_started };
 // How many MPM samples of a study run at once: one per thread (model/concurrent_runs.hpp) for a
 // study of several samples, each on a thread of its own however few are left, so that a
 // sample's numbers are the same in a resumed, a sharded and an uninterrupted run; a study of one
-// sample runs it with every thread.
+// sample runs it with every thread. At most as many as fit in the memory side by side, each
+// counted at the base scene's footprint (model/mpm_footprint.hpp; where the state lives on a
+// device, its histories and snapshots alone): large scenes run fewer at once, or one after the
+// other with every thread.
 int sweep_runs_at_once(const Study& s) {
-  return s.runs("mpm") ? concurrent_runs(static_cast<std::size_t>(s.samples)) : 1;
+  if (!s.runs("mpm")) return 1;
+  const int runs = concurrent_runs(static_cast<std::size_t>(s.samples));
+  if (runs < 2) return runs;
+  constexpr bool state_on_host =
+      Kokkos::SpaceAccessibility<Kokkos::HostSpace,
+                                 Kokkos::DefaultExecutionSpace::memory_space>::accessible;
+  const MpmFootprint f = estimate_footprint(impact_case(s.base));
+  const double run_bytes =
+      (state_on_host ? f.state_bytes : 0.0) + f.history_bytes + f.snapshot_bytes;
+  return runs_that_fit(runs, run_bytes, available_memory_bytes());
 }
 
 // Rows a run holds at most in chunks started but not yet committed (evaluate_in_order).

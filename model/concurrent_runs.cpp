@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <exception>
 #include <mutex>
 #include <type_traits>
@@ -42,6 +43,12 @@ int concurrent_runs(std::size_t tasks, int runs) {
   int n = runs > 0 ? std::min(runs, threads) : threads;
   if (g_runs_at_once > 0) n = std::min(n, g_runs_at_once);
   return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(std::max(n, 1)), tasks));
+}
+
+int runs_that_fit(int runs, double run_bytes, std::uint64_t available_bytes) {
+  if (available_bytes == 0 || !(run_bytes > 0.0)) return runs;
+  const double fit = std::floor(0.5 * static_cast<double>(available_bytes) / run_bytes);
+  return fit >= double(runs) ? runs : std::max(1, static_cast<int>(fit));
 }
 
 void run_concurrently(std::size_t tasks, const std::function<void(std::size_t)>& task, int runs,

@@ -14,6 +14,7 @@
 // tasks share the machine.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -24,6 +25,12 @@ namespace lsi {
 // Kokkos (ensure_kokkos) where partitions are available and tasks >= 2: the count is that of its
 // threads, and the partitions are its own.
 int concurrent_runs(std::size_t tasks, int runs_at_once = 0);
+
+// How many of `runs` runs at once fit in memory side by side: each counted at `run_bytes`, all of
+// them within half of `available_bytes` (the other half for what the runs' sizes vary and the
+// rest of the process), at least one; `available_bytes` 0 (unknown) or `run_bytes` <= 0 limit
+// nothing.
+int runs_that_fit(int runs, double run_bytes, std::uint64_t available_bytes);
 
 // Calls task(k) for k = 0 .. tasks - 1, concurrent_runs(tasks, runs_at_once) at a time. Every
 // task runs even when another throws; then the first exception (by task index) is rethrown.

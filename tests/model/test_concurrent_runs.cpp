@@ -58,6 +58,17 @@ TEST(ConcurrentRuns, AsManyAtOnceAsThreadsAndTasksAllow) {
   EXPECT_EQ(lsi::concurrent_runs(100), 1) << "no partitions on this backend (" << threads << ")";
 }
 
+TEST(ConcurrentRuns, AsManyAtOnceAsFitInHalfTheMemory) {
+  constexpr double GB = 1e9;
+  EXPECT_EQ(lsi::runs_that_fit(8, 1 * GB, 0), 8) << "memory unknown: no limit";
+  EXPECT_EQ(lsi::runs_that_fit(8, 0.0, 1 * GB), 8) << "a run of unknown size: no limit";
+  EXPECT_EQ(lsi::runs_that_fit(8, 1 * GB, 16 * GB), 8);
+  EXPECT_EQ(lsi::runs_that_fit(8, 1 * GB, 11 * GB), 5);
+  EXPECT_EQ(lsi::runs_that_fit(8, 1 * GB, 2 * GB), 1);
+  EXPECT_EQ(lsi::runs_that_fit(8, 3 * GB, 1 * GB), 1) << "one run at least (checked on its own)";
+  EXPECT_EQ(lsi::runs_that_fit(1, 1 * GB, 100 * GB), 1);
+}
+
 // Four small impacts (the granular-impact scene at two Froude numbers, each twice): side by side
 // and one after the other (on a GPU: each side-by-side run on a stream of its own, so a kernel
 // that read another run's data or launch arguments would change its numbers). A run's sums are
