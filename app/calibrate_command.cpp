@@ -44,6 +44,7 @@
 #include "io/hdf5_io.hpp"
 #include "io/hdf5_results.hpp"
 #include "model/concurrent_runs.hpp"
+#include "model/mpm_footprint.hpp"
 #include "model/mpm_impact.hpp"
 #include "model/mpm_runner.hpp"
 #include "io/output_paths.hpp"
@@ -699,12 +700,14 @@ int run_calibrate(const Options& opt) {
   std::vector<std::size_t> to_run;
   for (std::size_t k = 0; k < loaded.size(); ++k)
     if (source[k] == MpmSource::ToRun) to_run.push_back(k);
+  std::vector<const Scene*> scenes_to_run;
+  for (const std::size_t k : to_run) scenes_to_run.push_back(&loaded[k].scene);
   run_concurrently(
       to_run.size(),
       [&](std::size_t k) {
         source[to_run[k]] = run_mpm(loaded[to_run[k]]) ? MpmSource::Stored : MpmSource::Skipped;
       },
-      0, "calibrate, the MPM runs");
+      campaign_runs_that_fit(to_run.size(), scenes_to_run), "calibrate, the MPM runs");
   std::vector<Case> cases;
   bool skipped = false;
   for (std::size_t k = 0; k < loaded.size(); ++k) {

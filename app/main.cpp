@@ -36,6 +36,7 @@
 #include "lsi_git_revision.hpp"  // LSI_GIT_REVISION, generated at build time
 #include "io/scene_overrides.hpp"
 #include "model/concurrent_runs.hpp"
+#include "model/mpm_footprint.hpp"
 #include "model/design_verify.hpp"
 #include "model/run_threads.hpp"
 #include "model/progress.hpp"
@@ -374,8 +375,8 @@ int main(int argc, char** argv) {
         return lsi::scene_runs_mpm(s, only) || (!checked_methods.empty() && !s.barrier.fixed);
       });
       const auto each = [&](std::size_t tasks, const std::function<void(std::size_t)>& task,
-                            const std::string& label) {
-        if (mpm) return lsi::run_concurrently(tasks, task, 0, label);
+                            const std::string& label, int runs = 0) {
+        if (mpm) return lsi::run_concurrently(tasks, task, runs, label);
         for (std::size_t k = 0; k < tasks; ++k) task(k);
       };
       each(
@@ -418,7 +419,11 @@ int main(int argc, char** argv) {
           lsi::write_results(file.string(), scenes[task].source, rows[task].results, {}, resolved);
         }
       };
-      each(n + checks.size(), run_task, "compare");
+      // The MPM runs: as many at once as fit in the memory (model/mpm_footprint.hpp).
+      std::vector<const lsi::Scene*> mpm_scenes;
+      for (const auto& s : scenes) mpm_scenes.push_back(&s);
+      const int runs = mpm ? lsi::campaign_runs_that_fit(n + checks.size(), mpm_scenes) : 1;
+      each(n + checks.size(), run_task, "compare", runs);
       for (Check& c : checks)
         for (auto& r : c.result) rows[c.scene].checks.push_back(std::move(r));
       for (std::size_t k = 0; k < n; ++k) {

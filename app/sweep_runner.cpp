@@ -338,13 +338,8 @@ int sweep_runs_at_once(const Study& s) {
   if (!s.runs("mpm")) return 1;
   const int runs = concurrent_runs(static_cast<std::size_t>(s.samples));
   if (runs < 2) return runs;
-  constexpr bool state_on_host =
-      Kokkos::SpaceAccessibility<Kokkos::HostSpace,
-                                 Kokkos::DefaultExecutionSpace::memory_space>::accessible;
-  const MpmFootprint f = estimate_footprint(impact_case(s.base));
-  const double run_bytes =
-      (state_on_host ? f.state_bytes : 0.0) + f.history_bytes + f.snapshot_bytes;
-  return runs_that_fit(runs, run_bytes, available_memory_bytes());
+  return runs_that_fit(runs, host_run_bytes(estimate_footprint(impact_case(s.base))),
+                       available_memory_bytes());
 }
 
 // Rows a run holds at most in chunks started but not yet committed (evaluate_in_order).

@@ -26,7 +26,8 @@ namespace lsi {
 // threads, and the partitions are its own.
 int concurrent_runs(std::size_t tasks, int runs_at_once = 0);
 
-// How many of `runs` runs at once fit in memory side by side: each counted at `run_bytes`, all of
+// How many of `runs` runs at once fit in memory side by side (the campaigns' counts come from
+// model/mpm_footprint.hpp, campaign_runs_that_fit): each counted at `run_bytes`, all of
 // them within half of `available_bytes` (the other half for what the runs' sizes vary and the
 // rest of the process), at least one; `available_bytes` 0 (unknown) or `run_bytes` <= 0 limit
 // nothing.

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "model/concurrent_runs.hpp"
+#include "model/mpm_footprint.hpp"
 #include "model/input_error.hpp"
 #include "model/messages.hpp"
 #include "model/mpm_impact.hpp"
@@ -58,7 +59,8 @@ std::vector<DesignCheck> verify_designs(const Scene& scene, const std::vector<Ma
     }
     out.push_back(std::move(c));
   }
-  // The runs side by side (model/concurrent_runs.hpp).
+  // The runs side by side (model/concurrent_runs.hpp), as many as fit in the memory.
+  const int runs = campaign_runs_that_fit(to_run.size(), {&scene});
   run_concurrently(
       to_run.size(),
       [&](std::size_t k) {
@@ -71,7 +73,7 @@ std::vector<DesignCheck> verify_designs(const Scene& scene, const std::vector<Ma
         c.within = has_final_displacement(c.mpm.end_state) &&
                    c.mpm.final_displacement <= max_displacement_m;
       },
-      0, "the MPM on the designed barriers");
+      runs, "the MPM on the designed barriers");
   return out;
 }
 

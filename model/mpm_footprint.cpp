@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "model/concurrent_runs.hpp"
 #include "model/host_threads.hpp"
+#include "model/mpm_impact.hpp"
 #include "model/run_threads.hpp"
 #include "model/input_error.hpp"
 #include "model/messages.hpp"
@@ -85,6 +87,25 @@ MpmFootprint estimate_footprint(const MpmCase& c) {
   f.first_time_step = std::min(s.courant * dx / (wave_speed + speed), s.max_time_step_s);
   f.max_steps = s.end_time_s / f.first_time_step;
   return f;
+}
+
+double host_run_bytes(const MpmFootprint& f) {
+  constexpr bool state_on_host =
+      Kokkos::SpaceAccessibility<Kokkos::HostSpace,
+                                 Kokkos::DefaultExecutionSpace::memory_space>::accessible;
+  return (state_on_host ? f.state_bytes : 0.0) + f.history_bytes + f.snapshot_bytes;
+}
+
+int campaign_runs_that_fit(const std::size_t tasks, const std::vector<const Scene*>& scenes) {
+  const int runs = concurrent_runs(tasks);
+  if (runs < 2) return runs;
+  double largest = 0.0;
+  for (const Scene* s : scenes) try {
+      largest = std::max(largest, host_run_bytes(estimate_footprint(impact_case(*s))));
+    } catch (const std::exception&) {
+      // Reported by the scene's own run.
+    }
+  return runs_that_fit(runs, largest, available_memory_bytes());
 }
 
 void check_mpm_fits(const MpmCase& c) {

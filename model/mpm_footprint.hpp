@@ -3,7 +3,10 @@
 // first step's size. A case whose memory cannot fit on this machine is refused up front, naming
 // the setting that makes it so (check_mpm_fits), instead of failing late in an allocation.
 #pragma once
+#include <vector>
+
 #include "model/mpm_case.hpp"
+#include "model/scene.hpp"
 
 namespace lsi {
 
@@ -24,5 +27,15 @@ MpmFootprint estimate_footprint(const MpmCase& c);
 // on methods.mpm.cell_size_m when the state alone does not fit, else on snapshot_interval_s or
 // end_time_s / output_interval_s, with the numbers and the smallest change that fits.
 void check_mpm_fits(const MpmCase& c);
+
+// The memory a run of the footprint's case takes where the campaign runs (the host's): its state
+// where that lives on the host, its histories and its snapshots.
+double host_run_bytes(const MpmFootprint& f);
+
+// The runs at once for a campaign of `tasks` MPM runs of `scenes` (run_concurrently's
+// runs_at_once): as many as threads and tasks allow (concurrent_runs), at most as many as fit in
+// the memory side by side, each counted at the largest scene's footprint (runs_that_fit). A
+// scene whose case cannot be built is left out (its task reports the error).
+int campaign_runs_that_fit(std::size_t tasks, const std::vector<const Scene*>& scenes);
 
 }  // namespace lsi

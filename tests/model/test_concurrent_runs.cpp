@@ -14,6 +14,7 @@
 
 #include "io/scene_parser.hpp"
 #include "model/concurrent_runs.hpp"
+#include "model/mpm_footprint.hpp"
 #include "model/mpm_impact.hpp"
 #include "model/mpm_runner.hpp"
 
@@ -67,6 +68,23 @@ TEST(ConcurrentRuns, AsManyAtOnceAsFitInHalfTheMemory) {
   EXPECT_EQ(lsi::runs_that_fit(8, 1 * GB, 2 * GB), 1);
   EXPECT_EQ(lsi::runs_that_fit(8, 3 * GB, 1 * GB), 1) << "one run at least (checked on its own)";
   EXPECT_EQ(lsi::runs_that_fit(1, 1 * GB, 100 * GB), 1);
+}
+
+TEST(ConcurrentRuns, ACampaignOfScenesTooLargeSideBySideRunsOneAfterTheOther) {
+  std::ifstream in(LSI_SOURCE_DIR "/scenes/verification/granular-impact.json");
+  nlohmann::json doc = nlohmann::json::parse(in);
+  doc["methods"]["mpm"]["cell_size_m"] = 0.25;
+  const lsi::Scene small = lsi::parse_scene(doc);
+  // A cell of 1 mm: about 5e8 grid nodes by the estimate (model/mpm_footprint.hpp), tens of GB a
+  // run, more than half the memory of a machine below a few hundred GB twice over; the estimate
+  // is all that is computed.
+  doc["methods"]["mpm"]["cell_size_m"] = 1e-3;
+  const lsi::Scene huge = lsi::parse_scene(doc);
+  const double huge_bytes = lsi::host_run_bytes(lsi::estimate_footprint(lsi::impact_case(huge)));
+  ASSERT_GT(huge_bytes, 1e10);
+  EXPECT_EQ(lsi::campaign_runs_that_fit(100, {&small}), lsi::concurrent_runs(100));
+  EXPECT_EQ(lsi::campaign_runs_that_fit(100, {&small, &huge}), 1) << "the largest scene counts";
+  EXPECT_EQ(lsi::campaign_runs_that_fit(1, {&small}), 1);
 }
 
 // Four small impacts (the granular-impact scene at two Froude numbers, each twice): side by side
