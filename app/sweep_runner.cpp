@@ -331,15 +331,10 @@ enum class AfterChunk { go_on, finish_started, drop_started };
 // study of several samples, each on a thread of its own however few are left, so that a
 // sample's numbers are the same in a resumed, a sharded and an uninterrupted run; a study of one
 // sample runs it with every thread. At most as many as fit in the memory side by side, each
-// counted at the base scene's footprint (model/mpm_footprint.hpp; where the state lives on a
-// device, its histories and snapshots alone): large scenes run fewer at once, or one after the
-// other with every thread.
+// counted at the base scene's footprint (campaign_runs_that_fit, model/mpm_footprint.hpp): large
+// scenes run fewer at once, or one after the other with every thread.
 int sweep_runs_at_once(const Study& s) {
-  if (!s.runs("mpm")) return 1;
-  const int runs = concurrent_runs(static_cast<std::size_t>(s.samples));
-  if (runs < 2) return runs;
-  return runs_that_fit(runs, host_run_bytes(estimate_footprint(impact_case(s.base))),
-                       available_memory_bytes());
+  return s.runs("mpm") ? campaign_runs_that_fit(static_cast<std::size_t>(s.samples), {&s.base}) : 1;
 }
 
 // Rows a run holds at most in chunks started but not yet committed (evaluate_in_order).
@@ -348,12 +343,12 @@ std::uint64_t rows_in_flight(const Study& s, int runs_at_once) {
 }
 
 // Evaluates chunks ks (in order) and hands each, complete, to commit(k, rows) in order. The MPM
-// samples run side by side (sweep_runs_at_once) across chunk boundaries: each thread takes the
-// next sample, evaluating the next chunk's closed forms when none is waiting, so that a slow
-// sample holds back the commits, not the other threads. Chunks are started while fewer than
-// rows_in_flight rows wait for their commit: at most that many finished runs are lost to a kill.
-// With one run at a time, one chunk after the other on the calling thread.
-void evaluate_in_order(ChunkEvaluator& evaluator, const Study& study,
+// samples run side by side, `runs` at once (sweep_runs_at_once), across chunk boundaries: each
+// thread takes the next sample, evaluating the next chunk's closed forms when none is waiting,
+// so that a slow sample holds back the commits, not the other threads. Chunks are started while
+// fewer than rows_in_flight rows wait for their commit: at most that many finished runs are lost
+// to a kill. With one run at a time, one chunk after the other on the calling thread.
+void evaluate_in_order(ChunkEvaluator& evaluator, const Study& study, const int runs,
                        const std::vector<std::uint64_t>& ks,
                        const std::function<AfterChunk(std::uint64_t, const SweepTable&)>& commit) {
   // A chunk, how many of its MPM runs have not finished and how many have not started.
@@ -361,7 +356,6 @@ void evaluate_in_order(ChunkEvaluator& evaluator, const Study& study,
     ChunkEvaluator::Chunk chunk;
     std::size_t runs_left = 0, runs_waiting = 0;
   };
-  const int runs = sweep_runs_at_once(study);
   const std::uint64_t most_rows = rows_in_flight(study, runs) - study.chunk_samples;
   std::mutex lock;
   std::condition_variable changed;
@@ -545,7 +539,7 @@ void check_shard_rows(const Study& study, const std::string& file, const SweepHe
 // table is held instead (twice, plus a column) where the MPM runs again at the quantiles, and
 // once more beside the chunks where the statistics may read it back (designs whose samples do
 // not come in random order).
-void check_sweep_fits(const Study& s, const SweepOptions& opt) {
+void check_sweep_fits(const Study& s, const SweepOptions& opt, const int runs_at_once) {
   const std::uint64_t chunks = (s.samples + s.chunk_samples - 1) / s.chunk_samples;
   const std::uint64_t n = static_cast<std::uint64_t>(opt.shard_count);
   const std::uint64_t shard = static_cast<std::uint64_t>(opt.shard);
@@ -560,7 +554,7 @@ void check_sweep_fits(const Study& s, const SweepOptions& opt) {
   const bool keep_rows = describe_here && s.mpm_at_quantiles.has_value();
   const bool may_read_back =
       describe_here && (s.design == sweeps::Design::Grid || s.design == sweeps::Design::Points);
-  const double in_flight = double(rows_in_flight(s, sweep_runs_at_once(s)));
+  const double in_flight = double(rows_in_flight(s, runs_at_once));
   const double chunk =
       (std::min(rows, in_flight) + std::min(rows, double(s.chunk_samples))) * row_bytes;
   double memory = chunk;
@@ -618,6 +612,8 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
                      std::to_string(most) + " in the study, or use at most " +
                      std::to_string(chunk_count) + " shard(s)");
   }
+  // How many MPM samples run at once, for the memory check and the run.
+  const int runs_at_once = sweep_runs_at_once(study);
   const fs::path parts = opt.out + ".parts";
   const fs::path marker = parts / "sweep.json";
   const json identity = {
@@ -668,7 +664,7 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
                        "; this run: " + identity.dump() + ")");
   } else {
     if (auto done = finished_run()) return *done;
-    check_sweep_fits(study, opt);
+    check_sweep_fits(study, opt, runs_at_once);
     fs::create_directories(parts);
     write_text_atomically(marker, identity.dump() + "\n");
   }
@@ -807,43 +803,44 @@ SweepOutcome run_sweep(const Study& study, const SweepOptions& opt) {
   bool out_of_time = false;
   double commit_s = 0.0;
   const auto pipeline_start = Clock::now();
-  evaluate_in_order(evaluator, study, to_do, [&](std::uint64_t k, const SweepTable& t) {
-    const auto tc = Clock::now();
-    auto ts = tc;
-    journal.flush();
-    SweepJournalEntry entry;
-    entry.table_file = table_name;
-    entry.chunk_rows = chunk_rows;
-    entry.whole_input_rows = whole_input_rows;
-    entry.chunks = table.append(t);
-    entry.stored_rows = table.stored_rows();
-    entry.pending = table.pending();
-    entry.failure_index = t.failure_index;
-    entry.failure_reason = t.failure_reason;
-    stored.insert(stored.end(), entry.chunks.begin(), entry.chunks.end());
-    journal.add(chunk_file(parts, k), std::move(entry));
-    write_s += seconds_since(ts);
-    done[m++] = true;  // chunks come in order: k is mine[m]
-    done_samples += t.rows();
-    run_here += t.rows();
-    progress.update(done_samples, run_here);
-    collect_rule_values(study, t, rule_values);
-    ts = Clock::now();
-    gather(t);
-    gather_s += seconds_since(ts);
-    std::string why;
-    AfterChunk after = AfterChunk::go_on;
-    if (interval_rule_met(study, rule_values, why)) {
-      rule_met = true;
-      stopped_by = why;
-      after = AfterChunk::drop_started;
-    } else if (seconds_since(t0) > study.stop.wall_time_s) {
-      out_of_time = true;
-      after = AfterChunk::finish_started;
-    }
-    commit_s += seconds_since(tc);
-    return after;
-  });
+  evaluate_in_order(evaluator, study, runs_at_once, to_do,
+                    [&](std::uint64_t k, const SweepTable& t) {
+                      const auto tc = Clock::now();
+                      auto ts = tc;
+                      journal.flush();
+                      SweepJournalEntry entry;
+                      entry.table_file = table_name;
+                      entry.chunk_rows = chunk_rows;
+                      entry.whole_input_rows = whole_input_rows;
+                      entry.chunks = table.append(t);
+                      entry.stored_rows = table.stored_rows();
+                      entry.pending = table.pending();
+                      entry.failure_index = t.failure_index;
+                      entry.failure_reason = t.failure_reason;
+                      stored.insert(stored.end(), entry.chunks.begin(), entry.chunks.end());
+                      journal.add(chunk_file(parts, k), std::move(entry));
+                      write_s += seconds_since(ts);
+                      done[m++] = true;  // chunks come in order: k is mine[m]
+                      done_samples += t.rows();
+                      run_here += t.rows();
+                      progress.update(done_samples, run_here);
+                      collect_rule_values(study, t, rule_values);
+                      ts = Clock::now();
+                      gather(t);
+                      gather_s += seconds_since(ts);
+                      std::string why;
+                      AfterChunk after = AfterChunk::go_on;
+                      if (interval_rule_met(study, rule_values, why)) {
+                        rule_met = true;
+                        stopped_by = why;
+                        after = AfterChunk::drop_started;
+                      } else if (seconds_since(t0) > study.stop.wall_time_s) {
+                        out_of_time = true;
+                        after = AfterChunk::finish_started;
+                      }
+                      commit_s += seconds_since(tc);
+                      return after;
+                    });
   evaluate_s = seconds_since(pipeline_start) - commit_s;
   if (out_of_time && !rule_met && std::find(done.begin(), done.end(), false) != done.end())
     stopped_by = "wall time: stop.wall_time_s = " + json(study.stop.wall_time_s).dump() +

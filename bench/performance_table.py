@@ -103,10 +103,11 @@ def group_closed_forms(build, repetitions):
     ], "closed_forms", "bench_closed_form, bench_bandwidth"
 
 
-def sweep_once(build, out_dir):
+def sweep_once(build, out_dir, study=os.path.join(ROOT, STUDY), options=()):
+    """One `lsi [options] sweep study`: its JSON summary."""
     out = os.path.join(out_dir, "sweep.h5")
-    result = subprocess.run([os.path.join(build, "app", "lsi"), "--progress", "none", "sweep",
-                             os.path.join(ROOT, STUDY), "--out", out, "--format", "json"],
+    result = subprocess.run([os.path.join(build, "app", "lsi"), "--progress", "none", *options,
+                             "sweep", study, "--out", out, "--format", "json"],
                             capture_output=True, text=True, env=environment(), check=True)
     os.remove(out)
     return json.loads(result.stdout)
@@ -186,17 +187,6 @@ MPM_SWEEP_SAMPLES = 16
 MPM_SWEEP_END_TIME_S = 1.0
 
 
-def mpm_sweep_once(build, study, out_dir, runs_at_once):
-    """Wall time (s) of one `lsi sweep` of the MPM sweep study with --runs-at-once N."""
-    out = os.path.join(out_dir, "mpm-sweep.h5")
-    result = subprocess.run([os.path.join(build, "app", "lsi"), "--progress", "none",
-                             "--runs-at-once", str(runs_at_once), "sweep", study, "--out", out,
-                             "--format", "json"],
-                            capture_output=True, text=True, env=environment(), check=True)
-    os.remove(out)
-    return json.loads(result.stdout)["wall_seconds"]
-
-
 def group_mpm(build, repetitions):
     mpm_runs, bandwidth_runs, impact_runs = [], [], []
     sweep_one, sweep_side = [], []
@@ -218,8 +208,9 @@ def group_mpm(build, repetitions):
                                             "stream/OpenMP/triad/elements:(16777216|262144)/"))
             impact_runs.append(benchmark(build, "bench_impact",
                                          "^column_step/OpenMP/saturated/duplicated/|^campaign/"))
-            sweep_one.append(mpm_sweep_once(build, study_file, tmp, 1))
-            sweep_side.append(mpm_sweep_once(build, study_file, tmp, 0))
+            for runs, times in ((1, sweep_one), (0, sweep_side)):
+                times.append(sweep_once(build, tmp, study_file,
+                                        ("--runs-at-once", str(runs)))["wall_seconds"])
     step = medians(mpm_runs, rate)
     band = medians(bandwidth_runs, lambda r: r["bytes_per_second_with_write_allocate"])
     dram = next(v for n, v in band.items() if "16777216" in n)

@@ -27,6 +27,11 @@ constexpr double kDryScatterNodeBytes = 8.0 * 5, kSaturatedScatterNodeBytes = 8.
 // One output of the histories (about 40 series and the impact vectors), and one snapshot point
 // (16 doubles with the pore pressure, its id and material).
 constexpr double kOutputBytes = 8.0 * 64, kSnapshotPointBytes = 8.0 * 18;
+// Whether a run's state lives in host memory (the default memory space is the host's): the
+// state of a device run is not counted against the host's memory.
+constexpr bool kStateOnHost =
+    Kokkos::SpaceAccessibility<Kokkos::HostSpace,
+                               Kokkos::DefaultExecutionSpace::memory_space>::accessible;
 
 double polygon_area(const std::vector<std::array<double, 2>>& p) {
   double twice = 0.0;
@@ -90,10 +95,7 @@ MpmFootprint estimate_footprint(const MpmCase& c) {
 }
 
 double host_run_bytes(const MpmFootprint& f) {
-  constexpr bool state_on_host =
-      Kokkos::SpaceAccessibility<Kokkos::HostSpace,
-                                 Kokkos::DefaultExecutionSpace::memory_space>::accessible;
-  return (state_on_host ? f.state_bytes : 0.0) + f.history_bytes + f.snapshot_bytes;
+  return (kStateOnHost ? f.state_bytes : 0.0) + f.history_bytes + f.snapshot_bytes;
 }
 
 int campaign_runs_that_fit(const std::size_t tasks, const std::vector<const Scene*>& scenes) {
@@ -115,10 +117,7 @@ void check_mpm_fits(const MpmCase& c) {
   const MpmSettings& s = c.settings;
   const double room = static_cast<double>(have);
   // The state lives in the default memory space: checked here only when that is the host's.
-  constexpr bool state_on_host =
-      Kokkos::SpaceAccessibility<Kokkos::HostSpace,
-                                 Kokkos::DefaultExecutionSpace::memory_space>::accessible;
-  const double state = state_on_host ? f.state_bytes : 0.0;
+  const double state = kStateOnHost ? f.state_bytes : 0.0;
   const std::string counts = approx(f.points) + " points and " + approx(f.nodes) + " nodes";
   if (state > room)
     require_fits("methods.mpm.cell_size_m", number(s.cell_size_m), "the MPM state (" + counts + ")",
