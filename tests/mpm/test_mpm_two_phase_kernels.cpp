@@ -14,6 +14,8 @@
 // 2b. P2G and the grid update in one pass (two_phase_p2g_grid_update.hpp, the solver's path
 //    without the wall correction) give the grid fields and the report of two_phase_p2g followed
 //    by two_phase_grid_update, with either drag.
+// 2c. The host's grid update, a run of a row's nodes at a time, gives every node the velocities
+//    of update_two_phase_node (a device's one node per work item) bit for bit, with walls.
 // 3. The reported pore pressure (pore_pressure_update.hpp, cell_mean_pore_pressure): a
 //    point-to-point checkerboard laid on the column's field is gone from every cell, the n V
 //    weighted integral is kept, and the points' own field is left as it was.
@@ -380,6 +382,89 @@ TYPED_TEST(MpmTwoPhaseKernels, CellMeanPorePressureRemovesTheCheckerboard) {
   // A projection: the n V weighted integral is kept, to round-off of the sums.
   EXPECT_NEAR(integral_after, integral_before,
               kTwoRoutesRel * std::fabs(integral_before) + kIntegralFloorAbs);
+}
+
+TEST(TwoPhaseGridUpdate, ARunOfNodesAtATimeGivesEachNodeItsOwnUpdate) {
+  // The host's grid update takes a row's nodes a run at a time (update_two_phase_node_run: the
+  // velocities in a loop over the run's nodes, the walls and the reductions after it); a device
+  // takes one node per work item (update_two_phase_node). Rows of 41 nodes (two runs and a
+  // shorter one) whose sums mix empty, dry and wet nodes, with walls at both ends and below
+  // (Coulomb, bilateral, no-slip; the liquid's left wall open), against update_two_phase_node
+  // called node by node.
+  using Exec = Kokkos::DefaultHostExecutionSpace;
+  using Mem = Exec::memory_space;
+  const double lo[2] = {0.0, 0.0}, hi[2] = {2.0, 0.5}, dt = 2e-4, g[2] = {1.5, -9.5};
+  TwoPhaseGrid<Mem> run(lo, hi, 0.05), one(lo, hi, 0.05);
+  ASSERT_EQ(run.solid.nx, 41);
+  Boundaries walls, liquid_walls;
+  walls.left = {true, 0.1, 0.3};
+  walls.right = {true, 1.9, 0.0, true};
+  walls.bottom = {true, 0.1, 0.5};
+  walls.top = {true, 0.45, 0.0, false, true};
+  liquid_walls = walls;
+  liquid_walls.left.active = false;
+  unsigned state = 12345u;  // a fixed pseudo-random sequence in [-1, 1)
+  auto next = [&state]() {
+    state = state * 1664525u + 1013904223u;
+    return (state >> 8) * (2.0 / 16777216.0) - 1.0;
+  };
+  for (TwoPhaseGrid<Mem>* grid : {&run, &one}) {
+    state = 12345u;
+    for (int n = 0; n < run.size(); ++n) {
+      const bool empty = n % 7 == 3, dry = n % 5 == 1;
+      grid->solid.mass(n) = empty ? 0.0 : 2.0 + next();
+      grid->liquid.mass(n) = empty || dry ? 0.0 : 1.0 + 0.5 * next();
+      grid->drag(n) = 3e3 * (1.5 + next());
+      for (int d = 0; d < 2; ++d) {
+        grid->solid.momentum(n, d) = 4.0 * next();
+        grid->liquid.momentum(n, d) = dry ? 0.0 : 2.0 * next();
+        grid->solid.force(n, d) = 5e3 * next();
+        grid->liquid.force(n, d) = dry ? 0.0 : 2e3 * next();
+      }
+    }
+  }
+  for (const Drag drag : {Drag::SemiImplicit, Drag::Explicit}) {
+    SCOPED_TRACE(drag == Drag::SemiImplicit ? "semi-implicit drag" : "explicit drag");
+    const GridUpdateReport a = two_phase_grid_update<Exec>(run, walls, liquid_walls, dt, g, drag);
+    TwoPhaseUpdateSums b{0.0, 0.0, 0.0, 0.0, 0.0};
+    const auto& S = one.solid;
+    const auto& L = one.liquid;
+    for (int j = 0; j < S.ny; ++j)
+      for (int ii = 0; ii < S.nx; ++ii) {
+        const int i = ii + S.nx * j;
+        const TwoPhaseNodeSums n{S.mass(i),
+                                 L.mass(i),
+                                 {S.momentum(i, 0), S.momentum(i, 1)},
+                                 {L.momentum(i, 0), L.momentum(i, 1)},
+                                 {S.force(i, 0), S.force(i, 1)},
+                                 {L.force(i, 0), L.force(i, 1)},
+                                 one.drag(i)};
+        if (drag == Drag::SemiImplicit)
+          update_two_phase_node<true>(S, L, i, ii, j, n, walls, liquid_walls, S.origin[0],
+                                      S.origin[1], S.dx, 1e-9 * S.dx, dt, g[0], g[1], b);
+        else
+          update_two_phase_node<false>(S, L, i, ii, j, n, walls, liquid_walls, S.origin[0],
+                                       S.origin[1], S.dx, 1e-9 * S.dx, dt, g[0], g[1], b);
+      }
+    // Each node's velocities: the same operations on the same values, exact divisions.
+    int differ = 0;
+    for (int i = 0; i < run.size(); ++i)
+      for (int d = 0; d < 2; ++d)
+        differ += run.solid.velocity(i, d) != S.velocity(i, d) ||
+                  run.solid.velocity_old(i, d) != S.velocity_old(i, d) ||
+                  run.liquid.velocity(i, d) != L.velocity(i, d) ||
+                  run.liquid.velocity_old(i, d) != L.velocity_old(i, d);
+    EXPECT_EQ(differ, 0);
+    // The reductions: every wall acts, and the nodes' shares are added per thread and then
+    // joined (the threads cut the rows): a few roundings of sums of about 400 values.
+    const std::vector<double> got = {a.wall_dissipation, a.drag_dissipation, a.seepage_gravity_work,
+                                     a.wall_force[0], a.wall_force[1]},
+                              want = {b.wall_lost, b.drag_lost, b.seep, b.rx, b.ry};
+    for (std::size_t k = 0; k < got.size(); ++k) {
+      EXPECT_GT(std::fabs(want[k]), 0.0) << "report value " << k;
+      EXPECT_NEAR(got[k], want[k], kTwoRoutesRel * std::fabs(want[k])) << "report value " << k;
+    }
+  }
 }
 
 TEST(SaturatedWaveSpeed, IsTheFastestWaveOfTheTwoPhases) {

@@ -52,6 +52,86 @@ struct TwoPhaseUpdateSums {
   double wall_lost, drag_lost, seep, rx, ry;
 };
 
+// A node's velocities before the walls act, from its sums (see the file comment): at the start
+// of the step (vS0, vL0) and after it (vS, vL), and the relative velocity the drag acts on (wd).
+// A node without solid mass gets zeros; a node without liquid moves the liquid with the solid.
+// Branch-free (every lane computes the wet and the dry update, with the masses of an empty
+// node replaced by 1 so that no division is by zero, and keeps the one its node takes), so that
+// a loop over nodes vectorises: each operation is the same, and exact, in a vector lane.
+template <bool SemiImplicit>
+KOKKOS_FORCEINLINE_FUNCTION void two_phase_node_velocities(
+    const double mS, const double mL, const double Qn, const double pS[2], const double pL[2],
+    const double fS[2], const double fL[2], const double dt, double vS0[2], double vL0[2],
+    double vS[2], double vL[2], double wd[2]) {
+  const bool has = mS > 0.0, wet = has && mL > 0.0;
+  const double ms = has ? mS : 1.0, ml = wet ? mL : 1.0, Q = wet ? Qn : 0.0;
+  const double relax = SemiImplicit ? 1.0 / (1.0 + dt * Q * (1.0 / ml + 1.0 / ms)) : 0.0;
+  for (int d = 0; d < 2; ++d) {
+    const double s0 = pS[d] / ms, l0 = wet ? pL[d] / ml : s0;
+    const double dry = s0 + dt * fS[d] / ms;
+    double w, l, s;
+    if constexpr (SemiImplicit) {
+      const double fLd = fL[d], fmix = fS[d];
+      const double vLs = l0 + dt * fLd / ml, vSs = s0 + dt * (fmix - fLd) / ms;
+      w = (vLs - vSs) * relax;
+      l = vLs - dt * Q * w / ml;
+      const double aL = (l - l0) / dt;
+      s = s0 + dt * (fmix - mL * aL) / ms;
+    } else {
+      w = l0 - s0;
+      const double aL = (fL[d] - Q * w) / ml;
+      l = l0 + dt * aL;
+      s = s0 + dt * (fS[d] - mL * aL) / ms;
+    }
+    vS0[d] = has ? s0 : 0.0;
+    vL0[d] = has ? l0 : 0.0;
+    vS[d] = !has ? 0.0 : wet ? s : dry;
+    vL[d] = !has ? 0.0 : wet ? l : dry;
+    wd[d] = wet ? w : 0.0;
+  }
+}
+
+// The rest of node i = ii + nx j's update from its masses, drag coefficient and velocities
+// (two_phase_node_velocities): the walls, the node's share of the reductions into r, its
+// velocities after and before the update into both grids.
+template <class GridT>
+KOKKOS_FORCEINLINE_FUNCTION void finish_two_phase_node(
+    const GridT& S, const GridT& L, const int i, const int ii, const int j, const double mS,
+    const double mL, const double Q, const double vS0[2], const double vL0[2], double vS[2],
+    double vL[2], const double wd[2], const Boundaries& walls, const Boundaries& liquid_walls,
+    const double ox, const double oy, const double dx, const double tol, const double dt,
+    const double gx, const double gy, TwoPhaseUpdateSums& r) {
+  if (mS > 0.0) {
+    const bool wet = mL > 0.0;
+    const double bS[2] = {vS[0], vS[1]}, bL[2] = {vL[0], vL[1]};
+    const double x = ox + ii * dx, y = oy + j * dx;
+    const bool hitS = apply_walls(walls, x, y, vS, tol);
+    const bool hitL = wet && apply_walls(liquid_walls, x, y, vL, tol);
+    double vSm[2], vLm[2];
+    for (int d = 0; d < 2; ++d) {
+      vSm[d] = 0.5 * (vS0[d] + vS[d]);
+      vLm[d] = 0.5 * (vL0[d] + vL[d]);
+    }
+    if (hitS || hitL) {
+      for (int d = 0; d < 2; ++d)
+        r.wall_lost -= mS * (vS[d] - bS[d]) * vSm[d] + (wet ? mL * (vL[d] - bL[d]) * vLm[d] : 0.0);
+      r.rx += -(mS * (vS[0] - bS[0]) + (wet ? mL * (vL[0] - bL[0]) : 0.0)) / dt;
+      r.ry += -(mS * (vS[1] - bS[1]) + (wet ? mL * (vL[1] - bL[1]) : 0.0)) / dt;
+    }
+    if (wet) {
+      const double wm[2] = {vLm[0] - vSm[0], vLm[1] - vSm[1]};
+      r.drag_lost += dt * Q * (wd[0] * wm[0] + wd[1] * wm[1]);
+      r.seep += dt * mL * (gx * wm[0] + gy * wm[1]);
+    }
+  }
+  for (int d = 0; d < 2; ++d) {
+    S.velocity_old(i, d) = vS0[d];
+    S.velocity(i, d) = vS[d];
+    L.velocity_old(i, d) = vL0[d];
+    L.velocity(i, d) = vL[d];
+  }
+}
+
 // The update of node i = ii + nx j from its sums n (see the file comment): its velocities
 // after and before the update into both grids, its share of the reductions into r.
 template <bool SemiImplicit, class GridT>
@@ -60,68 +140,61 @@ KOKKOS_FORCEINLINE_FUNCTION void update_two_phase_node(
     const TwoPhaseNodeSums& n, const Boundaries& walls, const Boundaries& liquid_walls,
     const double ox, const double oy, const double dx, const double tol, const double dt,
     const double gx, const double gy, TwoPhaseUpdateSums& r) {
-  const double mS = n.mS, mL = n.mL;
-  if (!(mS > 0.0)) {
-    for (int d = 0; d < 2; ++d)
-      S.velocity(i, d) = S.velocity_old(i, d) = L.velocity(i, d) = L.velocity_old(i, d) = 0.0;
-    return;
-  }
-  const bool wet = mL > 0.0;
-  const double Q = wet ? n.Q : 0.0;
   double vS0[2], vL0[2], vS[2], vL[2], wd[2];
-  for (int d = 0; d < 2; ++d) {
-    vS0[d] = n.pS[d] / mS;
-    vL0[d] = wet ? n.pL[d] / mL : vS0[d];
-  }
-  if (!wet) {
+  two_phase_node_velocities<SemiImplicit>(n.mS, n.mL, n.Q, n.pS, n.pL, n.fS, n.fL, dt, vS0, vL0, vS,
+                                          vL, wd);
+  finish_two_phase_node(S, L, i, ii, j, n.mS, n.mL, n.Q, vS0, vL0, vS, vL, wd, walls, liquid_walls,
+                        ox, oy, dx, tol, dt, gx, gy, r);
+}
+
+// update_two_phase_node for nodes ii0..ii1 (at most kNodeRun of them) of row j, from their sums
+// node_sums(ii, j, i), in three loops: the sums, the velocities (two_phase_node_velocities: the
+// divisions, most of a node's time, a vector of nodes at a time where the compiler vectorises
+// the loop), and the rest node by node in the nodes' order (the same bits as one node at a time).
+constexpr int kNodeRun = 16;
+template <bool SemiImplicit, class GridT, class NodeSums>
+KOKKOS_INLINE_FUNCTION void update_two_phase_node_run(
+    const GridT& S, const GridT& L, const int nx, const int j, const int ii0, const int ii1,
+    const NodeSums& node_sums, const Boundaries& walls, const Boundaries& liquid_walls,
+    const double ox, const double oy, const double dx, const double tol, const double dt,
+    const double gx, const double gy, TwoPhaseUpdateSums& r) {
+  constexpr int K = kNodeRun;
+  const int n = ii1 - ii0 + 1;
+  double mS[K], mL[K], Q[K], pS[2][K], pL[2][K], fS[2][K], fL[2][K];
+  for (int k = 0; k < n; ++k) {
+    const TwoPhaseNodeSums s = node_sums(ii0 + k, j, ii0 + k + nx * j);
+    mS[k] = s.mS;
+    mL[k] = s.mL;
+    Q[k] = s.Q;
     for (int d = 0; d < 2; ++d) {
-      vS[d] = vS0[d] + dt * n.fS[d] / mS;
-      vL[d] = vS[d];
-      wd[d] = 0.0;
+      pS[d][k] = s.pS[d];
+      pL[d][k] = s.pL[d];
+      fS[d][k] = s.fS[d];
+      fL[d][k] = s.fL[d];
     }
-  } else if constexpr (SemiImplicit) {
-    const double relax = 1.0 / (1.0 + dt * Q * (1.0 / mL + 1.0 / mS));
+  }
+  double vS0[2][K], vL0[2][K], vS[2][K], vL[2][K], wd[2][K];
+#pragma GCC ivdep
+  for (int k = 0; k < n; ++k) {
+    const double ps[2] = {pS[0][k], pS[1][k]}, pl[2] = {pL[0][k], pL[1][k]};
+    const double fs[2] = {fS[0][k], fS[1][k]}, fl[2] = {fL[0][k], fL[1][k]};
+    double s0[2], l0[2], s[2], l[2], w[2];
+    two_phase_node_velocities<SemiImplicit>(mS[k], mL[k], Q[k], ps, pl, fs, fl, dt, s0, l0, s, l,
+                                            w);
     for (int d = 0; d < 2; ++d) {
-      const double fL = n.fL[d], fmix = n.fS[d];
-      const double vLs = vL0[d] + dt * fL / mL, vSs = vS0[d] + dt * (fmix - fL) / mS;
-      wd[d] = (vLs - vSs) * relax;
-      vL[d] = vLs - dt * Q * wd[d] / mL;
-      const double aL = (vL[d] - vL0[d]) / dt;
-      vS[d] = vS0[d] + dt * (fmix - mL * aL) / mS;
-    }
-  } else {
-    for (int d = 0; d < 2; ++d) {
-      wd[d] = vL0[d] - vS0[d];
-      const double aL = (n.fL[d] - Q * wd[d]) / mL;
-      vL[d] = vL0[d] + dt * aL;
-      vS[d] = vS0[d] + dt * (n.fS[d] - mL * aL) / mS;
+      vS0[d][k] = s0[d];
+      vL0[d][k] = l0[d];
+      vS[d][k] = s[d];
+      vL[d][k] = l[d];
+      wd[d][k] = w[d];
     }
   }
-  const double bS[2] = {vS[0], vS[1]}, bL[2] = {vL[0], vL[1]};
-  const double x = ox + ii * dx, y = oy + j * dx;
-  const bool hitS = apply_walls(walls, x, y, vS, tol);
-  const bool hitL = wet && apply_walls(liquid_walls, x, y, vL, tol);
-  double vSm[2], vLm[2];
-  for (int d = 0; d < 2; ++d) {
-    vSm[d] = 0.5 * (vS0[d] + vS[d]);
-    vLm[d] = 0.5 * (vL0[d] + vL[d]);
-  }
-  if (hitS || hitL) {
-    for (int d = 0; d < 2; ++d)
-      r.wall_lost -= mS * (vS[d] - bS[d]) * vSm[d] + (wet ? mL * (vL[d] - bL[d]) * vLm[d] : 0.0);
-    r.rx += -(mS * (vS[0] - bS[0]) + (wet ? mL * (vL[0] - bL[0]) : 0.0)) / dt;
-    r.ry += -(mS * (vS[1] - bS[1]) + (wet ? mL * (vL[1] - bL[1]) : 0.0)) / dt;
-  }
-  if (wet) {
-    const double wm[2] = {vLm[0] - vSm[0], vLm[1] - vSm[1]};
-    r.drag_lost += dt * Q * (wd[0] * wm[0] + wd[1] * wm[1]);
-    r.seep += dt * mL * (gx * wm[0] + gy * wm[1]);
-  }
-  for (int d = 0; d < 2; ++d) {
-    S.velocity_old(i, d) = vS0[d];
-    S.velocity(i, d) = vS[d];
-    L.velocity_old(i, d) = vL0[d];
-    L.velocity(i, d) = vL[d];
+  for (int k = 0; k < n; ++k) {
+    const double s0[2] = {vS0[0][k], vS0[1][k]}, l0[2] = {vL0[0][k], vL0[1][k]};
+    const double w[2] = {wd[0][k], wd[1][k]};
+    double s[2] = {vS[0][k], vS[1][k]}, l[2] = {vL[0][k], vL[1][k]};
+    finish_two_phase_node(S, L, ii0 + k + nx * j, ii0 + k, j, mS[k], mL[k], Q[k], s0, l0, s, l, w,
+                          walls, liquid_walls, ox, oy, dx, tol, dt, gx, gy, r);
   }
 }
 
@@ -151,11 +224,19 @@ GridUpdateReport update_two_phase_nodes(const char* name, const TwoPhaseGrid<Mem
                     double& ry) {
         TwoPhaseUpdateSums r{wall_lost, drag_lost, seep, rx, ry};
         items.visit(t, [&](const int j, const int i_begin, const int i_end) {
-          for (int ii = i_begin; ii <= i_end; ++ii) {  // a row of the region, or one node
-            const int i = ii + nx * j;
-            const TwoPhaseNodeSums n = node_sums(ii, j, i);
-            update_two_phase_node<SemiImplicit>(S, L, i, ii, j, n, walls, liquid_walls, ox, oy, dx,
-                                                tol, dt, gx, gy, r);
+          if constexpr (NodeItems<ExecSpace>::whole_rows && SemiImplicit) {
+            // A row, a run of nodes at a time (the explicit drag's fewer divisions do not pay
+            // for the run's passes over its arrays: one node at a time).
+            for (int ii = i_begin; ii <= i_end; ii += kNodeRun)
+              update_two_phase_node_run<SemiImplicit>(
+                  S, L, nx, j, ii, i_end - ii < kNodeRun ? i_end : ii + kNodeRun - 1, node_sums,
+                  walls, liquid_walls, ox, oy, dx, tol, dt, gx, gy, r);
+          } else {  // a row of the region, or one node
+            for (int ii = i_begin; ii <= i_end; ++ii) {
+              const int i = ii + nx * j;
+              update_two_phase_node<SemiImplicit>(S, L, i, ii, j, node_sums(ii, j, i), walls,
+                                                  liquid_walls, ox, oy, dx, tol, dt, gx, gy, r);
+            }
           }
         });
         wall_lost = r.wall_lost;
