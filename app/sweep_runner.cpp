@@ -188,11 +188,25 @@ class ChunkEvaluator {
   // Runs the MPM of c's r-th MPM row (c.mpm_rows[r]) into c.runs[r]; safe to call for several
   // rows (of one chunk or several) at once.
   void run_mpm(Chunk& c, std::size_t r) const {
-    const int dims = static_cast<int>(study_.inputs.size());
-    const std::uint64_t i = c.mpm_rows[r];
-    std::vector<double> x(dims);
-    for (int d = 0; d < dims; ++d) x[d] = c.table.inputs[d][i];
-    c.runs[r] = run_mpm_sample(c.table.index[i], x.data());
+    const std::vector<double> x = mpm_inputs(c, r);
+    c.runs[r] = run_mpm_sample(c.table.index[c.mpm_rows[r]], x.data());
+  }
+
+  // The memory MPM run r of chunk c takes (host_run_bytes of its sample's scene); 0 where the
+  // sample's scene is invalid (its run reports why).
+  double mpm_run_bytes(const Chunk& c, std::size_t r) const {
+    try {
+      const std::vector<double> x = mpm_inputs(c, r);
+      return host_run_bytes(
+          estimate_footprint(impact_case(parse_scene(sample_scene_document(study_, x.data())))));
+    } catch (const std::exception&) {
+      return 0.0;
+    }
+  }
+
+  // The sample number (from 1) of MPM run r of chunk c.
+  std::uint64_t mpm_sample_number(const Chunk& c, std::size_t r) const {
+    return c.table.index[c.mpm_rows[r]] + 1;
   }
 
   // c's rows complete once its MPM rows have run: the MPM columns and the failures, in row order.
@@ -270,6 +284,14 @@ class ChunkEvaluator {
     t.failure_reason.push_back(why);
   }
 
+  // The inputs of MPM run r of chunk c.
+  std::vector<double> mpm_inputs(const Chunk& c, std::size_t r) const {
+    const std::size_t dims = study_.inputs.size();
+    std::vector<double> x(dims);
+    for (std::size_t d = 0; d < dims; ++d) x[d] = c.table.inputs[d][c.mpm_rows[r]];
+    return x;
+  }
+
   // Runs sample `index` (its inputs x); safe to call for several samples at once.
   MpmSample run_mpm_sample(std::uint64_t index, const double* x) const {
     MpmSample r;
@@ -332,7 +354,8 @@ enum class AfterChunk { go_on, finish_started, drop_started };
 // sample's numbers are the same in a resumed, a sharded and an uninterrupted run; a study of one
 // sample runs it with every thread. At most as many as fit in the memory side by side, each
 // counted at the base scene's footprint (campaign_runs_that_fit, model/mpm_footprint.hpp): large
-// scenes run fewer at once, or one after the other with every thread.
+// scenes run fewer at once, or one after the other with every thread. A sample larger than the
+// base scene waits for memory as it starts (evaluate_in_order).
 int sweep_runs_at_once(const Study& s) {
   return s.runs("mpm") ? campaign_runs_that_fit(static_cast<std::size_t>(s.samples), {&s.base}) : 1;
 }
@@ -355,7 +378,14 @@ void evaluate_in_order(ChunkEvaluator& evaluator, const Study& study, const int 
   struct Slot {
     ChunkEvaluator::Chunk chunk;
     std::size_t runs_left = 0, runs_waiting = 0;
+    std::vector<double> run_bytes;  // each MPM run's memory (ChunkEvaluator::mpm_run_bytes)
   };
+  // The memory the runs under way may take together: half of what is available when the
+  // sweep starts (as runs_that_fit counts); 0: no bound known, or one run at a time. A sampled
+  // input may make a sample's scene larger than the base scene that `runs` was counted at: a
+  // run that does not fit beside the runs under way waits until they end.
+  const double memory_for_runs = runs > 1 ? 0.5 * double(available_memory_bytes()) : 0.0;
+  double memory_in_runs = 0.0;
   const std::uint64_t most_rows = rows_in_flight(study, runs) - study.chunk_samples;
   std::mutex lock;
   std::condition_variable changed;
@@ -367,6 +397,7 @@ void evaluate_in_order(ChunkEvaluator& evaluator, const Study& study, const int 
   std::size_t to_commit = 0;  // after finish_started: the chunks of `started` still committed
   std::uint64_t started_rows = 0;
   bool committing = false, failed = false;
+  std::uint64_t told_to_wait = 0;  // the last sample said to wait for memory (numbers from 1)
   AfterChunk after = AfterChunk::go_on;
   // Commits the complete chunks at the front of `started`, one thread at a time, the lock
   // released while the commit writes (the chunk still counted in started_rows).
@@ -403,21 +434,41 @@ void evaluate_in_order(ChunkEvaluator& evaluator, const Study& study, const int 
     std::unique_lock<std::mutex> l(lock);
     try {
       while (!failed) {
-        if (!waiting_runs.empty()) {
+        bool run_fits = !waiting_runs.empty();
+        if (run_fits && running > 0 && memory_for_runs > 0.0) {
+          const auto [c, r] = waiting_runs.front();
+          run_fits = memory_in_runs + c->run_bytes[r] <= memory_for_runs;
+          const std::uint64_t sample = evaluator.mpm_sample_number(c->chunk, r);
+          // Said of a sample larger than its share (others wait only behind it).
+          if (!run_fits && sample != told_to_wait && c->run_bytes[r] > memory_for_runs / runs) {
+            told_to_wait = sample;
+            std::fprintf(stderr,
+                         "lsi: note: sample %llu needs %s for its MPM run, more than is left of "
+                         "half the memory (%s) beside the runs under way: it starts when they "
+                         "end\n",
+                         static_cast<unsigned long long>(sample),
+                         format_bytes(c->run_bytes[r]).c_str(),
+                         format_bytes(memory_for_runs).c_str());
+          }
+        }
+        if (run_fits) {
           const auto [c, r] = waiting_runs.front();
           waiting_runs.pop_front();
           --c->runs_waiting;
           ++running;
+          const double bytes = c->run_bytes[r];
+          memory_in_runs += bytes;
           l.unlock();
           evaluator.run_mpm(c->chunk, r);
           l.lock();
+          memory_in_runs -= bytes;
           --running;
           --c->runs_left;
           commit_ready(l);
         } else if (after == AfterChunk::go_on && next < ks.size() &&
                    (started.empty() || started_rows < most_rows)) {
           if (free_slots.empty()) {
-            slots.push_back(std::make_unique<Slot>(Slot{evaluator.new_chunk(), 0}));
+            slots.push_back(std::make_unique<Slot>(Slot{evaluator.new_chunk(), 0, 0, {}}));
             free_slots.push_back(slots.back().get());
           }
           Slot* c = free_slots.back();
@@ -425,6 +476,10 @@ void evaluate_in_order(ChunkEvaluator& evaluator, const Study& study, const int 
           // The closed forms under the lock: one chunk at a time (the evaluator's buffers).
           evaluator.closed_forms(ks[next++], c->chunk);
           c->runs_left = c->runs_waiting = c->chunk.mpm_rows.size();
+          c->run_bytes.assign(c->runs_left, 0.0);
+          if (memory_for_runs > 0.0)
+            for (std::size_t r = 0; r < c->runs_left; ++r)
+              c->run_bytes[r] = evaluator.mpm_run_bytes(c->chunk, r);
           for (std::size_t r = 0; r < c->runs_left; ++r) waiting_runs.emplace_back(c, r);
           started.push_back(c);
           started_rows += c->chunk.table.rows();

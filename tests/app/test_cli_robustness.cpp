@@ -13,6 +13,7 @@
 #include <functional>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
@@ -264,6 +265,42 @@ TEST(CliRobustness, MpmRunsThatCannotFitAreRefusedUpFront) {
   EXPECT_NE(r.out.find("methods.mpm.snapshot_interval_s = 1e-06: snapshots"), std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("a snapshot_interval_s of at least"), std::string::npos) << r.out;
+}
+
+// An MPM sweep's samples run side by side within half the memory, each counted at its own
+// scene's footprint: a sample whose histories (one output every 9e-6 s to the default end time)
+// would take more than half of the memory under a 4 GB address-space limit, but less than all
+// of it, runs alone, the others before and after it side by side, with a note naming it; the
+// numbers are those of a run without the limit (each sample on one thread either way).
+TEST(CliRobustness, AnMpmSampleTooLargeToRunBesideOthersRunsAlone) {
+  json scene = read_json(source_dir / "scenes/examples/impact-small.json");
+  scene["methods"]["mpm"]["cell_size_m"] = 0.25;
+  const fs::path points = lsi::testing::write_text(
+      temp_dir() / "memory_points.csv", "/methods/mpm/output_interval_s\n0.05\n9e-6\n0.05\n0.05\n");
+  const json study = {{"name", "memory"},   {"scene", scene},
+                      {"design", "points"}, {"points", {{"file", points.string()}}},
+                      {"methods", {"mpm"}}, {"outputs", {"peak_force"}}};
+  const fs::path file = write_json("memory_study.json", study);
+  const fs::path limited = temp_dir() / "memory_limited",
+                 unlimited = temp_dir() / "memory_unlimited";
+  fs::remove_all(limited.string() + ".h5");
+  fs::remove_all(unlimited.string() + ".h5");
+  const Outcome a = run_in_bash(
+      "ulimit -v 4000000", "--progress none sweep " + file.string() + " --out " + limited.string() +
+                               ".h5 --table-csv " + limited.string() + ".csv");
+  ASSERT_EQ(a.code, 0) << a.out;
+  EXPECT_NE(a.out.find("lsi: note: sample 2 needs"), std::string::npos) << a.out;
+  EXPECT_EQ(a.out.find("lsi: note: sample 3"), std::string::npos) << a.out;
+  EXPECT_NE(a.out.find("4 of 4 samples done, 4 ok"), std::string::npos) << a.out;
+  const Outcome b = run("--progress none sweep " + file.string() + " --out " + unlimited.string() +
+                        ".h5 --table-csv " + unlimited.string() + ".csv");
+  ASSERT_EQ(b.code, 0) << b.out;
+  EXPECT_EQ(b.out.find("lsi: note: sample"), std::string::npos) << b.out;
+  std::ifstream x(limited.string() + ".csv"), y(unlimited.string() + ".csv");
+  const std::string tx((std::istreambuf_iterator<char>(x)), std::istreambuf_iterator<char>());
+  const std::string ty((std::istreambuf_iterator<char>(y)), std::istreambuf_iterator<char>());
+  EXPECT_FALSE(tx.empty());
+  EXPECT_EQ(tx, ty);
 }
 
 // The footprint that the refusals above rest on, against a run of the same case: the points
