@@ -12,6 +12,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <new>
 #include <cmath>
 #include <cerrno>
 #include <cstdio>
@@ -199,6 +200,8 @@ class ChunkEvaluator {
       const std::vector<double> x = mpm_inputs(c, r);
       return host_run_bytes(
           estimate_footprint(impact_case(parse_scene(sample_scene_document(study_, x.data())))));
+    } catch (const std::bad_alloc&) {
+      throw;
     } catch (const std::exception&) {
       return 0.0;
     }
@@ -383,7 +386,8 @@ void evaluate_in_order(ChunkEvaluator& evaluator, const Study& study, const int 
   // The memory the runs under way may take together: half of what is available when the
   // sweep starts (as runs_that_fit counts); 0: no bound known, or one run at a time. A sampled
   // input may make a sample's scene larger than the base scene that `runs` was counted at: a
-  // run that does not fit beside the runs under way waits until they end.
+  // run that does not fit beside the runs under way waits until they end (one larger than its
+  // share, memory_for_runs / runs, is named in a note as its chunk starts).
   const double memory_for_runs = runs > 1 ? 0.5 * double(available_memory_bytes()) : 0.0;
   double memory_in_runs = 0.0;
   const std::uint64_t most_rows = rows_in_flight(study, runs) - study.chunk_samples;
@@ -397,7 +401,6 @@ void evaluate_in_order(ChunkEvaluator& evaluator, const Study& study, const int 
   std::size_t to_commit = 0;  // after finish_started: the chunks of `started` still committed
   std::uint64_t started_rows = 0;
   bool committing = false, failed = false;
-  std::uint64_t told_to_wait = 0;  // the last sample said to wait for memory (numbers from 1)
   AfterChunk after = AfterChunk::go_on;
   // Commits the complete chunks at the front of `started`, one thread at a time, the lock
   // released while the commit writes (the chunk still counted in started_rows).
@@ -438,18 +441,6 @@ void evaluate_in_order(ChunkEvaluator& evaluator, const Study& study, const int 
         if (run_fits && running > 0 && memory_for_runs > 0.0) {
           const auto [c, r] = waiting_runs.front();
           run_fits = memory_in_runs + c->run_bytes[r] <= memory_for_runs;
-          const std::uint64_t sample = evaluator.mpm_sample_number(c->chunk, r);
-          // Said of a sample larger than its share (others wait only behind it).
-          if (!run_fits && sample != told_to_wait && c->run_bytes[r] > memory_for_runs / runs) {
-            told_to_wait = sample;
-            std::fprintf(stderr,
-                         "lsi: note: sample %llu needs %s for its MPM run, more than is left of "
-                         "half the memory (%s) beside the runs under way: it starts when they "
-                         "end\n",
-                         static_cast<unsigned long long>(sample),
-                         format_bytes(c->run_bytes[r]).c_str(),
-                         format_bytes(memory_for_runs).c_str());
-          }
         }
         if (run_fits) {
           const auto [c, r] = waiting_runs.front();
@@ -478,8 +469,19 @@ void evaluate_in_order(ChunkEvaluator& evaluator, const Study& study, const int 
           c->runs_left = c->runs_waiting = c->chunk.mpm_rows.size();
           c->run_bytes.assign(c->runs_left, 0.0);
           if (memory_for_runs > 0.0)
-            for (std::size_t r = 0; r < c->runs_left; ++r)
+            for (std::size_t r = 0; r < c->runs_left; ++r) {
               c->run_bytes[r] = evaluator.mpm_run_bytes(c->chunk, r);
+              if (c->run_bytes[r] > memory_for_runs / runs)  // larger than its share
+                std::fprintf(
+                    stderr,
+                    "lsi: note: sample %llu needs %s for its MPM run, more than its "
+                    "share of half the memory (%s of %s): it runs beside fewer runs, "
+                    "alone if need be\n",
+                    static_cast<unsigned long long>(evaluator.mpm_sample_number(c->chunk, r)),
+                    format_bytes(c->run_bytes[r]).c_str(),
+                    format_bytes(memory_for_runs / runs).c_str(),
+                    format_bytes(memory_for_runs).c_str());
+            }
           for (std::size_t r = 0; r < c->runs_left; ++r) waiting_runs.emplace_back(c, r);
           started.push_back(c);
           started_rows += c->chunk.table.rows();

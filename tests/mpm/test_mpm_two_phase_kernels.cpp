@@ -390,7 +390,9 @@ TEST(TwoPhaseGridUpdate, ARunOfNodesAtATimeGivesEachNodeItsOwnUpdate) {
   // takes one node per work item (update_two_phase_node). Rows of 41 nodes (two runs and a
   // shorter one) whose sums mix empty, dry and wet nodes, with walls at both ends and below
   // (Coulomb, bilateral, no-slip; the liquid's left wall open), against update_two_phase_node
-  // called node by node.
+  // called node by node. The explicit drag takes one node at a time on the host as well: its
+  // half checks the update across the rows' work items. What each node's update computes is
+  // checked by the drag and consolidation tests of test_mpm_two_phase.cpp.
   using Exec = Kokkos::DefaultHostExecutionSpace;
   using Mem = Exec::memory_space;
   const double lo[2] = {0.0, 0.0}, hi[2] = {2.0, 0.5}, dt = 2e-4, g[2] = {1.5, -9.5};
