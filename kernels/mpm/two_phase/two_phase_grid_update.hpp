@@ -218,13 +218,16 @@ GridUpdateReport update_two_phase_nodes(const char* name, const TwoPhaseGrid<Mem
   if (region.empty()) return rep;
   double fx = 0.0, fy = 0.0;
   const NodeItems<ExecSpace> items(region, spans);
+  constexpr bool runs_of_nodes = NodeItems<ExecSpace>::whole_rows && SemiImplicit;  // host
   Kokkos::parallel_reduce(
       name, range_policy<ExecSpace>(0, items.count()),
       KOKKOS_LAMBDA(const int t, double& wall_lost, double& drag_lost, double& seep, double& rx,
                     double& ry) {
         TwoPhaseUpdateSums r{wall_lost, drag_lost, seep, rx, ry};
         items.visit(t, [&](const int j, const int i_begin, const int i_end) {
-          if constexpr (NodeItems<ExecSpace>::whole_rows && SemiImplicit) {
+          // (A plain `if` on a constant: nvcc refuses a device lambda's first capture of a
+          // variable inside `if constexpr`.)
+          if (runs_of_nodes) {
             // A row, a run of nodes at a time (the explicit drag's fewer divisions do not pay
             // for the run's passes over its arrays: one node at a time).
             for (int ii = i_begin; ii <= i_end; ii += kNodeRun)
