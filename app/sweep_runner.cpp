@@ -12,7 +12,6 @@
 #include <functional>
 #include <memory>
 #include <mutex>
-#include <new>
 #include <cmath>
 #include <cerrno>
 #include <cstdio>
@@ -197,13 +196,9 @@ class ChunkEvaluator {
   // sample's scene is invalid (its run reports why).
   double mpm_run_bytes(const Chunk& c, std::size_t r) const {
     try {
-      const std::vector<double> x = mpm_inputs(c, r);
-      return host_run_bytes(
-          estimate_footprint(impact_case(parse_scene(sample_scene_document(study_, x.data())))));
-    } catch (const std::bad_alloc&) {
-      throw;
-    } catch (const std::exception&) {
-      return 0.0;
+      return scene_run_bytes(parse_scene(sample_scene_document(study_, mpm_inputs(c, r).data())));
+    } catch (const InputError&) {
+      return 0.0;  // an invalid sample: its run reports why
     }
   }
 
@@ -383,12 +378,12 @@ void evaluate_in_order(ChunkEvaluator& evaluator, const Study& study, const int 
     std::size_t runs_left = 0, runs_waiting = 0;
     std::vector<double> run_bytes;  // each MPM run's memory (ChunkEvaluator::mpm_run_bytes)
   };
-  // The memory the runs under way may take together: half of what is available when the
-  // sweep starts (as runs_that_fit counts); 0: no bound known, or one run at a time. A sampled
+  // The memory the runs under way may take together (memory_for_runs of what is available when
+  // the sweep starts); 0: no bound known, or one run at a time. A sampled
   // input may make a sample's scene larger than the base scene that `runs` was counted at: a
   // run that does not fit beside the runs under way waits until they end (one larger than its
   // share, memory_for_runs / runs, is named in a note as its chunk starts).
-  const double memory_for_runs = runs > 1 ? 0.5 * double(available_memory_bytes()) : 0.0;
+  const double memory_for_runs = runs > 1 ? lsi::memory_for_runs(available_memory_bytes()) : 0.0;
   double memory_in_runs = 0.0;
   const std::uint64_t most_rows = rows_in_flight(study, runs) - study.chunk_samples;
   std::mutex lock;

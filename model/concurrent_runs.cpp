@@ -45,9 +45,13 @@ int concurrent_runs(std::size_t tasks, int runs) {
   return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(std::max(n, 1)), tasks));
 }
 
+double memory_for_runs(std::uint64_t available_bytes) {
+  return 0.5 * static_cast<double>(available_bytes);
+}
+
 int runs_that_fit(int runs, double run_bytes, std::uint64_t available_bytes) {
   if (available_bytes == 0 || !(run_bytes > 0.0)) return runs;
-  const double fit = std::floor(0.5 * static_cast<double>(available_bytes) / run_bytes);
+  const double fit = std::floor(memory_for_runs(available_bytes) / run_bytes);
   return fit >= double(runs) ? runs : std::max(1, static_cast<int>(fit));
 }
 

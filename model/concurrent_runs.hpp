@@ -33,6 +33,10 @@ int concurrent_runs(std::size_t tasks, int runs_at_once = 0);
 // nothing.
 int runs_that_fit(int runs, double run_bytes, std::uint64_t available_bytes);
 
+// The memory runs side by side may take together: half of `available_bytes` (runs_that_fit's
+// rule; an MPM sweep holds each sample to it as the sample starts).
+double memory_for_runs(std::uint64_t available_bytes);
+
 // Calls task(k) for k = 0 .. tasks - 1, concurrent_runs(tasks, runs_at_once) at a time. Every
 // task runs even when another throws; then the first exception (by task index) is rethrown.
 // While tasks share the machine, MPM progress lines are off (model/progress.hpp); with a

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <new>
 
 #include "model/concurrent_runs.hpp"
 #include "model/host_threads.hpp"
@@ -98,15 +99,21 @@ double host_run_bytes(const MpmFootprint& f) {
   return (kStateOnHost ? f.state_bytes : 0.0) + f.history_bytes + f.snapshot_bytes;
 }
 
+double scene_run_bytes(const Scene& s) {
+  try {
+    return host_run_bytes(estimate_footprint(impact_case(s)));
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception&) {
+    return 0.0;
+  }
+}
+
 int campaign_runs_that_fit(const std::size_t tasks, const std::vector<const Scene*>& scenes) {
   const int runs = concurrent_runs(tasks);
   if (runs < 2) return runs;
   double largest = 0.0;
-  for (const Scene* s : scenes) try {
-      largest = std::max(largest, host_run_bytes(estimate_footprint(impact_case(*s))));
-    } catch (const std::exception&) {
-      // Reported by the scene's own run.
-    }
+  for (const Scene* s : scenes) largest = std::max(largest, scene_run_bytes(*s));
   return runs_that_fit(runs, largest, available_memory_bytes());
 }
 

@@ -32,6 +32,10 @@ void check_mpm_fits(const MpmCase& c);
 // where that lives on the host, its histories and its snapshots.
 double host_run_bytes(const MpmFootprint& f);
 
+// host_run_bytes of the footprint of a scene's MPM case; 0 where the case cannot be built (the
+// scene's run reports why).
+double scene_run_bytes(const Scene& s);
+
 // The runs at once for a campaign of `tasks` MPM runs of `scenes` (run_concurrently's
 // runs_at_once): as many as threads and tasks allow (concurrent_runs), at most as many as fit in
 // the memory side by side, each counted at the largest scene's footprint (runs_that_fit). A
